@@ -1,0 +1,58 @@
+/* Stage 2: one interface over SIFT, SURF and ORB with OpenCV's default
+ * parameters and an optional cap on the number of features (strongest kept).
+ * The only place in roislam that creates OpenCV feature classes. Called by the
+ * ROI pipeline, the SLAM front end and feature-bench.
+ */
+#pragma once
+
+#include <roislam/features/TFeatureSet.h>
+
+#include <mrpt/config/CLoadableOptions.h>
+
+#include <opencv2/features2d.hpp>
+
+namespace roislam::features
+{
+class CFeatureExtractor
+{
+ public:
+  /** ini section (default "FeatureExtractor"):
+   *  - feature_type   sift|surf|orb           (default orb)
+   *  - max_features   int >= 0, 0 = no cap     (default 0; SIFT/SURF keep all,
+   *                   ORB uses OpenCV's default 500)
+   *  - surf_hessian_threshold  double > 0      (default 100, as OpenCV SURF)
+   *  - surf_octaves            int >= 1        (default 4)
+   *  - surf_octave_layers      int >= 1        (default 3)
+   *  - surf_extended           bool            (default false: 64-D)
+   *  - surf_upright            bool            (default false)
+   */
+  struct TOptions : public mrpt::config::CLoadableOptions
+  {
+    EFeatureType feature_type = EFeatureType::ORB;
+    int max_features = 0;
+    double surf_hessian_threshold = 100;
+    int surf_octaves = 4;
+    int surf_octave_layers = 3;
+    bool surf_extended = false;
+    bool surf_upright = false;
+
+    void loadFromConfigFile(
+        const mrpt::config::CConfigFileBase& source, const std::string& section) override;
+    void saveToConfigFile(
+        mrpt::config::CConfigFileBase& target, const std::string& section) const override;
+  };
+
+  explicit CFeatureExtractor(const TOptions& options = TOptions());
+
+  /** Detects and describes features on a grey (CV_8UC1) or BGR image. When
+   *  max_features > 0, at most that many are returned, strongest response first.
+   *  mask (optional, CV_8UC1) restricts detection. */
+  TFeatureSet extract(const cv::Mat& image, const cv::Mat& mask = cv::Mat()) const;
+
+  const TOptions& options() const { return m_options; }
+
+ private:
+  TOptions m_options;
+  cv::Ptr<cv::Feature2D> m_detector;
+};
+}  // namespace roislam::features
