@@ -7,16 +7,17 @@
 namespace roislam::io
 {
 std::vector<std::pair<std::size_t, std::size_t>> associateStamps(
-    const std::vector<double>& a, const std::vector<double>& b, double maxDifference,
-    double offset)
+    const std::vector<double>& a, const std::vector<double>& b, double maxDifference, double offset)
 {
   // Candidate generation over b sorted by time keeps this O((n + m) log m + k)
   // instead of associate.py's O(n m), with the same result.
   std::vector<std::size_t> bOrder(b.size());
-  for (std::size_t j = 0; j < b.size(); ++j) bOrder[j] = j;
+  for (std::size_t j = 0; j < b.size(); ++j)
+    bOrder[j] = j;
   std::sort(bOrder.begin(), bOrder.end(), [&](auto x, auto y) { return b[x] < b[y]; });
   std::vector<double> bSorted(b.size());
-  for (std::size_t k = 0; k < b.size(); ++k) bSorted[k] = b[bOrder[k]] + offset;
+  for (std::size_t k = 0; k < b.size(); ++k)
+    bSorted[k] = b[bOrder[k]] + offset;
 
   std::vector<std::tuple<double, std::size_t, std::size_t>> candidates;
   for (std::size_t i = 0; i < a.size(); ++i)
@@ -35,7 +36,8 @@ std::vector<std::pair<std::size_t, std::size_t>> associateStamps(
   std::vector<std::pair<std::size_t, std::size_t>> matches;
   for (const auto& [d, i, j] : candidates)
   {
-    if (usedA[i] || usedB[j]) continue;
+    if (usedA[i] || usedB[j])
+      continue;
     usedA[i] = usedB[j] = true;
     matches.emplace_back(i, j);
   }

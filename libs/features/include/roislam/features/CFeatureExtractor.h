@@ -5,9 +5,8 @@
  */
 #pragma once
 
-#include <roislam/features/TFeatureSet.h>
-
 #include <mrpt/config/CLoadableOptions.h>
+#include <roislam/features/TFeatureSet.h>
 
 #include <opencv2/features2d.hpp>
 
@@ -42,7 +41,10 @@ class CFeatureExtractor
         mrpt::config::CConfigFileBase& target, const std::string& section) const override;
   };
 
-  explicit CFeatureExtractor(const TOptions& options = TOptions());
+  // Two constructors rather than a default argument: GCC rejects TOptions()
+  // as a default argument inside the enclosing class.
+  CFeatureExtractor();
+  explicit CFeatureExtractor(const TOptions& options);
 
   /** Detects and describes features on a grey (CV_8UC1) or BGR image. When
    *  max_features > 0, at most that many are returned, strongest response first.

@@ -28,7 +28,10 @@ class CSurf : public cv::Feature2D
   };
 
   /** Throws std::invalid_argument on invalid parameters (message names it). */
-  static cv::Ptr<CSurf> create(const TParams& params = TParams());
+  static cv::Ptr<CSurf> create(const TParams& params);
+  /** Default parameters. (A separate overload rather than a default argument:
+   *  GCC rejects `= TParams()` for a nested struct with member initialisers.) */
+  static cv::Ptr<CSurf> create();
   explicit CSurf(const TParams& params);
 
   const TParams& params() const { return m_params; }

@@ -5,7 +5,6 @@
 
 #include <opencv2/core.hpp>
 #include <opencv2/core/types.hpp>
-
 #include <string>
 #include <vector>
 
@@ -22,7 +21,10 @@ enum class EFeatureType
 EFeatureType featureTypeFromString(const std::string& s);
 std::string toString(EFeatureType t);
 /** ORB descriptors are binary (Hamming); SIFT/SURF are float (L2). */
-inline bool isBinary(EFeatureType t) { return t == EFeatureType::ORB; }
+inline bool isBinary(EFeatureType t)
+{
+  return t == EFeatureType::ORB;
+}
 
 struct TFeatureSet
 {

@@ -5,9 +5,8 @@
 
 #include <mrpt/img/TCamera.h>
 
-#include <opencv2/core/mat.hpp>
-
 #include <cstddef>
+#include <opencv2/core/mat.hpp>
 #include <string>
 
 namespace roislam::io

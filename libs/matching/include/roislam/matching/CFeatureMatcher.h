@@ -5,12 +5,10 @@
  */
 #pragma once
 
+#include <mrpt/config/CLoadableOptions.h>
 #include <roislam/features/TFeatureSet.h>
 
-#include <mrpt/config/CLoadableOptions.h>
-
 #include <opencv2/core/types.hpp>
-
 #include <vector>
 
 namespace roislam::matching
@@ -41,7 +39,10 @@ class CFeatureMatcher
         mrpt::config::CConfigFileBase& target, const std::string& section) const override;
   };
 
-  explicit CFeatureMatcher(const TOptions& options = TOptions());
+  // Two constructors rather than a default argument: GCC rejects TOptions()
+  // as a default argument inside the enclosing class.
+  CFeatureMatcher();
+  explicit CFeatureMatcher(const TOptions& options);
 
   /** Matches query against train; DMatch.queryIdx indexes query, trainIdx
    *  train. Both sets must be of the same feature type. Empty sets give no

@@ -5,12 +5,10 @@
  */
 #pragma once
 
+#include <mrpt/config/CLoadableOptions.h>
 #include <roislam/features/TFeatureSet.h>
 
-#include <mrpt/config/CLoadableOptions.h>
-
 #include <opencv2/core.hpp>
-
 #include <optional>
 #include <vector>
 
@@ -59,7 +57,10 @@ class CHomographyLocator
         mrpt::config::CConfigFileBase& target, const std::string& section) const override;
   };
 
-  explicit CHomographyLocator(const TOptions& options = TOptions());
+  // Two constructors rather than a default argument: GCC rejects TOptions()
+  // as a default argument inside the enclosing class.
+  CHomographyLocator();
+  explicit CHomographyLocator(const TOptions& options);
 
   /** reference: features of the reference image (matches' queryIdx);
    *  other: features of the other image (matches' trainIdx); refRoi: the ROI in

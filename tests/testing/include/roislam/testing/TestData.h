@@ -34,17 +34,17 @@ std::string makeTempDir(const std::string& prefix);
 }  // namespace roislam::testing
 
 /** Skips the current test when the shared TUM sequence is not available. */
-#define ROISLAM_REQUIRE_SHARED_TUM(var)                                                  \
-  const auto var##_opt = roislam::testing::sharedTumSequence();                         \
-  if (!var##_opt)                                                                       \
+#define ROISLAM_REQUIRE_SHARED_TUM(var)                                                     \
+  const auto var##_opt = roislam::testing::sharedTumSequence();                             \
+  if (!var##_opt)                                                                           \
     GTEST_SKIP() << "shared TUM data not found under " << roislam::testing::sharedDataDir() \
-                 << " (configure with -DROISLAM_SHARED_DATA_DIR=...)";                  \
+                 << " (configure with -DROISLAM_SHARED_DATA_DIR=...)";                      \
   const std::string var = *var##_opt
 
 /** Skips the current test when a synthetic sequence was not generated. */
-#define ROISLAM_REQUIRE_SYNTHETIC(var, scene)                                        \
-  const auto var##_opt = roislam::testing::syntheticSequence(scene);                \
-  if (!var##_opt)                                                                   \
-    GTEST_SKIP() << "synthetic sequence '" << scene                                 \
+#define ROISLAM_REQUIRE_SYNTHETIC(var, scene)                                         \
+  const auto var##_opt = roislam::testing::syntheticSequence(scene);                  \
+  if (!var##_opt)                                                                     \
+    GTEST_SKIP() << "synthetic sequence '" << scene                                   \
                  << "' not generated (run ctest so the synthetic_data fixture runs)"; \
   const std::string var = *var##_opt

@@ -1,0 +1,79 @@
+#include "roislam/evaluation/CEvalApp.h"
+
+#include <roislam/evaluation/CTrajectoryPlot.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <stdexcept>
+
+namespace roislam::evaluation
+{
+namespace
+{
+std::string fixed(double v, int decimals)
+{
+  char buf[64];
+  std::snprintf(buf, sizeof(buf), "%.*f", decimals, v);
+  return buf;
+}
+}  // namespace
+
+CEvalApp::CEvalApp(const TParams& params) : m_params(params)
+{
+  m_params.evaluation.validate("options");
+}
+
+TEvaluationResult CEvalApp::run(std::ostream& out) const
+{
+  const io::TTrajectory gt = io::loadTumTrajectory(m_params.groundTruthFile);
+  const io::TTrajectory est = io::loadTumTrajectory(m_params.estimateFile);
+  if (gt.empty())
+    throw std::runtime_error(m_params.groundTruthFile + ": no valid poses");
+  if (est.empty())
+    throw std::runtime_error(m_params.estimateFile + ": no valid poses");
+
+  TEvaluationResult r;
+  try
+  {
+    r = CTrajectoryEvaluator(m_params.evaluation).evaluate(gt, est);
+  }
+  catch (const std::runtime_error& e)
+  {
+    throw std::runtime_error(
+        m_params.estimateFile + " vs " + m_params.groundTruthFile + ": " + e.what());
+  }
+
+  if (!m_params.alignedFile.empty())
+    io::saveTumTrajectory(
+        m_params.alignedFile, r.aligned,
+        "estimate " + m_params.estimateFile + " aligned onto " + m_params.groundTruthFile +
+            " (ATE rigid alignment, roi-eval)");
+  if (!m_params.plotFile.empty())
+  {
+    CTrajectoryPlot::TOptions po;
+    po.title = std::filesystem::path(m_params.estimateFile).filename().string() + "  (ATE rmse " +
+               fixed(r.ate.rmse, 4) + " m)";
+    CTrajectoryPlot(po).plot(m_params.plotFile, gt, {{"estimate (aligned)", r.aligned}});
+  }
+
+  if (m_params.json)
+  {
+    out << toJson(r).dump() << "\n";
+    return r;
+  }
+  const auto& a = r.ate;
+  const auto& p = r.rpe;
+  const auto& o = m_params.evaluation;
+  out << "ATE  " << a.pairs << " pairs (max_difference " << o.max_difference << " s, offset "
+      << o.offset << " s)\n"
+      << "     rmse " << fixed(a.rmse, 6) << " m  mean " << fixed(a.mean, 6) << "  median "
+      << fixed(a.median, 6) << "  std " << fixed(a.std, 6) << "  min " << fixed(a.min, 6)
+      << "  max " << fixed(a.max, 6) << "\n"
+      << "RPE  " << p.pairs << " pairs (delta " << o.delta << " " << toString(o.delta_unit) << ")\n"
+      << "     trans rmse " << fixed(p.trans_rmse, 6) << " m    mean " << fixed(p.trans_mean, 6)
+      << "  median " << fixed(p.trans_median, 6) << "  max " << fixed(p.trans_max, 6) << "\n"
+      << "     rot   rmse " << fixed(p.rot_rmse_deg, 6) << " deg  mean " << fixed(p.rot_mean_deg, 6)
+      << "  median " << fixed(p.rot_median_deg, 6) << "  max " << fixed(p.rot_max_deg, 6) << "\n";
+  return r;
+}
+}  // namespace roislam::evaluation

@@ -1,0 +1,337 @@
+#include "roislam/evaluation/CTrajectoryEvaluator.h"
+
+#include <mrpt/config/CConfigFileBase.h>
+#include <roislam/io/StampAssociation.h>
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <numeric>
+#include <set>
+#include <sstream>
+#include <stdexcept>
+#include <system_error>
+
+namespace roislam::evaluation
+{
+namespace
+{
+struct TStats
+{
+  double rmse = 0, mean = 0, median = 0, std = 0, min = 0, max = 0;
+};
+
+/** numpy conventions: rmse = sqrt(dot(e,e)/n), population std, median of an
+ *  even count = mean of the two middle values. */
+TStats computeStats(std::vector<double> e)
+{
+  TStats s;
+  const double n = static_cast<double>(e.size());
+  double sum = 0, sumSq = 0;
+  for (double v : e)
+  {
+    sum += v;
+    sumSq += v * v;
+  }
+  s.rmse = std::sqrt(sumSq / n);
+  s.mean = sum / n;
+  double var = 0;
+  for (double v : e)
+    var += (v - s.mean) * (v - s.mean);
+  s.std = std::sqrt(var / n);
+  std::sort(e.begin(), e.end());
+  s.min = e.front();
+  s.max = e.back();
+  const std::size_t m = e.size() / 2;
+  s.median = (e.size() % 2 == 1) ? e[m] : 0.5 * (e[m - 1] + e[m]);
+  return s;
+}
+
+/** evaluate_rpe.py's find_closest_index(): a bisection that remembers the
+ *  first visited element with the strictly smallest |L[k] - t|, returning at
+ *  once on an exact hit. L sorted ascending and non-empty. Reproduced step by
+ *  step because its choice between two equidistant neighbours depends on the
+ *  visiting order. */
+std::size_t findClosestIndex(const std::vector<double>& L, double t)
+{
+  std::size_t begin = 0, end = L.size(), best = 0;
+  double difference = std::abs(L[0] - t);
+  while (begin < end)
+  {
+    const std::size_t middle = (begin + end) / 2;
+    if (std::abs(L[middle] - t) < difference)
+    {
+      difference = std::abs(L[middle] - t);
+      best = middle;
+    }
+    if (t == L[middle])
+      return middle;
+    if (L[middle] > t)
+      end = middle;
+    else
+      begin = middle + 1;
+  }
+  return best;
+}
+
+/** Sorted by stamp; of equal stamps the last one wins (the scripts' dicts). */
+io::TTrajectory asStampDict(const io::TTrajectory& in)
+{
+  io::TTrajectory t = in;
+  std::stable_sort(
+      t.begin(), t.end(), [](const auto& a, const auto& b) { return a.timestamp < b.timestamp; });
+  io::TTrajectory out;
+  out.reserve(t.size());
+  for (auto& p : t)
+  {
+    if (!out.empty() && out.back().timestamp == p.timestamp)
+      out.back() = std::move(p);
+    else
+      out.push_back(std::move(p));
+  }
+  return out;
+}
+
+std::vector<double> stampsOf(const io::TTrajectory& t)
+{
+  std::vector<double> s;
+  s.reserve(t.size());
+  for (const auto& p : t)
+    s.push_back(p.timestamp);
+  return s;
+}
+
+std::string num(double v)
+{
+  std::ostringstream ss;
+  ss << v;
+  return ss.str();
+}
+
+double parseDouble(
+    const mrpt::config::CConfigFileBase& cfg, const std::string& section, const std::string& key,
+    double def)
+{
+  std::string text = cfg.read_string(section, key, "", false);
+  text.erase(0, text.find_first_not_of(" \t\r"));
+  text.erase(text.find_last_not_of(" \t\r") + 1);
+  if (text.empty())
+    return def;
+  double v = 0;
+  const char* first = text.data();
+  if (*first == '+')
+    ++first;
+  const auto [ptr, ec] = std::from_chars(first, text.data() + text.size(), v);
+  if (ec != std::errc() || ptr != text.data() + text.size() || !std::isfinite(v))
+    throw std::invalid_argument("[" + section + "] " + key + ": not a number: '" + text + "'");
+  return v;
+}
+}  // namespace
+
+std::string toString(CTrajectoryEvaluator::TDeltaUnit unit)
+{
+  return unit == CTrajectoryEvaluator::TDeltaUnit::Frames ? "f" : "s";
+}
+
+CTrajectoryEvaluator::TDeltaUnit deltaUnitFromString(const std::string& text)
+{
+  if (text == "s")
+    return CTrajectoryEvaluator::TDeltaUnit::Seconds;
+  if (text == "f")
+    return CTrajectoryEvaluator::TDeltaUnit::Frames;
+  throw std::invalid_argument("delta unit must be 's' or 'f', not '" + text + "'");
+}
+
+void CTrajectoryEvaluator::TOptions::validate(const std::string& section) const
+{
+  if (!(std::isfinite(max_difference) && max_difference > 0))
+    throw std::invalid_argument(
+        "[" + section + "] max_difference: must be > 0 s, got " + num(max_difference));
+  if (!std::isfinite(offset))
+    throw std::invalid_argument("[" + section + "] offset: must be finite");
+  if (!(std::isfinite(delta) && delta > 0))
+    throw std::invalid_argument("[" + section + "] delta: must be > 0, got " + num(delta));
+}
+
+void CTrajectoryEvaluator::TOptions::loadFromConfigFile(
+    const mrpt::config::CConfigFileBase& cfg, const std::string& section)
+{
+  max_difference = parseDouble(cfg, section, "max_difference", max_difference);
+  offset = parseDouble(cfg, section, "offset", offset);
+  delta = parseDouble(cfg, section, "delta", delta);
+  const std::string unit = cfg.read_string(section, "delta_unit", toString(delta_unit), false);
+  try
+  {
+    delta_unit = deltaUnitFromString(unit);
+  }
+  catch (const std::invalid_argument&)
+  {
+    throw std::invalid_argument(
+        "[" + section + "] delta_unit: must be 's' or 'f', not '" + unit + "'");
+  }
+  validate(section);
+}
+
+void CTrajectoryEvaluator::TOptions::saveToConfigFile(
+    mrpt::config::CConfigFileBase& cfg, const std::string& section) const
+{
+  cfg.write(section, "max_difference", max_difference);
+  cfg.write(section, "offset", offset);
+  cfg.write(section, "delta", delta);
+  cfg.write(section, "delta_unit", toString(delta_unit));
+}
+
+CTrajectoryEvaluator::CTrajectoryEvaluator() : CTrajectoryEvaluator(TOptions()) {}
+
+CTrajectoryEvaluator::CTrajectoryEvaluator(const TOptions& options) : m_options(options)
+{
+  m_options.validate();
+}
+
+TEvaluationResult CTrajectoryEvaluator::evaluate(
+    const io::TTrajectory& gtIn, const io::TTrajectory& estIn) const
+{
+  if (gtIn.empty())
+    throw std::runtime_error("the ground-truth trajectory is empty");
+  if (estIn.empty())
+    throw std::runtime_error("the estimated trajectory is empty");
+  const io::TTrajectory gt = asStampDict(gtIn);
+  const io::TTrajectory est = asStampDict(estIn);
+  const std::vector<double> gtStamps = stampsOf(gt);
+  const std::vector<double> estStamps = stampsOf(est);
+  const double offset = m_options.offset;
+
+  TEvaluationResult result;
+
+  // ---- ATE (associate.py + evaluate_ate.py) ----
+  const auto matches = io::associateStamps(gtStamps, estStamps, m_options.max_difference, offset);
+  const std::string window =
+      "max_difference " + num(m_options.max_difference) + " s, offset " + num(offset) + " s";
+  if (matches.empty())
+    throw std::runtime_error("no estimated stamp has a ground-truth stamp within " + window);
+  if (matches.size() < 3)
+    throw std::runtime_error(
+        "only " + std::to_string(matches.size()) +
+        " estimated stamps associate with ground truth within " + window + " (need 3)");
+
+  const std::size_t n = matches.size();
+  Eigen::Matrix3Xd model(3, n), data(3, n);  // model = estimate, data = ground truth
+  for (std::size_t k = 0; k < n; ++k)
+  {
+    const auto& g = gt[matches[k].first].pose;
+    const auto& e = est[matches[k].second].pose;
+    data.col(k) << g.x(), g.y(), g.z();
+    model.col(k) << e.x(), e.y(), e.z();
+  }
+  const Eigen::Vector3d modelMean = model.rowwise().mean();
+  const Eigen::Vector3d dataMean = data.rowwise().mean();
+  Eigen::Matrix3d W = Eigen::Matrix3d::Zero();
+  for (std::size_t k = 0; k < n; ++k)
+    W += (model.col(k) - modelMean) * (data.col(k) - dataMean).transpose();
+  // As align(): svd(W^T) = U diag(d) Vh, rot = U S Vh.
+  Eigen::JacobiSVD<Eigen::Matrix3d> svd(W.transpose(), Eigen::ComputeFullU | Eigen::ComputeFullV);
+  const Eigen::Matrix3d U = svd.matrixU();
+  const Eigen::Matrix3d V = svd.matrixV();
+  Eigen::Matrix3d S = Eigen::Matrix3d::Identity();
+  if (U.determinant() * V.determinant() < 0)
+    S(2, 2) = -1;
+  const Eigen::Matrix3d rot = U * S * V.transpose();
+  const Eigen::Vector3d trans = dataMean - rot * modelMean;
+
+  std::vector<double> ateErrors(n);
+  for (std::size_t k = 0; k < n; ++k)
+    ateErrors[k] = (rot * model.col(k) + trans - data.col(k)).norm();
+  const TStats ate = computeStats(ateErrors);
+  result.ate.rmse = ate.rmse;
+  result.ate.mean = ate.mean;
+  result.ate.median = ate.median;
+  result.ate.std = ate.std;
+  result.ate.min = ate.min;
+  result.ate.max = ate.max;
+  result.ate.pairs = n;
+  mrpt::math::CMatrixDouble33 R;
+  mrpt::math::CVectorFixedDouble<3> t;
+  for (int r = 0; r < 3; ++r)
+  {
+    t[r] = trans[r];
+    for (int c = 0; c < 3; ++c)
+      R(r, c) = rot(r, c);
+  }
+  result.ate.alignment = mrpt::poses::CPose3D(R, t);
+  result.aligned.reserve(est.size());
+  for (const auto& p : est)
+    result.aligned.push_back(io::TPoseStamped{p.timestamp, result.ate.alignment + p.pose});
+
+  // ---- RPE (evaluate_rpe.py --fixed_delta) ----
+  {
+    std::set<std::size_t> roundTrip;
+    for (double te : estStamps)
+    {
+      const double tg = gtStamps[findClosestIndex(gtStamps, te + offset)];
+      roundTrip.insert(findClosestIndex(estStamps, tg - offset));
+    }
+    if (roundTrip.size() < 2)
+      throw std::runtime_error(
+          "too few overlapping stamps between the estimate and the ground truth for RPE");
+  }
+  std::vector<double> index(estStamps.size());
+  if (m_options.delta_unit == TDeltaUnit::Seconds)
+    index = estStamps;
+  else
+    std::iota(index.begin(), index.end(), 0.0);
+
+  std::vector<double> gtIntervals;
+  for (std::size_t k = 1; k < gtStamps.size(); ++k)
+    gtIntervals.push_back(gtStamps[k] - gtStamps[k - 1]);
+  // A single ground-truth pose cannot get here (ATE needs 3 associations).
+  const double gtMaxTimeDifference = 2 * computeStats(gtIntervals).median;
+
+  std::vector<double> transErrors, rotErrors;
+  const std::size_t last = est.size() - 1;
+  for (std::size_t i = 0; i < est.size(); ++i)
+  {
+    const std::size_t j = findClosestIndex(index, index[i] + m_options.delta);
+    if (j == last)
+      continue;
+    const std::size_t g0 = findClosestIndex(gtStamps, estStamps[i] + offset);
+    const std::size_t g1 = findClosestIndex(gtStamps, estStamps[j] + offset);
+    if (std::abs(gtStamps[g0] - (estStamps[i] + offset)) > gtMaxTimeDifference ||
+        std::abs(gtStamps[g1] - (estStamps[j] + offset)) > gtMaxTimeDifference)
+      continue;
+    // (E_i^-1 E_j)(G_i^-1 G_j)^-1; in MRPT notation a - b = b^-1 (+) a.
+    const mrpt::poses::CPose3D relEst = est[j].pose - est[i].pose;
+    const mrpt::poses::CPose3D relGt = gt[g1].pose - gt[g0].pose;
+    mrpt::poses::CPose3D relGtInv = relGt;
+    relGtInv.inverse();
+    const mrpt::poses::CPose3D error = relEst + relGtInv;
+    transErrors.push_back(error.translation().norm());
+    const auto Rm = error.getRotationMatrix();
+    const double c = std::min(1.0, std::max(-1.0, (Rm(0, 0) + Rm(1, 1) + Rm(2, 2) - 1) / 2));
+    rotErrors.push_back(std::acos(c));
+  }
+  if (transErrors.size() < 2)
+    throw std::runtime_error(
+        "only " + std::to_string(transErrors.size()) +
+        " RPE pose pairs (need 2): the estimate is shorter than delta = " + num(m_options.delta) +
+        " " + toString(m_options.delta_unit) + " or lacks nearby ground truth");
+  const TStats tr = computeStats(transErrors);
+  const TStats ro = computeStats(rotErrors);
+  const double deg = 180.0 / M_PI;
+  auto& rpe = result.rpe;
+  rpe.pairs = transErrors.size();
+  rpe.trans_rmse = tr.rmse;
+  rpe.trans_mean = tr.mean;
+  rpe.trans_median = tr.median;
+  rpe.trans_std = tr.std;
+  rpe.trans_min = tr.min;
+  rpe.trans_max = tr.max;
+  rpe.rot_rmse_deg = ro.rmse * deg;
+  rpe.rot_mean_deg = ro.mean * deg;
+  rpe.rot_median_deg = ro.median * deg;
+  rpe.rot_std_deg = ro.std * deg;
+  rpe.rot_min_deg = ro.min * deg;
+  rpe.rot_max_deg = ro.max * deg;
+  return result;
+}
+}  // namespace roislam::evaluation

@@ -1,0 +1,273 @@
+#include "roislam/evaluation/CTrajectoryPlot.h"
+
+#include <fcntl.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <array>
+#include <cerrno>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <sstream>
+#include <stdexcept>
+
+extern char** environ;
+
+namespace roislam::evaluation
+{
+namespace fs = std::filesystem;
+
+namespace
+{
+/** Removes the temporary folder on every exit path. */
+struct TTempDir
+{
+  fs::path path;
+  TTempDir()
+  {
+    std::string tmpl = (fs::temp_directory_path() / "roislam_plot_XXXXXX").string();
+    if (!::mkdtemp(tmpl.data()))
+      throw std::runtime_error("cannot create a temporary folder: " + tmpl);
+    path = tmpl;
+  }
+  ~TTempDir()
+  {
+    std::error_code ec;
+    fs::remove_all(path, ec);
+  }
+  TTempDir(const TTempDir&) = delete;
+  TTempDir& operator=(const TTempDir&) = delete;
+};
+
+/** A gnuplot single-quoted string literal ('' escapes a quote). */
+std::string quoted(const std::string& s)
+{
+  std::string out = "'";
+  for (char c : s)
+  {
+    if (c == '\'')
+      out += "''";
+    else if (c == '\n' || c == '\r')
+      out += ' ';
+    else
+      out += c;
+  }
+  return out + "'";
+}
+
+double coordinate(const mrpt::poses::CPose3D& p, int axis)
+{
+  return axis == 0 ? p.x() : (axis == 1 ? p.y() : p.z());
+}
+
+int chooseUpAxis(const std::string& setting, const io::TTrajectory& reference)
+{
+  if (setting == "x")
+    return 0;
+  if (setting == "y")
+    return 1;
+  if (setting == "z")
+    return 2;
+  if (setting != "auto")
+    throw std::invalid_argument(
+        "CTrajectoryPlot: up_axis must be auto, x, y or z, not '" + setting + "'");
+  int best = 2;  // z up when undecidable (TUM ground truth)
+  double bestRange = std::numeric_limits<double>::infinity();
+  for (int axis : {2, 0, 1})
+  {
+    double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+    for (const auto& p : reference)
+    {
+      lo = std::min(lo, coordinate(p.pose, axis));
+      hi = std::max(hi, coordinate(p.pose, axis));
+    }
+    if (hi - lo < bestRange)
+    {
+      bestRange = hi - lo;
+      best = axis;
+    }
+  }
+  return best;
+}
+
+/** Columns: time since t0, x, y, z; a blank line (gnuplot: break the line)
+ *  wherever consecutive stamps are more than gapBreak apart. */
+void writeData(const fs::path& file, const io::TTrajectory& trajectory, double t0, double gapBreak)
+{
+  io::TTrajectory sorted = trajectory;
+  std::stable_sort(
+      sorted.begin(), sorted.end(),
+      [](const auto& a, const auto& b) { return a.timestamp < b.timestamp; });
+  std::ofstream out(file);
+  out.precision(17);
+  for (std::size_t k = 0; k < sorted.size(); ++k)
+  {
+    if (k > 0 && sorted[k].timestamp - sorted[k - 1].timestamp > gapBreak)
+      out << "\n";
+    const auto& p = sorted[k].pose;
+    out << sorted[k].timestamp - t0 << ' ' << p.x() << ' ' << p.y() << ' ' << p.z() << '\n';
+  }
+  if (!out)
+    throw std::runtime_error("cannot write plot data " + file.string());
+}
+
+/** Runs `program script`, output to log; returns the exit status or throws
+ *  when the program cannot be started. */
+int runProgram(const std::string& program, const fs::path& script, const fs::path& log)
+{
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addopen(&actions, 0, "/dev/null", O_RDONLY, 0);
+  posix_spawn_file_actions_addopen(&actions, 1, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  posix_spawn_file_actions_adddup2(&actions, 1, 2);
+  std::string arg0 = program, arg1 = script.string();
+  char* argv[] = {arg0.data(), arg1.data(), nullptr};
+  pid_t pid = 0;
+  const int rc = ::posix_spawnp(&pid, program.c_str(), &actions, nullptr, argv, environ);
+  posix_spawn_file_actions_destroy(&actions);
+  if (rc == ENOENT)
+    throw std::runtime_error(
+        "'" + program + "' not found in PATH: plots need gnuplot (Debian package gnuplot-nox)");
+  if (rc != 0)
+    throw std::runtime_error("cannot run '" + program + "': " + std::strerror(rc));
+  int status = 0;
+  while (::waitpid(pid, &status, 0) < 0)
+  {
+    if (errno != EINTR)
+      throw std::runtime_error("waiting for '" + program + "' failed");
+  }
+  if (WIFEXITED(status))
+    return WEXITSTATUS(status);
+  return 128 + (WIFSIGNALED(status) ? WTERMSIG(status) : 0);
+}
+
+std::string firstErrorLine(const fs::path& log)
+{
+  std::ifstream in(log);
+  std::string line, last;
+  while (std::getline(in, line))
+  {
+    if (line.find_first_not_of(" \t^") == std::string::npos)
+      continue;
+    last = line;
+    if (line.find("rror") != std::string::npos)
+      return line;
+  }
+  return last;
+}
+}  // namespace
+
+CTrajectoryPlot::CTrajectoryPlot() : CTrajectoryPlot(TOptions()) {}
+
+CTrajectoryPlot::CTrajectoryPlot(const TOptions& options) : m_options(options)
+{
+  if (m_options.width <= 0 || m_options.height <= 0)
+    throw std::invalid_argument("CTrajectoryPlot: width and height must be > 0");
+  if (!(m_options.gap_break > 0))
+    throw std::invalid_argument("CTrajectoryPlot: gap_break must be > 0 s");
+  chooseUpAxis(m_options.up_axis, {});  // validates the name
+}
+
+void CTrajectoryPlot::plot(
+    const std::string& pngFile, const io::TTrajectory& groundTruth,
+    const std::vector<TNamedTrajectory>& estimates) const
+{
+  const io::TTrajectory* reference = groundTruth.empty() ? nullptr : &groundTruth;
+  for (const auto& e : estimates)
+    if (!reference && !e.second.empty())
+      reference = &e.second;
+  if (!reference)
+    throw std::runtime_error(pngFile + ": nothing to plot (all trajectories empty)");
+
+  const int up = chooseUpAxis(m_options.up_axis, *reference);
+  const std::array<const char*, 3> names = {"x", "y", "z"};
+  const int h1 = up == 0 ? 1 : 0;  // top-view horizontal axis
+  const int h2 = up == 2 ? 1 : 2;  // top-view vertical axis
+  auto column = [](int axis) { return std::to_string(axis + 2); };
+
+  double t0 = std::numeric_limits<double>::infinity();
+  for (const auto& p : *reference)
+    t0 = std::min(t0, p.timestamp);
+
+  TTempDir tmp;
+  std::vector<std::string> plotTop, plotHeight;
+  const std::array<const char*, 8> colours = {"#1f77b4", "#d62728", "#2ca02c", "#ff7f0e",
+                                              "#9467bd", "#8c564b", "#e377c2", "#17becf"};
+  auto addSeries = [&](const io::TTrajectory& t, const std::string& title,
+                       const std::string& colour, int width, std::size_t idx)
+  {
+    const std::string style =
+        " with lines lw " + std::to_string(width) + " lc rgb '" + colour + "'";
+    if (t.empty())
+    {
+      const std::string entry = "keyentry" + style + " title " + quoted(title + " (no trajectory)");
+      plotTop.push_back(entry);
+      plotHeight.push_back(entry);
+      return;
+    }
+    const fs::path data = tmp.path / ("series" + std::to_string(idx) + ".dat");
+    writeData(data, t, t0, m_options.gap_break);
+    const std::string f = quoted(data.string());
+    plotTop.push_back(
+        f + " using " + column(h1) + ":" + column(h2) + style + " title " + quoted(title));
+    plotHeight.push_back(f + " using 1:" + column(up) + style + " title " + quoted(title));
+  };
+  if (!groundTruth.empty())
+    addSeries(groundTruth, "ground truth", "#000000", 3, 0);
+  for (std::size_t k = 0; k < estimates.size(); ++k)
+    addSeries(estimates[k].second, estimates[k].first, colours[k % colours.size()], 2, k + 1);
+
+  const fs::path image = tmp.path / "figure.png";
+  const fs::path script = tmp.path / "figure.gp";
+  {
+    std::ofstream gp(script);
+    const std::string size =
+        std::to_string(m_options.width) + "," + std::to_string(m_options.height);
+    gp << "if (strstrt(GPVAL_TERMINALS, 'pngcairo') > 0) {\n"
+       << "  set terminal pngcairo size " << size << " noenhanced font 'sans,10'\n"
+       << "} else {\n"
+       << "  set terminal png size " << size << " noenhanced\n"
+       << "}\n"
+       << "set output " << quoted(image.string()) << "\n"
+       << "set grid\nset key top left box opaque\n"
+       << "set multiplot layout 1,2 title " << quoted(m_options.title) << "\n"
+       << "set title " << quoted(std::string("top view (") + names[h1] + "-" + names[h2] + ")")
+       << "\nset xlabel " << quoted(std::string(names[h1]) + " [m]") << "\nset ylabel "
+       << quoted(std::string(names[h2]) + " [m]") << "\nset size ratio -1\n";
+    gp << "plot ";
+    for (std::size_t k = 0; k < plotTop.size(); ++k)
+      gp << (k ? ", \\\n  " : "") << plotTop[k];
+    gp << "\nset size noratio\nset title "
+       << quoted(std::string("height (") + names[up] + ") over time")
+       << "\nset xlabel 'time [s]'\nset ylabel " << quoted(std::string(names[up]) + " [m]") << "\n";
+    gp << "plot ";
+    for (std::size_t k = 0; k < plotHeight.size(); ++k)
+      gp << (k ? ", \\\n  " : "") << plotHeight[k];
+    gp << "\nunset multiplot\nset output\n";
+    if (!gp)
+      throw std::runtime_error("cannot write the gnuplot script " + script.string());
+  }
+
+  const fs::path log = tmp.path / "gnuplot.log";
+  const int status = runProgram(m_options.gnuplot, script, log);
+  if (status != 0 || !fs::exists(image) || fs::file_size(image) == 0)
+    throw std::runtime_error(
+        pngFile + ": gnuplot failed (exit " + std::to_string(status) + "): " + firstErrorLine(log));
+
+  const std::string partial = pngFile + ".tmp" + std::to_string(::getpid());
+  std::error_code ec;
+  fs::copy_file(image, partial, fs::copy_options::overwrite_existing, ec);
+  if (!ec)
+    fs::rename(partial, pngFile, ec);
+  if (ec)
+  {
+    std::error_code ignored;
+    fs::remove(partial, ignored);
+    throw std::runtime_error(pngFile + ": cannot write (" + ec.message() + ")");
+  }
+}
+}  // namespace roislam::evaluation

@@ -1,0 +1,60 @@
+#include "roislam/features/TFeatureSet.h"
+
+#include <algorithm>
+#include <cctype>
+#include <stdexcept>
+
+namespace roislam::features
+{
+EFeatureType featureTypeFromString(const std::string& s)
+{
+  std::string l(s);
+  std::transform(l.begin(), l.end(), l.begin(), [](unsigned char c) { return std::tolower(c); });
+  if (l == "sift")
+    return EFeatureType::SIFT;
+  if (l == "surf")
+    return EFeatureType::SURF;
+  if (l == "orb")
+    return EFeatureType::ORB;
+  throw std::invalid_argument("unknown feature type '" + s + "' (expected sift, surf or orb)");
+}
+
+std::string toString(EFeatureType t)
+{
+  switch (t)
+  {
+    case EFeatureType::SIFT:
+      return "sift";
+    case EFeatureType::SURF:
+      return "surf";
+    case EFeatureType::ORB:
+      return "orb";
+  }
+  return "unknown";
+}
+
+TFeatureSet TFeatureSet::select(const std::vector<int>& indices) const
+{
+  TFeatureSet out;
+  out.type = type;
+  out.keypoints.reserve(indices.size());
+  if (!indices.empty())
+    out.descriptors.create(static_cast<int>(indices.size()), descriptors.cols, descriptors.type());
+  for (std::size_t k = 0; k < indices.size(); ++k)
+  {
+    out.keypoints.push_back(keypoints.at(static_cast<std::size_t>(indices[k])));
+    descriptors.row(indices[k]).copyTo(out.descriptors.row(static_cast<int>(k)));
+  }
+  return out;
+}
+
+TFeatureSet TFeatureSet::subset(const cv::Rect& rect) const
+{
+  std::vector<int> inside;
+  const cv::Rect2f r(rect);
+  for (std::size_t i = 0; i < keypoints.size(); ++i)
+    if (r.contains(keypoints[i].pt))
+      inside.push_back(static_cast<int>(i));
+  return select(inside);
+}
+}  // namespace roislam::features

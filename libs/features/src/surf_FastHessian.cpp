@@ -1,0 +1,253 @@
+/* Fast-Hessian detector (Bay et al. 2008, section 3). Private to CSurf. */
+#include "surf_FastHessian.h"
+
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <opencv2/core/utility.hpp>
+
+namespace roislam::features::surf
+{
+int filterSize(int octave, int layer, int nOctaveLayers)
+{
+  int first = 9;
+  for (int o = 0; o < octave; ++o)
+    first += (nOctaveLayers - 1) * (6 << o);
+  return first + layer * (6 << octave);
+}
+
+namespace
+{
+/** A box over pixel rows/cols [x0, x1] x [y0, y1] (inclusive, relative to the
+ *  filter centre) as four offsets into the integral image. */
+struct TBox
+{
+  int o00 = 0, o01 = 0, o10 = 0, o11 = 0;
+
+  TBox() = default;
+  TBox(int x0, int y0, int x1, int y1, int stride)
+      : o00(y0 * stride + x0),
+        o01(y0 * stride + x1 + 1),
+        o10((y1 + 1) * stride + x0),
+        o11((y1 + 1) * stride + x1 + 1)
+  {
+  }
+  int sum(const int32_t* p) const { return p[o11] - p[o01] - p[o10] + p[o00]; }
+};
+
+/** The three box filters of one filter size L = 3 * lobe (lobe odd). Dxx is
+ *  the whole 3-lobe region minus 3x its middle lobe (weights 1, -2, 1); Dxy
+ *  the four lobe x lobe squares around the centre. Responses are normalised by
+ *  the filter area L^2 (paper, section 3.3), which is what OpenCV's SURF
+ *  hessianThreshold refers to. */
+struct TFilter
+{
+  int L = 0, border = 0;
+  TBox xxAll, xxMid, yyAll, yyMid, xy[4];
+  float norm = 0;
+
+  TFilter(int size, int stride) : L(size), border((size - 1) / 2)
+  {
+    const int lobe = size / 3, h = (lobe - 1) / 2, b = border;
+    xxAll = TBox(-b, -(lobe - 1), b, lobe - 1, stride);
+    xxMid = TBox(-h, -(lobe - 1), h, lobe - 1, stride);
+    yyAll = TBox(-(lobe - 1), -b, lobe - 1, b, stride);
+    yyMid = TBox(-(lobe - 1), -h, lobe - 1, h, stride);
+    xy[0] = TBox(-lobe, -lobe, -1, -1, stride);  // weight +1
+    xy[1] = TBox(1, -lobe, lobe, -1, stride);    // -1
+    xy[2] = TBox(-lobe, 1, -1, lobe, stride);    // -1
+    xy[3] = TBox(1, 1, lobe, lobe, stride);      // +1
+    norm = 1.0f / (static_cast<float>(size) * static_cast<float>(size));
+  }
+
+  /** Normalised Dxx, Dyy, Dxy at the pixel whose integral-image corner is p. */
+  void responses(const int32_t* p, float& dxx, float& dyy, float& dxy) const
+  {
+    dxx = static_cast<float>(xxAll.sum(p) - 3 * xxMid.sum(p)) * norm;
+    dyy = static_cast<float>(yyAll.sum(p) - 3 * yyMid.sum(p)) * norm;
+    dxy = static_cast<float>(xy[0].sum(p) - xy[1].sum(p) - xy[2].sum(p) + xy[3].sum(p)) * norm;
+  }
+};
+
+/** Relative weight of Dxy in the determinant (paper eq. 4: w ~ 0.9). */
+constexpr float kDxyWeight = 0.9f;
+
+/** Determinant and Laplacian sign of one filter size on the sampling grid of
+ *  an octave; cells where the filter does not fit are 0. */
+struct TLayer
+{
+  int L = 0, border = 0;
+  std::vector<float> det;
+  std::vector<int8_t> sign;
+};
+
+/** First and last grid index (inclusive) at which a filter with this border
+ *  fits inside [0, extent-1] when sampling every `step` pixels. */
+std::pair<int, int> validRange(int border, int extent, int step)
+{
+  return {(border + step - 1) / step, (extent - 1 - border) / step};
+}
+
+void computeLayers(const TIntegral& in, int step, int nx, int ny, std::vector<TLayer>& layers)
+{
+  const int nLayers = static_cast<int>(layers.size());
+  std::vector<TFilter> filters;
+  for (const auto& l : layers)
+    filters.emplace_back(l.L, in.stride);
+  // One task per (layer, row): rows of different layers have different cost,
+  // the fine granularity keeps both cores busy.
+  cv::parallel_for_(
+      cv::Range(0, nLayers * ny),
+      [&](const cv::Range& r)
+      {
+        for (int t = r.start; t < r.end; ++t)
+        {
+          const int li = t / ny, i = t % ny;
+          TLayer& layer = layers[li];
+          const TFilter& f = filters[li];
+          float* det = layer.det.data() + static_cast<size_t>(i) * nx;
+          int8_t* sign = layer.sign.data() + static_cast<size_t>(i) * nx;
+          std::fill(det, det + nx, 0.0f);
+          std::fill(sign, sign + nx, int8_t(0));
+          const auto [i0, i1] = validRange(f.border, in.rows, step);
+          if (i < i0 || i > i1)
+            continue;
+          const auto [j0, j1] = validRange(f.border, in.cols, step);
+          const int y = i * step;
+          const int32_t* row = in.data + y * in.stride;
+          for (int j = j0; j <= j1; ++j)
+          {
+            float dxx, dyy, dxy;
+            f.responses(row + j * step, dxx, dyy, dxy);
+            const float w = kDxyWeight * dxy;
+            det[j] = dxx * dyy - w * w;
+            sign[j] = (dxx + dyy) > 0 ? 1 : -1;
+          }
+        }
+      });
+}
+
+/** Solves the 3x3 system H x = -g (quadratic fit, Brown & Lowe) by Cramer's
+ *  rule; false when H is singular. */
+bool solve3(const float H[3][3], const float g[3], float x[3])
+{
+  const double a = H[0][0], b = H[0][1], c = H[0][2], d = H[1][0], e = H[1][1], f = H[1][2],
+               gg = H[2][0], h = H[2][1], k = H[2][2];
+  const double det = a * (e * k - f * h) - b * (d * k - f * gg) + c * (d * h - e * gg);
+  if (std::abs(det) < 1e-12)
+    return false;
+  const double r0 = -g[0], r1 = -g[1], r2 = -g[2];
+  x[0] = static_cast<float>(
+      (r0 * (e * k - f * h) - b * (r1 * k - f * r2) + c * (r1 * h - e * r2)) / det);
+  x[1] = static_cast<float>(
+      (a * (r1 * k - f * r2) - r0 * (d * k - f * gg) + c * (d * r2 - r1 * gg)) / det);
+  x[2] = static_cast<float>(
+      (a * (e * r2 - r1 * h) - b * (d * r2 - r1 * gg) + r0 * (d * h - e * gg)) / det);
+  return true;
+}
+}  // namespace
+
+std::vector<cv::KeyPoint> detectFastHessian(const TIntegral& in, const TFastHessianParams& prm)
+{
+  std::vector<cv::KeyPoint> out;
+  const int n = prm.nOctaveLayers;
+  const float thr = static_cast<float>(prm.threshold);
+  std::vector<TLayer> layers(n + 2);
+  for (int o = 0; o < prm.nOctaves; ++o)
+  {
+    const int step = 1 << o;
+    const int largest = filterSize(o, n + 1, n);
+    if (largest > in.rows || largest > in.cols)
+      break;  // octave does not fit
+    const int nx = (in.cols - 1) / step + 1, ny = (in.rows - 1) / step + 1;
+    for (int l = 0; l < n + 2; ++l)
+    {
+      layers[l].L = filterSize(o, l, n);
+      layers[l].border = (layers[l].L - 1) / 2;
+      layers[l].det.resize(static_cast<size_t>(nx) * ny);
+      layers[l].sign.resize(static_cast<size_t>(nx) * ny);
+    }
+    computeLayers(in, step, nx, ny, layers);
+
+    const float dL = static_cast<float>(6 << o);  // filter size step in this octave
+    for (int l = 1; l <= n; ++l)
+    {
+      // Neighbours in all three layers must be valid: use the largest filter.
+      auto [i0, i1] = validRange(layers[l + 1].border, in.rows, step);
+      auto [j0, j1] = validRange(layers[l + 1].border, in.cols, step);
+      const float* Db = layers[l - 1].det.data();
+      const float* Dc = layers[l].det.data();
+      const float* Da = layers[l + 1].det.data();
+      for (int i = i0 + 1; i <= i1 - 1; ++i)
+      {
+        for (int j = j0 + 1; j <= j1 - 1; ++j)
+        {
+          const size_t c = static_cast<size_t>(i) * nx + j;
+          const float v = Dc[c];
+          if (v <= thr)
+            continue;
+          bool isMax = true;
+          for (int di = -1; di <= 1 && isMax; ++di)
+          {
+            for (int dj = -1; dj <= 1; ++dj)
+            {
+              const size_t q = c + static_cast<ptrdiff_t>(di) * nx + dj;
+              if (Db[q] >= v || Da[q] >= v || (q != c && Dc[q] >= v))
+              {
+                isMax = false;
+                break;
+              }
+            }
+          }
+          if (!isMax)
+            continue;
+
+          // Quadratic interpolation in (x, y, layer), in grid units.
+          const float g[3] = {
+              0.5f * (Dc[c + 1] - Dc[c - 1]), 0.5f * (Dc[c + nx] - Dc[c - nx]),
+              0.5f * (Da[c] - Db[c])};
+          float H[3][3];
+          H[0][0] = Dc[c + 1] + Dc[c - 1] - 2 * v;
+          H[1][1] = Dc[c + nx] + Dc[c - nx] - 2 * v;
+          H[2][2] = Da[c] + Db[c] - 2 * v;
+          H[0][1] = H[1][0] =
+              0.25f * (Dc[c + nx + 1] - Dc[c + nx - 1] - Dc[c - nx + 1] + Dc[c - nx - 1]);
+          H[0][2] = H[2][0] = 0.25f * (Da[c + 1] - Da[c - 1] - Db[c + 1] + Db[c - 1]);
+          H[1][2] = H[2][1] = 0.25f * (Da[c + nx] - Da[c - nx] - Db[c + nx] + Db[c - nx]);
+          float x[3];
+          if (!solve3(H, g, x))
+            continue;
+          // An offset beyond one cell means the quadratic model does not hold.
+          if (std::abs(x[0]) > 1.0f || std::abs(x[1]) > 1.0f || std::abs(x[2]) > 1.0f)
+            continue;
+          const float response = v + 0.5f * (g[0] * x[0] + g[1] * x[1] + g[2] * x[2]);
+          cv::KeyPoint kp;
+          kp.pt = cv::Point2f((j + x[0]) * step, (i + x[1]) * step);
+          kp.size = static_cast<float>(layers[l].L) + x[2] * dL;
+          kp.response = response;
+          kp.angle = -1;
+          kp.octave = o;
+          kp.class_id = layers[l].sign[c];
+          out.push_back(kp);
+        }
+      }
+    }
+  }
+  return out;
+}
+
+int laplacianSign(const TIntegral& in, const cv::KeyPoint& kp)
+{
+  int lobe = std::max(3, static_cast<int>(std::lround(kp.size / 3.0f)));
+  if (lobe % 2 == 0)
+    ++lobe;
+  const int L = 3 * lobe, b = (L - 1) / 2, h = (lobe - 1) / 2;
+  const int x = static_cast<int>(std::lround(kp.pt.x)), y = static_cast<int>(std::lround(kp.pt.y));
+  // Clamped sums: keypoints from other detectors may lie near the border.
+  const auto box = [&](int x0, int y0, int x1, int y1)
+  { return in.boxClamped(x + x0, y + y0, x + x1 + 1, y + y1 + 1); };
+  const int dxx = box(-b, -(lobe - 1), b, lobe - 1) - 3 * box(-h, -(lobe - 1), h, lobe - 1);
+  const int dyy = box(-(lobe - 1), -b, lobe - 1, b) - 3 * box(-(lobe - 1), -h, lobe - 1, h);
+  return (dxx + dyy) > 0 ? 1 : -1;
+}
+}  // namespace roislam::features::surf

@@ -1,0 +1,142 @@
+/* Result types of the SLAM front end (CRgbdOdometry): how one frame was
+ * tracked, the relative-pose constraints a new keyframe brings, and the
+ * keyframe-to-keyframe registration used by the back end to verify loop
+ * closures. Consumed by the graph-SLAM back end and the apps.
+ *
+ * Pose conventions (everywhere in roislam::frontend): TUM-style camera optical
+ * frame (x right, y down, z forward). A world pose P maps camera coordinates to
+ * world coordinates (p_world = P (+) p_cam). A relative pose of B with respect
+ * to A is R = A^-1 (+) B, i.e. B = A (+) R.
+ */
+#pragma once
+
+#include <mrpt/math/CMatrixFixed.h>
+#include <mrpt/poses/CPose3D.h>
+
+#include <cstddef>
+#include <opencv2/core/types.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace roislam::frontend
+{
+/** How a frame's pose was obtained. */
+enum class ETrackingMethod
+{
+  /** First frame of the run: pose = initial pose, becomes keyframe 0. */
+  Initial,
+  /** Full-image features (mode traditional). */
+  Features,
+  /** ROI features (modes roi_small / roi_big / roi). */
+  RoiFeatures,
+  /** ROI mode, but the frame had no ROI or too few ROI features: tracked with
+   *  full-image features instead (never in strict_roi mode). */
+  FullImageFallback,
+  /** Features failed (featureless scene): projective point-to-plane ICP on the
+   *  decimated depth image against the reference keyframe. */
+  DepthIcp,
+  /** Features and ICP failed: pose extrapolated with the last inter-frame
+   *  motion (never in strict_roi mode). */
+  ConstantVelocity,
+  /** strict_roi only: no ROI features (or registration failed): the frame
+   *  has NO pose (TFrameResult::pose is nullopt). */
+  Lost
+};
+
+/** "initial" | "features" | "roi" | "full_image_fallback" | "depth_icp" |
+ *  "constant_velocity" | "lost". */
+std::string toString(ETrackingMethod m);
+
+/** 6x6 information matrix in MRPT's CPose3DPDFGaussianInf convention: the
+ *  inverse covariance of the 6-vector (x, y, z, yaw, pitch, roll) of the
+ *  relative pose, metres and radians. */
+using TInformation66 = mrpt::math::CMatrixDouble66;
+
+/** A relative-pose measurement between two keyframes. */
+struct TKeyframeConstraint
+{
+  /** Older keyframe id (the reference). */
+  std::size_t fromKeyframe = 0;
+  /** Newer keyframe id. */
+  std::size_t toKeyframe = 0;
+  /** Pose of `to` relative to `from`: pose(to) = pose(from) (+) relativePose. */
+  mrpt::poses::CPose3D relativePose;
+  TInformation66 information;
+  /** How it was measured (Features/RoiFeatures/FullImageFallback/DepthIcp/
+   *  ConstantVelocity). A ConstantVelocity constraint carries a weak
+   *  information (see TOptions::constant_velocity_information_scale). */
+  ETrackingMethod method = ETrackingMethod::Features;
+  /** Feature inliers (ICP: number of point correspondences; 0 for CV). */
+  std::size_t inliers = 0;
+};
+
+/** Result of registering one keyframe against another (loop closure check). */
+struct TRelativePoseEstimate
+{
+  /** Pose of B relative to A: pose(B) = pose(A) (+) pose. */
+  mrpt::poses::CPose3D pose;
+  TInformation66 information;
+  /** Putative descriptor matches and RANSAC/refinement inliers. */
+  std::size_t matches = 0;
+  std::size_t inliers = 0;
+  /** RMS 3-D distance of the inliers after refinement, metres. */
+  double rmse_m = 0;
+  /** RMS reprojection error of the inliers after refinement, pixels. */
+  double rmse_px = 0;
+};
+
+/** Per-stage wall-clock times of one process() call, milliseconds. */
+struct TStageTimes
+{
+  double roi_ms = 0;       //!< ROI detection (ROI modes)
+  double extract_ms = 0;   //!< feature detection + description (once per frame)
+  double lift_ms = 0;      //!< undistortion + depth lookup of keypoints
+  double match_ms = 0;     //!< descriptor matching (all keyframes tried)
+  double ransac_ms = 0;    //!< 3-D RANSAC + refinement
+  double icp_ms = 0;       //!< depth ICP fallback (and ICP maps of new keyframes)
+  double keyframe_ms = 0;  //!< new keyframe: constraints to recent keyframes
+  double total_ms = 0;     //!< whole process() call
+};
+
+/** Everything CRgbdOdometry::process() reports about one frame. */
+struct TFrameResult
+{
+  std::size_t frameIndex = 0;  //!< TRGBDFrame::index
+  double timestamp = 0;        //!< TRGBDFrame::timestamp (s)
+
+  ETrackingMethod method = ETrackingMethod::Lost;
+  /** World pose of the camera; nullopt only when method == Lost. */
+  std::optional<mrpt::poses::CPose3D> pose;
+
+  /** Reference keyframe the pose was measured against (for a new keyframe:
+   *  the keyframe it was tracked from, not itself; for frame 0: 0). Undefined
+   *  (0) when Lost. */
+  std::size_t referenceKeyframe = 0;
+  /** Pose relative to the reference keyframe: pose = kf.pose (+) relativePose. */
+  mrpt::poses::CPose3D relativePose;
+  /** Information of relativePose (CPose3DPDFGaussianInf convention). */
+  TInformation66 relativeInformation;
+
+  /** This frame became a keyframe (id newKeyframeId). */
+  bool isNewKeyframe = false;
+  std::size_t newKeyframeId = 0;
+  /** For a new keyframe (except the first): constraints from the recent
+   *  keyframes to it. The first entry is always from referenceKeyframe (the
+   *  odometry edge, exists for every non-Lost method); further entries from up
+   *  to TOptions::recent_keyframes other recent keyframes that registered. */
+  std::vector<TKeyframeConstraint> constraints;
+
+  // Counts.
+  std::size_t features = 0;           //!< extracted on the whole image
+  std::size_t featuresWithDepth = 0;  //!< of those, with valid depth
+  std::size_t roiFeatures = 0;        //!< with valid depth inside the ROI
+  std::size_t trackingFeatures = 0;   //!< the set actually matched
+  std::size_t matches = 0;            //!< ratio-test matches to the reference
+  std::size_t inliers = 0;            //!< after RANSAC + refinement (ICP: pairs)
+  /** The ROI found in this frame (ROI modes only). */
+  std::optional<cv::Rect> roi;
+
+  TStageTimes times;
+};
+}  // namespace roislam::frontend

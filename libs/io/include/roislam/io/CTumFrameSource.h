@@ -1,0 +1,85 @@
+/* Frame source reading a TUM RGB-D benchmark folder directly (rgb.txt,
+ * depth.txt, rgb/, depth/), without converting it to a rawlog first.
+ *
+ * Colour and depth streams are paired like the benchmark's associate.py
+ * (|dt| < maxTimeDifference, greedy one-to-one by smallest difference, see
+ * associateStamps()); colour frames without a partner are skipped and counted.
+ * Images are read lazily, one frame per next(). Created by CFrameSource::open()
+ * and used directly by tum2rawlog (entries(), readColourImage(), readDepthImage()).
+ *
+ * ini section [TumFrameSource] (TOptions):
+ *   max_time_difference  double  0.02    s    colour/depth association window
+ *   depth_scale          double  5000    1/m  depth PNG value per metre (TUM: 5000)
+ */
+#pragma once
+
+#include <mrpt/config/CLoadableOptions.h>
+#include <roislam/io/CFrameSource.h>
+
+#include <string>
+#include <vector>
+
+namespace roislam::io
+{
+class CTumFrameSource : public CFrameSource
+{
+ public:
+  struct TOptions : public mrpt::config::CLoadableOptions
+  {
+    double maxTimeDifference = 0.02;  //!< s
+    double depthScale = 5000;         //!< raw depth units per metre
+
+    void loadFromConfigFile(
+        const mrpt::config::CConfigFileBase& cfg, const std::string& section) override;
+    void saveToConfigFile(
+        mrpt::config::CConfigFileBase& cfg, const std::string& section) const override;
+  };
+
+  /** One associated colour/depth pair; file names are absolute paths. */
+  struct TEntry
+  {
+    double rgbStamp = 0;
+    double depthStamp = 0;
+    std::string rgbFile;
+    std::string depthFile;
+  };
+
+  /** Reads and associates rgb.txt/depth.txt of `dir` and checks that every
+   *  listed image exists (images themselves are read in next()). The camera's
+   *  ncols/nrows must match the images. Throws std::runtime_error naming the
+   *  folder, file or file:line on bad input. */
+  CTumFrameSource(
+      const std::string& dir, const mrpt::img::TCamera& camera, const TOptions& options);
+  /** As above with default TOptions. */
+  CTumFrameSource(const std::string& dir, const mrpt::img::TCamera& camera);
+
+  std::optional<TRGBDFrame> next() override;
+  void rewind() override { m_next = 0; }
+  std::size_t size() const override { return m_entries.size(); }
+  const mrpt::img::TCamera& camera() const override { return m_camera; }
+  std::optional<std::string> groundTruthFile() const override;
+  std::string name() const override;
+  std::size_t skippedFrames() const override { return m_skipped; }
+
+  /** The associated pairs in colour-time order. */
+  const std::vector<TEntry>& entries() const { return m_entries; }
+  /** Absolute path of the dataset folder. */
+  const std::string& directory() const { return m_dir; }
+  const TOptions& options() const { return m_options; }
+
+  /** Reads a colour image as CV_8UC3 BGR; throws "<file>: ..." when missing,
+   *  undecodable or not camera.ncols x camera.nrows. */
+  static cv::Mat readColourImage(const std::string& file, const mrpt::img::TCamera& camera);
+  /** Reads a depth PNG as raw CV_16UC1; throws "<file>: ..." when missing,
+   *  undecodable, not single-channel 16-bit or of the wrong size. */
+  static cv::Mat readDepthImage(const std::string& file, const mrpt::img::TCamera& camera);
+
+ private:
+  std::string m_dir;
+  mrpt::img::TCamera m_camera;
+  TOptions m_options;
+  std::vector<TEntry> m_entries;
+  std::size_t m_skipped = 0;
+  std::size_t m_next = 0;
+};
+}  // namespace roislam::io

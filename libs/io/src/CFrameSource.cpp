@@ -1,0 +1,22 @@
+#include "roislam/io/CFrameSource.h"
+
+#include <roislam/io/CTumFrameSource.h>
+#include <roislam/io/CameraPresets.h>
+
+#include <filesystem>
+#include <stdexcept>
+
+namespace fs = std::filesystem;
+
+namespace roislam::io
+{
+std::unique_ptr<CFrameSource> CFrameSource::open(
+    const std::string& path, const std::string& cameraSpec)
+{
+  if (fs::is_directory(path))
+    return std::make_unique<CTumFrameSource>(path, resolveCamera(cameraSpec, path));
+  if (!fs::exists(path))
+    throw std::runtime_error(path + ": no such file or folder");
+  throw std::runtime_error(path + ": rawlog input not implemented yet");
+}
+}  // namespace roislam::io

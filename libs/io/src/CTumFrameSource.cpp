@@ -1,0 +1,217 @@
+#include "roislam/io/CTumFrameSource.h"
+
+#include <mrpt/config/CConfigFileBase.h>
+#include <roislam/io/StampAssociation.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <numeric>
+#include <opencv2/imgcodecs.hpp>
+#include <sstream>
+#include <stdexcept>
+
+namespace fs = std::filesystem;
+
+namespace roislam::io
+{
+namespace
+{
+struct TListItem
+{
+  double stamp = 0;
+  std::string file;
+};
+
+// rgb.txt / depth.txt: "timestamp filename" per line, '#' comments; like the
+// benchmark scripts, commas and tabs also separate fields.
+std::vector<TListItem> readList(const fs::path& file)
+{
+  std::ifstream in(file);
+  if (!in)
+    throw std::runtime_error(file.string() + ": cannot open");
+  std::vector<TListItem> items;
+  std::string line;
+  std::size_t lineNo = 0;
+  while (std::getline(in, line))
+  {
+    ++lineNo;
+    if (!line.empty() && line.back() == '\r')
+      line.pop_back();
+    const auto first = line.find_first_not_of(" \t");
+    if (first == std::string::npos || line[first] == '#')
+      continue;
+    std::replace(line.begin(), line.end(), ',', ' ');
+    std::replace(line.begin(), line.end(), '\t', ' ');
+    std::istringstream ss(line);
+    std::string stampText, name, extra;
+    ss >> stampText >> name;
+    const auto where = file.string() + ":" + std::to_string(lineNo) + ": ";
+    if (name.empty())
+      throw std::runtime_error(where + "expected 'timestamp filename', got '" + line + "'");
+    std::size_t used = 0;
+    double stamp = 0;
+    try
+    {
+      stamp = std::stod(stampText, &used);
+    }
+    catch (const std::exception&)
+    {
+      used = 0;
+    }
+    if (used != stampText.size() || !std::isfinite(stamp))
+      throw std::runtime_error(where + "invalid timestamp '" + stampText + "'");
+    if (ss >> extra)
+      throw std::runtime_error(where + "expected 'timestamp filename', got '" + line + "'");
+    items.push_back({stamp, name});
+  }
+  if (in.bad())
+    throw std::runtime_error(file.string() + ": read error");
+  return items;
+}
+
+void checkSize(const cv::Mat& img, const std::string& file, const mrpt::img::TCamera& camera)
+{
+  if (img.cols != static_cast<int>(camera.ncols) || img.rows != static_cast<int>(camera.nrows))
+    throw std::runtime_error(
+        file + ": image is " + std::to_string(img.cols) + "x" + std::to_string(img.rows) +
+        " but the camera intrinsics are for " + std::to_string(camera.ncols) + "x" +
+        std::to_string(camera.nrows));
+}
+
+cv::Mat readImage(const std::string& file, int flags)
+{
+  if (!fs::is_regular_file(file))
+    throw std::runtime_error(file + ": image file not found");
+  cv::Mat img;
+  try
+  {
+    img = cv::imread(file, flags);
+  }
+  catch (const cv::Exception&)
+  {
+    img.release();
+  }
+  if (img.empty())
+    throw std::runtime_error(file + ": cannot decode image (corrupt or not an image)");
+  return img;
+}
+}  // namespace
+
+void CTumFrameSource::TOptions::loadFromConfigFile(
+    const mrpt::config::CConfigFileBase& cfg, const std::string& section)
+{
+  maxTimeDifference = cfg.read_double(section, "max_time_difference", maxTimeDifference);
+  depthScale = cfg.read_double(section, "depth_scale", depthScale);
+  if (!(maxTimeDifference > 0))
+    throw std::invalid_argument("[" + section + "] max_time_difference must be > 0");
+  if (!(depthScale > 0))
+    throw std::invalid_argument("[" + section + "] depth_scale must be > 0");
+}
+
+void CTumFrameSource::TOptions::saveToConfigFile(
+    mrpt::config::CConfigFileBase& cfg, const std::string& section) const
+{
+  cfg.write(section, "max_time_difference", maxTimeDifference);
+  cfg.write(section, "depth_scale", depthScale);
+}
+
+CTumFrameSource::CTumFrameSource(
+    const std::string& dir, const mrpt::img::TCamera& camera, const TOptions& options)
+    : m_camera(camera), m_options(options)
+{
+  if (!fs::is_directory(dir))
+    throw std::runtime_error(dir + ": dataset folder not found");
+  if (!(options.maxTimeDifference > 0) || !(options.depthScale > 0))
+    throw std::invalid_argument("CTumFrameSource: maxTimeDifference and depthScale must be > 0");
+  if (camera.ncols == 0 || camera.nrows == 0 || !(camera.fx() > 0) || !(camera.fy() > 0))
+    throw std::invalid_argument(dir + ": camera intrinsics are not set");
+  const fs::path root = fs::absolute(dir).lexically_normal();
+  m_dir = root.string();
+  if (!m_dir.empty() && m_dir.back() == '/' && m_dir.size() > 1)
+    m_dir.pop_back();
+
+  const auto rgb = readList(root / "rgb.txt");
+  const auto depth = readList(root / "depth.txt");
+
+  std::vector<double> rgbStamps, depthStamps;
+  for (const auto& r : rgb)
+    rgbStamps.push_back(r.stamp);
+  for (const auto& d : depth)
+    depthStamps.push_back(d.stamp);
+  const auto pairs = associateStamps(rgbStamps, depthStamps, options.maxTimeDifference);
+
+  for (const auto& [i, j] : pairs)
+  {
+    TEntry e;
+    e.rgbStamp = rgb[i].stamp;
+    e.depthStamp = depth[j].stamp;
+    e.rgbFile = (root / rgb[i].file).lexically_normal().string();
+    e.depthFile = (root / depth[j].file).lexically_normal().string();
+    for (const auto* f : {&e.rgbFile, &e.depthFile})
+      if (!fs::is_regular_file(*f))
+        throw std::runtime_error(*f + ": image file listed in the sequence not found");
+    m_entries.push_back(std::move(e));
+  }
+  std::stable_sort(
+      m_entries.begin(), m_entries.end(),
+      [](const TEntry& a, const TEntry& b) { return a.rgbStamp < b.rgbStamp; });
+  m_skipped = rgb.size() - pairs.size();
+}
+
+CTumFrameSource::CTumFrameSource(const std::string& dir, const mrpt::img::TCamera& camera)
+    : CTumFrameSource(dir, camera, TOptions())
+{
+}
+
+cv::Mat CTumFrameSource::readColourImage(const std::string& file, const mrpt::img::TCamera& camera)
+{
+  cv::Mat img = readImage(file, cv::IMREAD_COLOR);
+  checkSize(img, file, camera);
+  return img;
+}
+
+cv::Mat CTumFrameSource::readDepthImage(const std::string& file, const mrpt::img::TCamera& camera)
+{
+  cv::Mat img = readImage(file, cv::IMREAD_UNCHANGED);
+  if (img.type() != CV_16UC1)
+    throw std::runtime_error(
+        file + ": depth image must be single-channel 16-bit (got " +
+        std::to_string(img.channels()) + " channel(s) of " + std::to_string(8 * img.elemSize1()) +
+        " bits)");
+  checkSize(img, file, camera);
+  return img;
+}
+
+std::optional<TRGBDFrame> CTumFrameSource::next()
+{
+  if (m_next >= m_entries.size())
+    return std::nullopt;
+  const TEntry& e = m_entries[m_next];
+  TRGBDFrame f;
+  f.index = m_next;
+  f.timestamp = e.rgbStamp;
+  f.depthTimestamp = e.depthStamp;
+  f.rgb = readColourImage(e.rgbFile, m_camera);
+  const cv::Mat raw = readDepthImage(e.depthFile, m_camera);
+  raw.convertTo(f.depth, CV_32F, 1.0 / m_options.depthScale);
+  f.camera = m_camera;
+  f.rgbSource = e.rgbFile;
+  ++m_next;
+  return f;
+}
+
+std::optional<std::string> CTumFrameSource::groundTruthFile() const
+{
+  const fs::path gt = fs::path(m_dir) / "groundtruth.txt";
+  if (fs::is_regular_file(gt))
+    return gt.string();
+  return std::nullopt;
+}
+
+std::string CTumFrameSource::name() const
+{
+  return fs::path(m_dir).filename().string();
+}
+}  // namespace roislam::io

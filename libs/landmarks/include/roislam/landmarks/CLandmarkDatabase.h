@@ -1,0 +1,121 @@
+/* The landmark database of the dissertation's Test 1: starts empty; a
+ * confirmed ROI is matched against the stored landmarks (descriptor matching
+ * + RANSAC homography verification); the landmark with the most homography
+ * inliers is recalled, otherwise the ROI becomes a new landmark.
+ *
+ * To keep a query cheap as the database grows, at most max_candidates
+ * landmarks are verified: when there are more, every ROI feature votes for the
+ * landmark that owns its nearest descriptor among all stored descriptors (one
+ * matcher call) and the most voted landmarks are verified. When world
+ * positions are known (a pose was given), only landmarks within
+ * prefilter_radius of the query are considered at all.
+ *
+ * Used by CRoiLandmarkTracker; saved/loaded by the roi-landmarks app.
+ */
+#pragma once
+
+#include <roislam/landmarks/CLandmark.h>
+#include <roislam/matching/CFeatureMatcher.h>
+#include <roislam/matching/CHomographyLocator.h>
+
+#include <mrpt/config/CLoadableOptions.h>
+#include <mrpt/serialization/CSerializable.h>
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace roislam::landmarks
+{
+class CLandmarkDatabase : public mrpt::serialization::CSerializable
+{
+  DEFINE_SERIALIZABLE(CLandmarkDatabase, roislam::landmarks)
+
+ public:
+  /** ini section (default "LandmarkDatabase"):
+   *  - max_candidates    int >= 0: landmarks verified per query by homography;
+   *                      0 = all (default 8)
+   *  - prefilter_radius  metres >= 0: when both the query and a landmark have
+   *                      world positions, landmarks farther than this are not
+   *                      candidates; 0 = off (default 1.5)
+   *  - min_votes         int >= 0: a voted candidate needs at least this many
+   *                      votes (default 4)
+   */
+  struct TOptions : public mrpt::config::CLoadableOptions
+  {
+    int max_candidates = 8;
+    double prefilter_radius = 1.5;
+    int min_votes = 4;
+
+    void loadFromConfigFile(
+        const mrpt::config::CConfigFileBase& source, const std::string& section) override;
+    void saveToConfigFile(
+        mrpt::config::CConfigFileBase& target, const std::string& section) const override;
+  };
+
+  /** Outcome of a query. */
+  struct TQueryResult
+  {
+    /** The recalled landmark, or nullopt: the ROI is new. */
+    std::optional<int32_t> landmarkId;
+    /** Homography verification of the recalled landmark. */
+    int inliers = 0;
+    int matches = 0;
+    int falseMatches = 0;
+    /** The recalled landmark's ROI located in the query frame. */
+    cv::Rect locatedBox;
+    /** Landmarks verified by homography for this query. */
+    int candidates = 0;
+  };
+
+  CLandmarkDatabase();
+  CLandmarkDatabase(
+      const TOptions& options, const matching::CFeatureMatcher::TOptions& matcherOptions,
+      const matching::CHomographyLocator::TOptions& locatorOptions);
+
+  /** Matches a ROI's features (keypoints in its frame's pixels) against the
+   *  database. worldPosition enables the position prefilter. */
+  TQueryResult query(
+      const features::TFeatureSet& roiFeatures, const cv::Rect& roiBox, const cv::Size& imageSize,
+      const std::optional<mrpt::math::TPoint3D>& worldPosition = std::nullopt) const;
+
+  /** Stores a new landmark; assigns and returns its id (its index). */
+  int32_t add(CLandmark landmark);
+  /** Appends a sighting to landmark id; throws std::out_of_range on a bad id. */
+  void addSighting(int32_t id, const TLandmarkSighting& sighting);
+
+  const std::vector<CLandmark>& landmarks() const { return m_landmarks; }
+  const CLandmark& landmark(int32_t id) const;
+  std::size_t size() const { return m_landmarks.size(); }
+  bool empty() const { return m_landmarks.empty(); }
+  void clear();
+
+  /** Writes the database (gzip-compressed MRPT archive) through a temporary
+   *  file renamed on success; throws std::runtime_error naming the file. */
+  void save(const std::string& file) const;
+  /** Replaces the landmarks with those of a file written by save() (gzip or
+   *  plain); keeps this object's options. Throws naming the file. */
+  void load(const std::string& file);
+
+  const TOptions& options() const { return m_options; }
+
+ private:
+  std::vector<int32_t> candidates(
+      const features::TFeatureSet& roiFeatures,
+      const std::optional<mrpt::math::TPoint3D>& worldPosition) const;
+  void rebuildVoteIndex() const;
+
+  TOptions m_options;
+  matching::CFeatureMatcher m_matcher;
+  /** Nearest-neighbour matcher (no ratio test) for the candidate vote. */
+  matching::CFeatureMatcher m_voteMatcher;
+  matching::CHomographyLocator m_locator;
+  std::vector<CLandmark> m_landmarks;
+
+  /** All landmark descriptors stacked, and the landmark owning each row;
+   *  rebuilt lazily after add(). */
+  mutable features::TFeatureSet m_voteSet;
+  mutable std::vector<int32_t> m_voteOwner;
+  mutable bool m_voteIndexValid = false;
+};
+}  // namespace roislam::landmarks

@@ -1,0 +1,80 @@
+/* The observation processor of the design: consumes RGB-D frames
+ * (mrpt::obs::CObservation3DRangeScan, or TRGBDFrame + optional pose), runs the
+ * ROI landmark pipeline (CRoiLandmarkTracker) and emits the landmarks seen in
+ * the frame as a standard mrpt::obs::CObservationBearingRange, so rawlogs
+ * annotated with it open in RawLogViewer and feed MRPT's landmark-based SLAM.
+ *
+ * Convention (MRPT's, see mrpt::poses::CPose3D::sphericalCoordinates): the
+ * measurement is expressed in MRPT's camera frame (x forward, y left, z up),
+ * obtained from the optical-frame landmark position (x right, y down,
+ * z forward) as (z, -x, -y); range = |p|, yaw = atan2(y, x) about +Z,
+ * pitch = -asin(z / range) about +Y (positive = below the optical axis).
+ * sensorLocationOnRobot is the pose of that frame on the robot.
+ *
+ * At most one landmark per frame: the confirmed ROI's, at the position
+ * measured in this frame. Frames without one give an observation with no
+ * measurements, so every RGB-D observation has its partner.
+ */
+#pragma once
+
+#include <roislam/io/TRGBDFrame.h>
+#include <roislam/landmarks/CRoiLandmarkTracker.h>
+#include <roislam/landmarks/TFrameResult.h>
+#include <roislam/landmarks/TObservationOptions.h>
+
+#include <mrpt/img/TCamera.h>
+#include <mrpt/obs/CObservation3DRangeScan.h>
+#include <mrpt/obs/CObservationBearingRange.h>
+#include <mrpt/poses/CPose3D.h>
+
+#include <cstdint>
+#include <optional>
+#include <utility>
+#include <vector>
+
+namespace roislam::landmarks
+{
+class CObservationProcessor
+{
+ public:
+  struct TOutput
+  {
+    TFrameResult result;
+    mrpt::obs::CObservationBearingRange::Ptr observation;
+  };
+
+  explicit CObservationProcessor(const TPipelineOptions& options = TPipelineOptions());
+
+  /** A TRGBDFrame; the sensor pose on the robot is options.sensor_pose. */
+  TOutput process(
+      const io::TRGBDFrame& frame,
+      const std::optional<mrpt::poses::CPose3D>& cameraPose = std::nullopt);
+
+  /** A CObservation3DRangeScan with intensity and range images (external
+   *  images must be loadable). The observation's sensorPose becomes the
+   *  bearing-range sensorLocationOnRobot. Throws std::invalid_argument when
+   *  either image is missing. */
+  TOutput process(
+      const mrpt::obs::CObservation3DRangeScan& scan,
+      const std::optional<mrpt::poses::CPose3D>& cameraPose = std::nullopt);
+
+  /** Builds the observation of landmarks (id, optical-frame position, metres)
+   *  seen by a camera with these intrinsics. */
+  static mrpt::obs::CObservationBearingRange::Ptr makeObservation(
+      const std::vector<std::pair<int32_t, mrpt::math::TPoint3D>>& landmarks,
+      const mrpt::img::TCamera& camera, double timestamp, const mrpt::poses::CPose3D& sensorPose,
+      const TObservationOptions& options);
+
+  /** A TRGBDFrame from a scan (colour -> BGR, range image -> metres). */
+  static io::TRGBDFrame frameFromScan(const mrpt::obs::CObservation3DRangeScan& scan);
+
+  const CRoiLandmarkTracker& tracker() const { return m_tracker; }
+  CRoiLandmarkTracker& tracker() { return m_tracker; }
+
+ private:
+  TOutput finish(TFrameResult result, const io::TRGBDFrame& frame, const mrpt::poses::CPose3D& pose);
+
+  TObservationOptions m_options;
+  CRoiLandmarkTracker m_tracker;
+};
+}  // namespace roislam::landmarks

@@ -1,0 +1,79 @@
+/* The roi-landmarks application (the dissertation's Test 1, the pipeline
+ * alone): reads an RGB-D sequence (TUM folder or rawlog), runs the ROI
+ * landmark pipeline on every frame and writes into the output folder:
+ *  - frames.csv     one record per frame (the dissertation's log + ROI box)
+ *  - landmarks/     each new landmark's ROI patch, named by frame (000123.png)
+ *  - landmarks.db   the database (gzip MRPT archive, CLandmarkDatabase)
+ *  - summary.json   counts, ground-truth scores (null without ground truth),
+ *                   matches per frame, duration and speed
+ *  - optionally an annotated rawlog: per frame the CObservation3DRangeScan
+ *    followed by its CObservationBearingRange (observation-only format).
+ * Every file is written under a temporary name and renamed when complete.
+ * Called by apps/roi-landmarks (thin main) and the tests.
+ */
+#pragma once
+
+#include <roislam/landmarks/TPipelineOptions.h>
+
+#include <functional>
+#include <optional>
+#include <string>
+
+namespace roislam::landmarks
+{
+class CRoiLandmarksApp
+{
+ public:
+  struct TArguments
+  {
+    /** ini file; empty = defaults. */
+    std::string iniFile;
+    /** TUM folder or .rawlog. */
+    std::string input;
+    std::string outputDir;
+    /** Overrides of the ini (command-line flags). */
+    std::optional<std::string> feature;
+    std::optional<int> maxFeatures;
+    std::optional<std::string> roiPreset;
+    std::optional<std::string> outputRawlog;
+    /** Camera spec as io::resolveCamera (default auto). */
+    std::string camera = "auto";
+    /** Process at most this many frames (0 = all). */
+    std::size_t maxFrames = 0;
+    /** Progress lines (e.g. to stderr); may be empty. */
+    std::function<void(const std::string&)> progress;
+  };
+
+  /** Headline figures, as written to summary.json. */
+  struct TSummary
+  {
+    std::size_t frames = 0;
+    std::size_t framesWithRoi = 0;
+    std::size_t confirmedRois = 0;
+    std::size_t landmarks = 0;
+    std::size_t recalls = 0;
+    std::optional<int> truePositives, falsePositives, falseNegatives, unscored;
+    std::optional<double> precision, recall;
+    double matchesPerFrame = 0;
+    double falseMatchesPerFrame = 0;
+    /** Pipeline time (sum of per-frame processing, no I/O) and its fps. */
+    double durationS = 0;
+    double fps = 0;
+    /** Wall time of the whole run including reading and writing. */
+    double wallS = 0;
+  };
+
+  explicit CRoiLandmarksApp(TArguments arguments);
+
+  /** Loads the configuration and applies the overrides; throws on errors
+   *  (message names the file / section / key). */
+  const TPipelineOptions& options() const { return m_options; }
+
+  /** Runs the whole sequence and writes the outputs. */
+  TSummary run();
+
+ private:
+  TArguments m_args;
+  TPipelineOptions m_options;
+};
+}  // namespace roislam::landmarks

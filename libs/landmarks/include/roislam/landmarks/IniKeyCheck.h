@@ -1,0 +1,27 @@
+/* Strict ini checking shared by the apps: a key in one of our sections that
+ * no TOptions reads is almost always a typo that would otherwise be silently
+ * ignored (MRPT's loaders read with defaults). Used by roi-landmarks and
+ * reusable by the SLAM app.
+ */
+#pragma once
+
+#include <mrpt/config/CConfigFileBase.h>
+#include <mrpt/config/CLoadableOptions.h>
+
+#include <string>
+#include <vector>
+
+namespace roislam::landmarks
+{
+/** The keys that options.saveToConfigFile() writes into one section, i.e. the
+ *  keys that options.loadFromConfigFile() understands (for TOptions whose save
+ *  and load are symmetric, as STYLE.md asks). */
+std::vector<std::string> knownIniKeys(const mrpt::config::CLoadableOptions& options);
+
+/** Throws std::runtime_error "ini <fileLabel>: [<section>] unknown key '<key>'"
+ *  for the first key of `section` in cfg that is not in knownKeys (case
+ *  insensitive, as MRPT's ini reader). A missing section is fine. */
+void checkIniKeys(
+    const mrpt::config::CConfigFileBase& cfg, const std::string& section,
+    const std::vector<std::string>& knownKeys, const std::string& fileLabel);
+}  // namespace roislam::landmarks

@@ -1,0 +1,65 @@
+#include "roislam/landmarks/CLandmark.h"
+
+#include "SerializationHelpers.h"
+
+#include <mrpt/serialization/CArchive.h>
+
+namespace roislam::landmarks
+{
+IMPLEMENTS_SERIALIZABLE(CLandmark, CSerializable, roislam::landmarks)
+
+uint8_t CLandmark::serializeGetVersion() const { return 0; }
+
+void CLandmark::serializeTo(mrpt::serialization::CArchive& out) const
+{
+  out << id;
+  detail::writeFeatures(out, features);
+  detail::writeRect(out, box);
+  out << static_cast<int32_t>(imageSize.width) << static_cast<int32_t>(imageSize.height);
+  detail::writeImagePng(out, patch);
+  out << positionCamera.x << positionCamera.y << positionCamera.z << hasPositionCamera;
+  out << positionWorld.x << positionWorld.y << positionWorld.z << hasPositionWorld;
+  out << static_cast<uint64_t>(sightings.size());
+  for (const auto& s : sightings)
+  {
+    out << s.frame << s.timestamp;
+    detail::writeRect(out, s.box);
+    out << s.position.x << s.position.y << s.position.z << s.hasPosition
+        << static_cast<int32_t>(s.inliers);
+  }
+}
+
+void CLandmark::serializeFrom(mrpt::serialization::CArchive& in, uint8_t version)
+{
+  switch (version)
+  {
+    case 0:
+    {
+      in >> id;
+      features = detail::readFeatures(in);
+      box = detail::readRect(in);
+      int32_t w, h;
+      in >> w >> h;
+      imageSize = cv::Size(w, h);
+      patch = detail::readImagePng(in);
+      in >> positionCamera.x >> positionCamera.y >> positionCamera.z >> hasPositionCamera;
+      in >> positionWorld.x >> positionWorld.y >> positionWorld.z >> hasPositionWorld;
+      uint64_t n = 0;
+      in >> n;
+      if (n > (1u << 28)) throw std::runtime_error("corrupt landmark sightings in archive");
+      sightings.resize(n);
+      for (auto& s : sightings)
+      {
+        int32_t inliers;
+        in >> s.frame >> s.timestamp;
+        s.box = detail::readRect(in);
+        in >> s.position.x >> s.position.y >> s.position.z >> s.hasPosition >> inliers;
+        s.inliers = inliers;
+      }
+      break;
+    }
+    default:
+      MRPT_THROW_UNKNOWN_SERIALIZATION_VERSION(version);
+  }
+}
+}  // namespace roislam::landmarks

@@ -1,0 +1,102 @@
+#include "roislam/landmarks/FeatureGeometry.h"
+
+#include <mrpt/core/bits_math.h>
+
+#include <opencv2/calib3d.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace roislam::landmarks
+{
+namespace
+{
+double median(std::vector<double> v)
+{
+  const std::size_t n = v.size();
+  std::nth_element(v.begin(), v.begin() + n / 2, v.end());
+  const double hi = v[n / 2];
+  if (n % 2) return hi;
+  return 0.5 * (hi + *std::max_element(v.begin(), v.begin() + n / 2));
+}
+
+/** Depth at a pixel, or the median of the valid 3x3 neighbours; 0 if none. */
+float depthAt(const cv::Mat& depth, int u, int v, double minDepth, double maxDepth)
+{
+  auto ok = [&](float z) { return std::isfinite(z) && z >= minDepth && z <= maxDepth; };
+  const float z = depth.at<float>(v, u);
+  if (ok(z)) return z;
+  float buf[9];
+  int n = 0;
+  for (int dv = -1; dv <= 1; ++dv)
+    for (int du = -1; du <= 1; ++du)
+    {
+      const int uu = u + du, vv = v + dv;
+      if (uu < 0 || vv < 0 || uu >= depth.cols || vv >= depth.rows) continue;
+      const float zz = depth.at<float>(vv, uu);
+      if (ok(zz)) buf[n++] = zz;
+    }
+  if (n == 0) return 0;
+  std::nth_element(buf, buf + n / 2, buf + n);
+  return buf[n / 2];
+}
+}  // namespace
+
+TFeatureDepth featureDepth(
+    const std::vector<cv::KeyPoint>& keypoints, const cv::Mat& depth,
+    const mrpt::img::TCamera& camera, double minDepth, double maxDepth)
+{
+  TFeatureDepth out;
+  out.mean = out.median = std::numeric_limits<double>::quiet_NaN();
+  if (keypoints.empty() || depth.empty() || depth.type() != CV_32FC1) return out;
+
+  std::vector<cv::Point2f> pixels;
+  std::vector<double> zs;
+  for (const auto& kp : keypoints)
+  {
+    const int u = static_cast<int>(std::lround(kp.pt.x));
+    const int v = static_cast<int>(std::lround(kp.pt.y));
+    if (u < 0 || v < 0 || u >= depth.cols || v >= depth.rows) continue;
+    const float z = depthAt(depth, u, v, minDepth, maxDepth);
+    if (z <= 0) continue;
+    pixels.push_back(kp.pt);
+    zs.push_back(z);
+  }
+  out.valid = static_cast<int>(zs.size());
+  if (zs.empty()) return out;
+
+  double sum = 0;
+  for (double z : zs) sum += z;
+  out.mean = sum / zs.size();
+  out.median = median(zs);
+
+  const cv::Matx33d K(
+      camera.fx(), 0, camera.cx(), 0, camera.fy(), camera.cy(), 0, 0, 1);
+  const cv::Vec<double, 5> dist(
+      camera.dist[0], camera.dist[1], camera.dist[2], camera.dist[3], camera.dist[4]);
+  std::vector<cv::Point2f> normalised;
+  cv::undistortPoints(pixels, normalised, K, dist);
+
+  std::vector<double> xs(zs.size()), ys(zs.size());
+  for (std::size_t i = 0; i < zs.size(); ++i)
+  {
+    xs[i] = normalised[i].x * zs[i];
+    ys[i] = normalised[i].y * zs[i];
+  }
+  out.position = mrpt::math::TPoint3D(median(xs), median(ys), out.median);
+  return out;
+}
+
+mrpt::math::TPoint3D opticalToMrptCamera(const mrpt::math::TPoint3D& p)
+{
+  return {p.z, -p.x, -p.y};
+}
+
+mrpt::poses::CPose3D mrptCameraInOptical()
+{
+  // CPose3D(0,0,0,-90deg,0,-90deg) maps optical coordinates to MRPT camera
+  // coordinates, i.e. it is the optical frame seen from the MRPT frame.
+  return -mrpt::poses::CPose3D(0, 0, 0, mrpt::DEG2RAD(-90.0), 0, mrpt::DEG2RAD(-90.0));
+}
+}  // namespace roislam::landmarks

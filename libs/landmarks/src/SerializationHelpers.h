@@ -1,0 +1,21 @@
+/* Private: MRPT archive I/O of the OpenCV types a landmark holds. */
+#pragma once
+
+#include <roislam/features/TFeatureSet.h>
+
+#include <mrpt/serialization/CArchive.h>
+
+#include <opencv2/core.hpp>
+
+namespace roislam::landmarks::detail
+{
+void writeMat(mrpt::serialization::CArchive& out, const cv::Mat& m);
+cv::Mat readMat(mrpt::serialization::CArchive& in);
+void writeRect(mrpt::serialization::CArchive& out, const cv::Rect& r);
+cv::Rect readRect(mrpt::serialization::CArchive& in);
+/** Images as PNG bytes (lossless, compact). */
+void writeImagePng(mrpt::serialization::CArchive& out, const cv::Mat& image);
+cv::Mat readImagePng(mrpt::serialization::CArchive& in);
+void writeFeatures(mrpt::serialization::CArchive& out, const features::TFeatureSet& f);
+features::TFeatureSet readFeatures(mrpt::serialization::CArchive& in);
+}  // namespace roislam::landmarks::detail

@@ -1,0 +1,136 @@
+#include "roislam/roi/CRoiDetector.h"
+
+#include <mrpt/config/CConfigFileBase.h>
+
+#include <opencv2/imgproc.hpp>
+#include <stdexcept>
+
+namespace roislam::roi
+{
+namespace
+{
+[[noreturn]] void badKey(const std::string& section, const std::string& key, const std::string& why)
+{
+  throw std::invalid_argument("[" + section + "] " + key + ": " + why);
+}
+}  // namespace
+
+void CRoiDetector::TOptions::setPreset(const std::string& name)
+{
+  if (name == "small")
+  {
+    erosions = 6;
+    dilations = 7;
+  }
+  else if (name == "big")
+  {
+    erosions = 6;
+    dilations = 2;
+  }
+  else if (name != "custom")
+    throw std::invalid_argument(
+        "unknown ROI preset '" + name + "' (expected small, big or custom)");
+  preset = name;
+}
+
+void CRoiDetector::TOptions::loadFromConfigFile(
+    const mrpt::config::CConfigFileBase& c, const std::string& s)
+{
+  const std::string p = c.read_string(s, "preset", preset);
+  try
+  {
+    setPreset(p);
+  }
+  catch (const std::invalid_argument& e)
+  {
+    badKey(s, "preset", e.what());
+  }
+  if (preset == "custom")
+  {
+    erosions = c.read_int(s, "erosions", erosions);
+    dilations = c.read_int(s, "dilations", dilations);
+  }
+  else if (c.keyExists(s, "erosions") || c.keyExists(s, "dilations"))
+    badKey(s, "erosions/dilations", "only allowed with preset = custom");
+  canny_low = c.read_double(s, "canny_low", canny_low);
+  canny_high = c.read_double(s, "canny_high", canny_high);
+  min_area_fraction = c.read_double(s, "min_area_fraction", min_area_fraction);
+  if (erosions < 0)
+    badKey(s, "erosions", "must be >= 0");
+  if (dilations < 0)
+    badKey(s, "dilations", "must be >= 0");
+  if (!(canny_low >= 0))
+    badKey(s, "canny_low", "must be >= 0");
+  if (!(canny_high >= canny_low))
+    badKey(s, "canny_high", "must be >= canny_low");
+  if (!(min_area_fraction >= 0 && min_area_fraction < 1))
+    badKey(s, "min_area_fraction", "must be in [0, 1)");
+}
+
+void CRoiDetector::TOptions::saveToConfigFile(
+    mrpt::config::CConfigFileBase& c, const std::string& s) const
+{
+  c.write(s, "preset", preset);
+  if (preset == "custom")
+  {
+    c.write(s, "erosions", erosions);
+    c.write(s, "dilations", dilations);
+  }
+  c.write(s, "canny_low", canny_low);
+  c.write(s, "canny_high", canny_high);
+  c.write(s, "min_area_fraction", min_area_fraction);
+}
+
+CRoiDetector::CRoiDetector() : CRoiDetector(TOptions()) {}
+
+CRoiDetector::CRoiDetector(const TOptions& options) : m_options(options)
+{
+  if (m_options.erosions < 0 || m_options.dilations < 0)
+    throw std::invalid_argument("CRoiDetector: erosions and dilations must be >= 0");
+}
+
+cv::Mat CRoiDetector::foregroundMask(const cv::Mat& image) const
+{
+  cv::Mat grey = image;
+  if (image.channels() == 3)
+    cv::cvtColor(image, grey, cv::COLOR_BGR2GRAY);
+  if (grey.type() != CV_8UC1)
+    throw std::invalid_argument("CRoiDetector: expected an 8-bit grey or BGR image");
+
+  cv::Mat edges;
+  cv::Canny(grey, edges, m_options.canny_low, m_options.canny_high, 3);
+  // See the TOptions comment: the dissertation's erosion grows the (black)
+  // edges, i.e. cv::dilate on our white-edge mask, and vice versa.
+  const cv::Mat kernel = cv::getStructuringElement(cv::MORPH_RECT, cv::Size(3, 3));
+  if (m_options.erosions > 0)
+    cv::dilate(edges, edges, kernel, cv::Point(-1, -1), m_options.erosions);
+  if (m_options.dilations > 0)
+    cv::erode(edges, edges, kernel, cv::Point(-1, -1), m_options.dilations);
+  return edges;
+}
+
+std::optional<TRoi> CRoiDetector::detect(const cv::Mat& image) const
+{
+  const cv::Mat mask = foregroundMask(image);
+  cv::Mat labels, stats, centroids;
+  const int n = cv::connectedComponentsWithStats(mask, labels, stats, centroids, 8, CV_32S);
+  int best = -1, bestArea = 0;
+  for (int l = 1; l < n; ++l)
+  {
+    const int area = stats.at<int>(l, cv::CC_STAT_AREA);
+    if (area > bestArea)
+    {
+      bestArea = area;
+      best = l;
+    }
+  }
+  if (best < 0 || bestArea < m_options.min_area_fraction * mask.total())
+    return std::nullopt;
+  TRoi roi;
+  roi.box = cv::Rect(
+      stats.at<int>(best, cv::CC_STAT_LEFT), stats.at<int>(best, cv::CC_STAT_TOP),
+      stats.at<int>(best, cv::CC_STAT_WIDTH), stats.at<int>(best, cv::CC_STAT_HEIGHT));
+  roi.componentArea = bestArea;
+  return roi;
+}
+}  // namespace roislam::roi
