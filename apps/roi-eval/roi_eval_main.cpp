@@ -5,6 +5,7 @@
 #include <CLI/CLI.hpp>
 #include <exception>
 #include <iostream>
+#include <string>
 
 int main(int argc, char** argv)
 {
@@ -42,7 +43,9 @@ int main(int argc, char** argv)
   }
   catch (const std::exception& e)
   {
-    std::cerr << "roi-eval: error: " << e.what() << "\n";
+    // MRPT exceptions append a call stack after the first line.
+    const std::string what = e.what();
+    std::cerr << "roi-eval: error: " << what.substr(0, what.find('\n')) << "\n";
     return 1;
   }
 }

@@ -1,5 +1,6 @@
 /* cameraPreset() values and resolveCamera() rules. */
 #include <mrpt/config/CConfigFile.h>
+#include <mrpt/containers/yaml.h>
 #include <roislam/io/CameraPresets.h>
 #include <roislam/testing/TestData.h>
 
@@ -107,5 +108,17 @@ TEST(CameraPresets, ResolveAutoAndFiles)
     }
   }
   EXPECT_THROW(resolveCamera(tmp + "/absent.ini", tmp), std::runtime_error);
+
+  // camera.yaml (OpenCV/ROS calibration layout, TCamera::asYAML) for auto.
+  {
+    std::ofstream out(tmp + "/mysequence/camera.yaml");
+    roislam::iotest::smallCamera(32, 24).asYAML().printAsYAML(out);
+  }
+  const auto fromYaml = resolveCamera("auto", tmp + "/mysequence");
+  EXPECT_DOUBLE_EQ(fromYaml.fx(), 20.0);
+  EXPECT_DOUBLE_EQ(fromYaml.cy(), 5.5);
+  EXPECT_EQ(fromYaml.ncols, 32u);
+  std::ofstream(tmp + "/broken.yaml") << "image_width: [\n";
+  EXPECT_THROW(resolveCamera(tmp + "/broken.yaml", tmp), std::runtime_error);
   fs::remove_all(tmp);
 }

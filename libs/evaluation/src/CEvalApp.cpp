@@ -20,7 +20,7 @@ std::string fixed(double v, int decimals)
 
 CEvalApp::CEvalApp(const TParams& params) : m_params(params)
 {
-  m_params.evaluation.validate("options");
+  m_params.evaluation.validate("command line");
 }
 
 TEvaluationResult CEvalApp::run(std::ostream& out) const

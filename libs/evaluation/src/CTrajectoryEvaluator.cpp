@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <limits>
 #include <numeric>
 #include <set>
 #include <sstream>
@@ -205,6 +206,7 @@ TEvaluationResult CTrajectoryEvaluator::evaluate(
   TEvaluationResult result;
 
   // ---- ATE (associate.py + evaluate_ate.py) ----
+  // associate.py semantics (exact |dt| < max_difference test, greedy).
   const auto matches = io::associateStamps(gtStamps, estStamps, m_options.max_difference, offset);
   const std::string window =
       "max_difference " + num(m_options.max_difference) + " s, offset " + num(offset) + " s";

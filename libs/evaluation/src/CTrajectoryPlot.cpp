@@ -59,11 +59,6 @@ std::string quoted(const std::string& s)
   return out + "'";
 }
 
-double coordinate(const mrpt::poses::CPose3D& p, int axis)
-{
-  return axis == 0 ? p.x() : (axis == 1 ? p.y() : p.z());
-}
-
 int chooseUpAxis(const std::string& setting, const io::TTrajectory& reference)
 {
   if (setting == "x")
@@ -75,23 +70,7 @@ int chooseUpAxis(const std::string& setting, const io::TTrajectory& reference)
   if (setting != "auto")
     throw std::invalid_argument(
         "CTrajectoryPlot: up_axis must be auto, x, y or z, not '" + setting + "'");
-  int best = 2;  // z up when undecidable (TUM ground truth)
-  double bestRange = std::numeric_limits<double>::infinity();
-  for (int axis : {2, 0, 1})
-  {
-    double lo = std::numeric_limits<double>::infinity(), hi = -lo;
-    for (const auto& p : reference)
-    {
-      lo = std::min(lo, coordinate(p.pose, axis));
-      hi = std::max(hi, coordinate(p.pose, axis));
-    }
-    if (hi - lo < bestRange)
-    {
-      bestRange = hi - lo;
-      best = axis;
-    }
-  }
-  return best;
+  return CTrajectoryPlot::autoUpAxis(reference);
 }
 
 /** Columns: time since t0, x, y, z; a blank line (gnuplot: break the line)
@@ -160,6 +139,33 @@ std::string firstErrorLine(const fs::path& log)
   return last;
 }
 }  // namespace
+
+int CTrajectoryPlot::autoUpAxis(const io::TTrajectory& cameraPoses)
+{
+  if (cameraPoses.empty())
+    return 2;
+  std::array<double, 3> alongX{}, alongY{};
+  for (const auto& p : cameraPoses)
+  {
+    const auto R = p.pose.getRotationMatrix();
+    for (int a = 0; a < 3; ++a)
+    {
+      alongX[a] += std::abs(R(a, 0));
+      alongY[a] += std::abs(R(a, 1));
+    }
+  }
+  const double n = static_cast<double>(cameraPoses.size());
+  const double least = std::min({alongX[0], alongX[1], alongX[2]}) / n;
+  int best = -1;
+  for (int a : {2, 0, 1})  // z first: preferred on exact ties
+  {
+    if (alongX[a] / n > least + 0.1)
+      continue;
+    if (best < 0 || alongY[a] > alongY[best] + 1e-9 * n)
+      best = a;
+  }
+  return best;
+}
 
 CTrajectoryPlot::CTrajectoryPlot() : CTrajectoryPlot(TOptions()) {}
 

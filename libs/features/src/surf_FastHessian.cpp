@@ -18,6 +18,9 @@ int filterSize(int octave, int layer, int nOctaveLayers)
 
 namespace
 {
+/** Relative weight of Dxy in the determinant (paper eq. 4: w ~ 0.9). */
+constexpr float kDxyWeight = 0.9f;
+
 /** A box over pixel rows/cols [x0, x1] x [y0, y1] (inclusive, relative to the
  *  filter centre) as four offsets into the integral image. */
 struct TBox
@@ -60,6 +63,15 @@ struct TFilter
     norm = 1.0f / (static_cast<float>(size) * static_cast<float>(size));
   }
 
+  /** Box-filter Hessian determinant (paper eq. 4) at corner p. */
+  float det(const int32_t* p) const
+  {
+    float dxx, dyy, dxy;
+    responses(p, dxx, dyy, dxy);
+    const float w = kDxyWeight * dxy;
+    return dxx * dyy - w * w;
+  }
+
   /** Normalised Dxx, Dyy, Dxy at the pixel whose integral-image corner is p. */
   void responses(const int32_t* p, float& dxx, float& dyy, float& dxy) const
   {
@@ -68,9 +80,6 @@ struct TFilter
     dxy = static_cast<float>(xy[0].sum(p) - xy[1].sum(p) - xy[2].sum(p) + xy[3].sum(p)) * norm;
   }
 };
-
-/** Relative weight of Dxy in the determinant (paper eq. 4: w ~ 0.9). */
-constexpr float kDxyWeight = 0.9f;
 
 /** Determinant and Laplacian sign of one filter size on the sampling grid of
  *  an octave; cells where the filter does not fit are 0. */
@@ -152,7 +161,10 @@ std::vector<cv::KeyPoint> detectFastHessian(const TIntegral& in, const TFastHess
   std::vector<cv::KeyPoint> out;
   const int n = prm.nOctaveLayers;
   const float thr = static_cast<float>(prm.threshold);
-  std::vector<TLayer> layers(n + 2);
+  // Layers 1..n are searched for maxima and stored; the outermost layers 0
+  // and n+1 only serve as neighbours of candidates, so they are evaluated on
+  // demand (a few thousand 3x3 patches instead of every grid cell).
+  std::vector<TLayer> layers(n);
   for (int o = 0; o < prm.nOctaves; ++o)
   {
     const int step = 1 << o;
@@ -160,78 +172,99 @@ std::vector<cv::KeyPoint> detectFastHessian(const TIntegral& in, const TFastHess
     if (largest > in.rows || largest > in.cols)
       break;  // octave does not fit
     const int nx = (in.cols - 1) / step + 1, ny = (in.rows - 1) / step + 1;
-    for (int l = 0; l < n + 2; ++l)
+    for (int l = 0; l < n; ++l)
     {
-      layers[l].L = filterSize(o, l, n);
+      layers[l].L = filterSize(o, l + 1, n);
       layers[l].border = (layers[l].L - 1) / 2;
       layers[l].det.resize(static_cast<size_t>(nx) * ny);
       layers[l].sign.resize(static_cast<size_t>(nx) * ny);
     }
     computeLayers(in, step, nx, ny, layers);
-
+    const TFilter below(filterSize(o, 0, n), in.stride), above(filterSize(o, n + 1, n), in.stride);
     const float dL = static_cast<float>(6 << o);  // filter size step in this octave
-    for (int l = 1; l <= n; ++l)
-    {
-      // Neighbours in all three layers must be valid: use the largest filter.
-      auto [i0, i1] = validRange(layers[l + 1].border, in.rows, step);
-      auto [j0, j1] = validRange(layers[l + 1].border, in.cols, step);
-      const float* Db = layers[l - 1].det.data();
-      const float* Dc = layers[l].det.data();
-      const float* Da = layers[l + 1].det.data();
-      for (int i = i0 + 1; i <= i1 - 1; ++i)
-      {
-        for (int j = j0 + 1; j <= j1 - 1; ++j)
+
+    // One task per (searched layer, row); results per task keep the order
+    // deterministic whatever the scheduling.
+    const int rowsPerLayer = std::max(0, ny - 2);
+    std::vector<std::vector<cv::KeyPoint>> found(static_cast<size_t>(n) * rowsPerLayer);
+    cv::parallel_for_(
+        cv::Range(0, n * rowsPerLayer),
+        [&](const cv::Range& r)
         {
-          const size_t c = static_cast<size_t>(i) * nx + j;
-          const float v = Dc[c];
-          if (v <= thr)
-            continue;
-          bool isMax = true;
-          for (int di = -1; di <= 1 && isMax; ++di)
+          for (int t = r.start; t < r.end; ++t)
           {
-            for (int dj = -1; dj <= 1; ++dj)
+            const int l = t / rowsPerLayer, i = 1 + t % rowsPerLayer;
+            // The 3x3 neighbourhood must be valid in the layer above too.
+            const int borderAbove = (filterSize(o, l + 2, n) - 1) / 2;
+            const auto [i0, i1] = validRange(borderAbove, in.rows, step);
+            if (i <= i0 || i >= i1)
+              continue;
+            const auto [j0, j1] = validRange(borderAbove, in.cols, step);
+            const float* Dc = layers[l].det.data();
+            const int32_t* row = in.data + i * step * in.stride;
+            for (int j = j0 + 1; j <= j1 - 1; ++j)
             {
-              const size_t q = c + static_cast<ptrdiff_t>(di) * nx + dj;
-              if (Db[q] >= v || Da[q] >= v || (q != c && Dc[q] >= v))
-              {
-                isMax = false;
-                break;
-              }
+              const size_t c = static_cast<size_t>(i) * nx + j;
+              const float v = Dc[c];
+              if (v <= thr)
+                continue;
+              // Cheap test first: maximum within its own layer.
+              if (Dc[c - 1] >= v || Dc[c + 1] >= v || Dc[c - nx - 1] >= v || Dc[c - nx] >= v ||
+                  Dc[c - nx + 1] >= v || Dc[c + nx - 1] >= v || Dc[c + nx] >= v ||
+                  Dc[c + nx + 1] >= v)
+                continue;
+              // 3x3 neighbourhoods in the layers below (b) and above (a).
+              float b[3][3], a[3][3];
+              for (int di = -1; di <= 1; ++di)
+                for (int dj = -1; dj <= 1; ++dj)
+                {
+                  const ptrdiff_t q = static_cast<ptrdiff_t>(c) + di * nx + dj;
+                  const int32_t* p = row + di * step * in.stride + (j + dj) * step;
+                  b[di + 1][dj + 1] = l > 0 ? layers[l - 1].det[q] : below.det(p);
+                  a[di + 1][dj + 1] = l < n - 1 ? layers[l + 1].det[q] : above.det(p);
+                }
+              bool isMax = true;
+              for (int di = 0; di < 3 && isMax; ++di)
+                for (int dj = 0; dj < 3; ++dj)
+                  if (b[di][dj] >= v || a[di][dj] >= v)
+                  {
+                    isMax = false;
+                    break;
+                  }
+              if (!isMax)
+                continue;
+
+              // Quadratic interpolation in (x, y, layer), in grid units.
+              const float g[3] = {
+                  0.5f * (Dc[c + 1] - Dc[c - 1]), 0.5f * (Dc[c + nx] - Dc[c - nx]),
+                  0.5f * (a[1][1] - b[1][1])};
+              float H[3][3];
+              H[0][0] = Dc[c + 1] + Dc[c - 1] - 2 * v;
+              H[1][1] = Dc[c + nx] + Dc[c - nx] - 2 * v;
+              H[2][2] = a[1][1] + b[1][1] - 2 * v;
+              H[0][1] = H[1][0] =
+                  0.25f * (Dc[c + nx + 1] - Dc[c + nx - 1] - Dc[c - nx + 1] + Dc[c - nx - 1]);
+              H[0][2] = H[2][0] = 0.25f * (a[1][2] - a[1][0] - b[1][2] + b[1][0]);
+              H[1][2] = H[2][1] = 0.25f * (a[2][1] - a[0][1] - b[2][1] + b[0][1]);
+              float x[3];
+              if (!solve3(H, g, x))
+                continue;
+              // An offset beyond one cell means the quadratic model does not hold.
+              if (std::abs(x[0]) > 1.0f || std::abs(x[1]) > 1.0f || std::abs(x[2]) > 1.0f)
+                continue;
+              cv::KeyPoint kp;
+              kp.pt = cv::Point2f((j + x[0]) * step, (i + x[1]) * step);
+              kp.size = static_cast<float>(layers[l].L) + x[2] * dL;
+              kp.response = v + 0.5f * (g[0] * x[0] + g[1] * x[1] + g[2] * x[2]);
+              kp.angle = -1;
+              kp.octave = o;
+              kp.class_id = layers[l].sign[c];
+              found[t].push_back(kp);
             }
           }
-          if (!isMax)
-            continue;
-
-          // Quadratic interpolation in (x, y, layer), in grid units.
-          const float g[3] = {
-              0.5f * (Dc[c + 1] - Dc[c - 1]), 0.5f * (Dc[c + nx] - Dc[c - nx]),
-              0.5f * (Da[c] - Db[c])};
-          float H[3][3];
-          H[0][0] = Dc[c + 1] + Dc[c - 1] - 2 * v;
-          H[1][1] = Dc[c + nx] + Dc[c - nx] - 2 * v;
-          H[2][2] = Da[c] + Db[c] - 2 * v;
-          H[0][1] = H[1][0] =
-              0.25f * (Dc[c + nx + 1] - Dc[c + nx - 1] - Dc[c - nx + 1] + Dc[c - nx - 1]);
-          H[0][2] = H[2][0] = 0.25f * (Da[c + 1] - Da[c - 1] - Db[c + 1] + Db[c - 1]);
-          H[1][2] = H[2][1] = 0.25f * (Da[c + nx] - Da[c - nx] - Db[c + nx] + Db[c - nx]);
-          float x[3];
-          if (!solve3(H, g, x))
-            continue;
-          // An offset beyond one cell means the quadratic model does not hold.
-          if (std::abs(x[0]) > 1.0f || std::abs(x[1]) > 1.0f || std::abs(x[2]) > 1.0f)
-            continue;
-          const float response = v + 0.5f * (g[0] * x[0] + g[1] * x[1] + g[2] * x[2]);
-          cv::KeyPoint kp;
-          kp.pt = cv::Point2f((j + x[0]) * step, (i + x[1]) * step);
-          kp.size = static_cast<float>(layers[l].L) + x[2] * dL;
-          kp.response = response;
-          kp.angle = -1;
-          kp.octave = o;
-          kp.class_id = layers[l].sign[c];
-          out.push_back(kp);
-        }
-      }
-    }
+        });
+    for (const auto& f : found)
+      out.insert(out.end(), f.begin(), f.end());
   }
   return out;
 }

@@ -1,5 +1,6 @@
 #include "roislam/io/CFrameSource.h"
 
+#include <roislam/io/CRawlogFrameSource.h>
 #include <roislam/io/CTumFrameSource.h>
 #include <roislam/io/CameraPresets.h>
 
@@ -17,6 +18,9 @@ std::unique_ptr<CFrameSource> CFrameSource::open(
     return std::make_unique<CTumFrameSource>(path, resolveCamera(cameraSpec, path));
   if (!fs::exists(path))
     throw std::runtime_error(path + ": no such file or folder");
-  throw std::runtime_error(path + ": rawlog input not implemented yet");
+  std::optional<mrpt::img::TCamera> override;
+  if (cameraSpec != "auto")
+    override = resolveCamera(cameraSpec, fs::absolute(path).parent_path().string());
+  return std::make_unique<CRawlogFrameSource>(path, CRawlogFrameSource::TOptions(), override);
 }
 }  // namespace roislam::io

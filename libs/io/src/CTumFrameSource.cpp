@@ -195,7 +195,17 @@ std::optional<TRGBDFrame> CTumFrameSource::next()
   f.depthTimestamp = e.depthStamp;
   f.rgb = readColourImage(e.rgbFile, m_camera);
   const cv::Mat raw = readDepthImage(e.depthFile, m_camera);
-  raw.convertTo(f.depth, CV_32F, 1.0 / m_options.depthScale);
+  // Exact float(raw / scale) per pixel (cv::convertTo scales in float and can
+  // be one ulp off), so rawlog and folder readers agree bit for bit.
+  f.depth.create(raw.size(), CV_32FC1);
+  const double scale = m_options.depthScale;
+  for (int r = 0; r < raw.rows; ++r)
+  {
+    const auto* src = raw.ptr<uint16_t>(r);
+    auto* dst = f.depth.ptr<float>(r);
+    for (int c = 0; c < raw.cols; ++c)
+      dst[c] = static_cast<float>(src[c] / scale);
+  }
   f.camera = m_camera;
   f.rgbSource = e.rgbFile;
   ++m_next;

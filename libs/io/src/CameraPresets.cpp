@@ -6,6 +6,8 @@
 #include <filesystem>
 #include <stdexcept>
 
+#include "MrptErrorText.h"
+
 namespace fs = std::filesystem;
 
 namespace roislam::io
@@ -33,30 +35,6 @@ mrpt::img::TCamera makeCamera(
   return cam;
 }
 
-// MRPT exceptions carry a multi-line trace; keep the most specific line.
-std::string firstLine(const std::string& what)
-{
-  std::string best;
-  std::size_t start = 0;
-  while (start <= what.size())
-  {
-    const auto end = what.find('\n', start);
-    std::string line = what.substr(start, end == std::string::npos ? end : end - start);
-    const auto b = line.find_first_not_of(" \t=");
-    if (b != std::string::npos)
-    {
-      line = line.substr(b);
-      // MRPT's trace lines look like "file:line: [function] message"; the last
-      // non-empty line is usually the assertion or message itself.
-      best = line;
-    }
-    if (end == std::string::npos)
-      break;
-    start = end + 1;
-  }
-  return best;
-}
-
 bool validCamera(const mrpt::img::TCamera& c)
 {
   return c.ncols > 0 && c.nrows > 0 && c.fx() > 0 && c.fy() > 0;
@@ -76,7 +54,8 @@ mrpt::img::TCamera loadIniCamera(const std::string& file)
   }
   catch (const std::exception& e)
   {
-    throw std::runtime_error(file + ": invalid camera calibration: " + firstLine(e.what()));
+    throw std::runtime_error(
+        file + ": invalid camera calibration: " + detail::oneLineError(e.what()));
   }
   if (!validCamera(cam))
     throw std::runtime_error(
@@ -93,7 +72,8 @@ mrpt::img::TCamera loadYamlCamera(const std::string& file)
   }
   catch (const std::exception& e)
   {
-    throw std::runtime_error(file + ": invalid camera calibration: " + firstLine(e.what()));
+    throw std::runtime_error(
+        file + ": invalid camera calibration: " + detail::oneLineError(e.what()));
   }
   if (!validCamera(cam))
     throw std::runtime_error(

@@ -19,11 +19,15 @@ std::vector<std::pair<std::size_t, std::size_t>> associateStamps(
   for (std::size_t k = 0; k < b.size(); ++k)
     bSorted[k] = b[bOrder[k]] + offset;
 
+  // The search window is padded because a[i] +- maxDifference is rounded: a
+  // pair whose exact difference is just inside the window may sit on the
+  // rounded bound. The exact |a - b| < maxDifference test below decides.
+  const double pad = 1e-6 * std::max(1.0, maxDifference);
   std::vector<std::tuple<double, std::size_t, std::size_t>> candidates;
   for (std::size_t i = 0; i < a.size(); ++i)
   {
-    auto it = std::lower_bound(bSorted.begin(), bSorted.end(), a[i] - maxDifference);
-    for (; it != bSorted.end() && *it < a[i] + maxDifference; ++it)
+    auto it = std::lower_bound(bSorted.begin(), bSorted.end(), a[i] - maxDifference - pad);
+    for (; it != bSorted.end() && *it <= a[i] + maxDifference + pad; ++it)
     {
       const double d = std::abs(a[i] - *it);
       if (d < maxDifference)

@@ -1,19 +1,25 @@
 #include "roislam/landmarks/CLandmark.h"
 
-#include "SerializationHelpers.h"
-
 #include <mrpt/serialization/CArchive.h>
+
+#include "SerializationHelpers.h"
 
 namespace roislam::landmarks
 {
 IMPLEMENTS_SERIALIZABLE(CLandmark, CSerializable, roislam::landmarks)
 
-uint8_t CLandmark::serializeGetVersion() const { return 0; }
+uint8_t CLandmark::serializeGetVersion() const
+{
+  return 0;
+}
 
 void CLandmark::serializeTo(mrpt::serialization::CArchive& out) const
 {
   out << id;
   detail::writeFeatures(out, features);
+  out << static_cast<uint64_t>(featurePoints.size());
+  for (const auto& p : featurePoints)
+    out << p.x << p.y << p.z;
   detail::writeRect(out, box);
   out << static_cast<int32_t>(imageSize.width) << static_cast<int32_t>(imageSize.height);
   detail::writeImagePng(out, patch);
@@ -37,6 +43,13 @@ void CLandmark::serializeFrom(mrpt::serialization::CArchive& in, uint8_t version
     {
       in >> id;
       features = detail::readFeatures(in);
+      uint64_t np = 0;
+      in >> np;
+      if (np > (1u << 24))
+        throw std::runtime_error("corrupt landmark points in archive");
+      featurePoints.resize(np);
+      for (auto& p : featurePoints)
+        in >> p.x >> p.y >> p.z;
       box = detail::readRect(in);
       int32_t w, h;
       in >> w >> h;
@@ -46,7 +59,8 @@ void CLandmark::serializeFrom(mrpt::serialization::CArchive& in, uint8_t version
       in >> positionWorld.x >> positionWorld.y >> positionWorld.z >> hasPositionWorld;
       uint64_t n = 0;
       in >> n;
-      if (n > (1u << 28)) throw std::runtime_error("corrupt landmark sightings in archive");
+      if (n > (1u << 28))
+        throw std::runtime_error("corrupt landmark sightings in archive");
       sightings.resize(n);
       for (auto& s : sightings)
       {

@@ -1,12 +1,13 @@
 #include "roislam/landmarks/FeatureGeometry.h"
 
 #include <mrpt/core/bits_math.h>
-
-#include <opencv2/calib3d.hpp>
+#include <mrpt/poses/CPose3DQuat.h>
+#include <mrpt/tfest/se3.h>
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <opencv2/calib3d.hpp>
 
 namespace roislam::landmarks
 {
@@ -17,7 +18,8 @@ double median(std::vector<double> v)
   const std::size_t n = v.size();
   std::nth_element(v.begin(), v.begin() + n / 2, v.end());
   const double hi = v[n / 2];
-  if (n % 2) return hi;
+  if (n % 2)
+    return hi;
   return 0.5 * (hi + *std::max_element(v.begin(), v.begin() + n / 2));
 }
 
@@ -26,64 +28,136 @@ float depthAt(const cv::Mat& depth, int u, int v, double minDepth, double maxDep
 {
   auto ok = [&](float z) { return std::isfinite(z) && z >= minDepth && z <= maxDepth; };
   const float z = depth.at<float>(v, u);
-  if (ok(z)) return z;
+  if (ok(z))
+    return z;
   float buf[9];
   int n = 0;
   for (int dv = -1; dv <= 1; ++dv)
     for (int du = -1; du <= 1; ++du)
     {
       const int uu = u + du, vv = v + dv;
-      if (uu < 0 || vv < 0 || uu >= depth.cols || vv >= depth.rows) continue;
+      if (uu < 0 || vv < 0 || uu >= depth.cols || vv >= depth.rows)
+        continue;
       const float zz = depth.at<float>(vv, uu);
-      if (ok(zz)) buf[n++] = zz;
+      if (ok(zz))
+        buf[n++] = zz;
     }
-  if (n == 0) return 0;
+  if (n == 0)
+    return 0;
   std::nth_element(buf, buf + n / 2, buf + n);
   return buf[n / 2];
 }
 }  // namespace
 
-TFeatureDepth featureDepth(
+std::vector<mrpt::math::TPoint3D> featurePoints(
     const std::vector<cv::KeyPoint>& keypoints, const cv::Mat& depth,
     const mrpt::img::TCamera& camera, double minDepth, double maxDepth)
 {
-  TFeatureDepth out;
-  out.mean = out.median = std::numeric_limits<double>::quiet_NaN();
-  if (keypoints.empty() || depth.empty() || depth.type() != CV_32FC1) return out;
-
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  std::vector<mrpt::math::TPoint3D> out(keypoints.size(), mrpt::math::TPoint3D(nan, nan, nan));
+  if (keypoints.empty() || depth.empty() || depth.type() != CV_32FC1)
+    return out;
   std::vector<cv::Point2f> pixels;
-  std::vector<double> zs;
-  for (const auto& kp : keypoints)
+  std::vector<std::size_t> which;
+  std::vector<float> zs;
+  for (std::size_t i = 0; i < keypoints.size(); ++i)
   {
-    const int u = static_cast<int>(std::lround(kp.pt.x));
-    const int v = static_cast<int>(std::lround(kp.pt.y));
-    if (u < 0 || v < 0 || u >= depth.cols || v >= depth.rows) continue;
+    const int u = static_cast<int>(std::lround(keypoints[i].pt.x));
+    const int v = static_cast<int>(std::lround(keypoints[i].pt.y));
+    if (u < 0 || v < 0 || u >= depth.cols || v >= depth.rows)
+      continue;
     const float z = depthAt(depth, u, v, minDepth, maxDepth);
-    if (z <= 0) continue;
-    pixels.push_back(kp.pt);
+    if (z <= 0)
+      continue;
+    pixels.push_back(keypoints[i].pt);
+    which.push_back(i);
     zs.push_back(z);
   }
-  out.valid = static_cast<int>(zs.size());
-  if (zs.empty()) return out;
-
-  double sum = 0;
-  for (double z : zs) sum += z;
-  out.mean = sum / zs.size();
-  out.median = median(zs);
-
-  const cv::Matx33d K(
-      camera.fx(), 0, camera.cx(), 0, camera.fy(), camera.cy(), 0, 0, 1);
+  if (pixels.empty())
+    return out;
+  const cv::Matx33d K(camera.fx(), 0, camera.cx(), 0, camera.fy(), camera.cy(), 0, 0, 1);
   const cv::Vec<double, 5> dist(
       camera.dist[0], camera.dist[1], camera.dist[2], camera.dist[3], camera.dist[4]);
   std::vector<cv::Point2f> normalised;
   cv::undistortPoints(pixels, normalised, K, dist);
+  for (std::size_t k = 0; k < which.size(); ++k)
+    out[which[k]] = {normalised[k].x * zs[k], normalised[k].y * zs[k], zs[k]};
+  return out;
+}
 
-  std::vector<double> xs(zs.size()), ys(zs.size());
-  for (std::size_t i = 0; i < zs.size(); ++i)
+std::optional<TRigidFit> fitRigid(
+    const std::vector<mrpt::math::TPoint3D>& a, const std::vector<mrpt::math::TPoint3D>& b,
+    double minThreshold)
+{
+  std::vector<std::size_t> keep;
+  for (std::size_t i = 0; i < a.size() && i < b.size(); ++i)
+    if (isValidPoint(a[i]) && isValidPoint(b[i]))
+      keep.push_back(i);
+  TRigidFit fit;
+  for (int round = 0; round < 3; ++round)
   {
-    xs[i] = normalised[i].x * zs[i];
-    ys[i] = normalised[i].y * zs[i];
+    if (keep.size() < 3)
+      return std::nullopt;
+    std::vector<mrpt::math::TPoint3D> sa, sb;
+    for (auto i : keep)
+    {
+      sa.push_back(a[i]);
+      sb.push_back(b[i]);
+    }
+    mrpt::poses::CPose3DQuat q;
+    double scale = 1;
+    if (!mrpt::tfest::se3_l2(sa, sb, q, scale, true))
+      return std::nullopt;
+    fit.pose = mrpt::poses::CPose3D(q);
+    std::vector<double> res;
+    for (auto i : keep)
+      res.push_back((fit.pose.composePoint(b[i]) - a[i]).norm());
+    double sq = 0;
+    for (double r : res)
+      sq += r * r;
+    fit.inliers = static_cast<int>(keep.size());
+    fit.rms = std::sqrt(sq / res.size());
+    if (round == 2)
+      break;
+    const double thr = std::max(3 * median(res), minThreshold);
+    std::vector<std::size_t> next;
+    for (std::size_t k = 0; k < keep.size(); ++k)
+      if (res[k] <= thr)
+        next.push_back(keep[k]);
+    if (next.size() == keep.size())
+      break;
+    keep = std::move(next);
   }
+  return fit;
+}
+
+TFeatureDepth featureDepth(
+    const std::vector<cv::KeyPoint>& keypoints, const cv::Mat& depth,
+    const mrpt::img::TCamera& camera, double minDepth, double maxDepth)
+{
+  return depthStatistics(featurePoints(keypoints, depth, camera, minDepth, maxDepth));
+}
+
+TFeatureDepth depthStatistics(const std::vector<mrpt::math::TPoint3D>& points)
+{
+  TFeatureDepth out;
+  out.mean = out.median = std::numeric_limits<double>::quiet_NaN();
+  std::vector<double> xs, ys, zs;
+  for (const auto& p : points)
+    if (isValidPoint(p))
+    {
+      xs.push_back(p.x);
+      ys.push_back(p.y);
+      zs.push_back(p.z);
+    }
+  out.valid = static_cast<int>(zs.size());
+  if (zs.empty())
+    return out;
+  double sum = 0;
+  for (double z : zs)
+    sum += z;
+  out.mean = sum / zs.size();
+  out.median = median(zs);
   out.position = mrpt::math::TPoint3D(median(xs), median(ys), out.median);
   return out;
 }

@@ -31,7 +31,8 @@ void checkIniKeys(
     const mrpt::config::CConfigFileBase& cfg, const std::string& section,
     const std::vector<std::string>& knownKeys, const std::string& fileLabel)
 {
-  if (!cfg.sectionExists(section)) return;
+  if (!cfg.sectionExists(section))
+    return;
   std::vector<std::string> present;
   cfg.getAllKeys(section, present);
   for (const auto& key : present)
@@ -40,7 +41,8 @@ void checkIniKeys(
     const bool known = std::any_of(
         knownKeys.begin(), knownKeys.end(), [&](const std::string& s) { return lower(s) == k; });
     if (!known)
-      throw std::runtime_error("ini " + fileLabel + ": [" + section + "] unknown key '" + key + "'");
+      throw std::runtime_error(
+          "ini " + fileLabel + ": [" + section + "] unknown key '" + key + "'");
   }
 }
 }  // namespace roislam::landmarks

@@ -12,7 +12,8 @@ namespace
 std::string trim(const std::string& s)
 {
   const auto b = s.find_first_not_of(" \t\r\n");
-  if (b == std::string::npos) return {};
+  if (b == std::string::npos)
+    return {};
   const auto e = s.find_last_not_of(" \t\r\n");
   return s.substr(b, e - b + 1);
 }
@@ -27,7 +28,8 @@ std::string readString(
     const mrpt::config::CConfigFileBase& cfg, const std::string& section, const std::string& key,
     const std::string& defaultValue)
 {
-  if (!cfg.keyExists(section, key)) return defaultValue;
+  if (!cfg.keyExists(section, key))
+    return defaultValue;
   return trim(cfg.read_string(section, key, defaultValue));
 }
 
@@ -36,12 +38,14 @@ double readDouble(
     double defaultValue)
 {
   const std::string s = readString(cfg, section, key, "");
-  if (s.empty()) return defaultValue;
+  if (s.empty())
+    return defaultValue;
   try
   {
     std::size_t used = 0;
     const double v = std::stod(s, &used);
-    if (used != s.size()) throw std::invalid_argument(s);
+    if (used != s.size())
+      throw std::invalid_argument(s);
     return v;
   }
   catch (const std::exception&)
@@ -55,12 +59,14 @@ int readInt(
     int defaultValue)
 {
   const std::string s = readString(cfg, section, key, "");
-  if (s.empty()) return defaultValue;
+  if (s.empty())
+    return defaultValue;
   try
   {
     std::size_t used = 0;
     const int v = std::stoi(s, &used);
-    if (used != s.size()) throw std::invalid_argument(s);
+    if (used != s.size())
+      throw std::invalid_argument(s);
     return v;
   }
   catch (const std::exception&)
@@ -74,10 +80,13 @@ bool readBool(
     bool defaultValue)
 {
   std::string s = readString(cfg, section, key, "");
-  if (s.empty()) return defaultValue;
+  if (s.empty())
+    return defaultValue;
   std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return std::tolower(c); });
-  if (s == "true" || s == "1" || s == "yes" || s == "on") return true;
-  if (s == "false" || s == "0" || s == "no" || s == "off") return false;
+  if (s == "true" || s == "1" || s == "yes" || s == "on")
+    return true;
+  if (s == "false" || s == "0" || s == "no" || s == "off")
+    return false;
   throwBadValue(section, key, "not a boolean '" + s + "'");
 }
 
@@ -85,7 +94,8 @@ void require(
     bool ok, const std::string& section, const std::string& key, double value,
     const std::string& what)
 {
-  if (ok) return;
+  if (ok)
+    return;
   std::ostringstream os;
   os << "must be " << what << " (got " << value << ")";
   throwBadValue(section, key, os.str());

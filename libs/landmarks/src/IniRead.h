@@ -25,6 +25,7 @@ std::string readString(
     const std::string& defaultValue);
 
 /** Throws "[section] key: must be <what> (got v)" unless ok. */
-void require(bool ok, const std::string& section, const std::string& key, double value,
-             const std::string& what);
+void require(
+    bool ok, const std::string& section, const std::string& key, double value,
+    const std::string& what);
 }  // namespace roislam::landmarks::detail

@@ -1,7 +1,6 @@
 #include "SerializationHelpers.h"
 
 #include <opencv2/imgcodecs.hpp>
-
 #include <stdexcept>
 #include <vector>
 
@@ -13,7 +12,8 @@ void writeMat(mrpt::serialization::CArchive& out, const cv::Mat& m)
   out << static_cast<int32_t>(c.type()) << static_cast<int32_t>(c.rows)
       << static_cast<int32_t>(c.cols);
   const std::size_t bytes = c.total() * c.elemSize();
-  if (bytes) out.WriteBuffer(c.data, bytes);
+  if (bytes)
+    out.WriteBuffer(c.data, bytes);
 }
 
 cv::Mat readMat(mrpt::serialization::CArchive& in)
@@ -24,7 +24,8 @@ cv::Mat readMat(mrpt::serialization::CArchive& in)
     throw std::runtime_error("corrupt matrix header in archive");
   cv::Mat m(rows, cols, type);
   const std::size_t bytes = m.total() * m.elemSize();
-  if (bytes) in.ReadBuffer(m.data, bytes);
+  if (bytes)
+    in.ReadBuffer(m.data, bytes);
   return m;
 }
 
@@ -47,19 +48,23 @@ void writeImagePng(mrpt::serialization::CArchive& out, const cv::Mat& image)
   if (!image.empty() && !cv::imencode(".png", image, png))
     throw std::runtime_error("cannot encode landmark patch as PNG");
   out << static_cast<uint64_t>(png.size());
-  if (!png.empty()) out.WriteBuffer(png.data(), png.size());
+  if (!png.empty())
+    out.WriteBuffer(png.data(), png.size());
 }
 
 cv::Mat readImagePng(mrpt::serialization::CArchive& in)
 {
   uint64_t n = 0;
   in >> n;
-  if (n == 0) return {};
-  if (n > (uint64_t(1) << 32)) throw std::runtime_error("corrupt image size in archive");
+  if (n == 0)
+    return {};
+  if (n > (uint64_t(1) << 32))
+    throw std::runtime_error("corrupt image size in archive");
   std::vector<uchar> png(n);
   in.ReadBuffer(png.data(), n);
   cv::Mat img = cv::imdecode(png, cv::IMREAD_UNCHANGED);
-  if (img.empty()) throw std::runtime_error("corrupt PNG patch in archive");
+  if (img.empty())
+    throw std::runtime_error("corrupt PNG patch in archive");
   return img;
 }
 

@@ -1,9 +1,8 @@
 /* Private: MRPT archive I/O of the OpenCV types a landmark holds. */
 #pragma once
 
-#include <roislam/features/TFeatureSet.h>
-
 #include <mrpt/serialization/CArchive.h>
+#include <roislam/features/TFeatureSet.h>
 
 #include <opencv2/core.hpp>
 

@@ -8,7 +8,8 @@ void TObservationOptions::loadFromConfigFile(
     const mrpt::config::CConfigFileBase& c, const std::string& s)
 {
   sensor_label = detail::readString(c, s, "sensor_label", sensor_label);
-  if (sensor_label.empty()) detail::throwBadValue(s, "sensor_label", "must not be empty");
+  if (sensor_label.empty())
+    detail::throwBadValue(s, "sensor_label", "must not be empty");
   const std::string pose = detail::readString(c, s, "sensor_pose", "");
   if (!pose.empty())
   {
@@ -18,7 +19,8 @@ void TObservationOptions::loadFromConfigFile(
     }
     catch (const std::exception&)
     {
-      detail::throwBadValue(s, "sensor_pose", "expected \"[x y z yaw pitch roll]\", got '" + pose + "'");
+      detail::throwBadValue(
+          s, "sensor_pose", "expected \"[x y z yaw pitch roll]\", got '" + pose + "'");
     }
   }
   min_sensor_distance = detail::readDouble(c, s, "min_sensor_distance", min_sensor_distance);

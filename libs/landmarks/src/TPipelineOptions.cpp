@@ -1,12 +1,12 @@
 #include "roislam/landmarks/TPipelineOptions.h"
 
-#include "IniRead.h"
-#include "roislam/landmarks/IniKeyCheck.h"
-
 #include <mrpt/config/CConfigFile.h>
 
 #include <filesystem>
 #include <stdexcept>
+
+#include "IniRead.h"
+#include "roislam/landmarks/IniKeyCheck.h"
 
 namespace roislam::landmarks
 {
@@ -16,6 +16,8 @@ void TTrackerOptions::loadFromConfigFile(
   min_depth = detail::readDouble(c, s, "min_depth", min_depth);
   max_depth = detail::readDouble(c, s, "max_depth", max_depth);
   confirm = detail::readBool(c, s, "confirm", confirm);
+  min_rigid_pairs = detail::readInt(c, s, "min_rigid_pairs", min_rigid_pairs);
+  detail::require(min_rigid_pairs >= 3, s, "min_rigid_pairs", min_rigid_pairs, ">= 3");
   detail::require(min_depth > 0, s, "min_depth", min_depth, "> 0");
   detail::require(max_depth > min_depth, s, "max_depth", max_depth, "> min_depth");
 }
@@ -25,6 +27,7 @@ void TTrackerOptions::saveToConfigFile(mrpt::config::CConfigFileBase& c, const s
   c.write(s, "min_depth", min_depth);
   c.write(s, "max_depth", max_depth);
   c.write(s, "confirm", confirm);
+  c.write(s, "min_rigid_pairs", min_rigid_pairs);
 }
 
 namespace
@@ -37,7 +40,8 @@ void loadSection(
   std::vector<std::string> keys = knownIniKeys(OPTIONS());
   keys.insert(keys.end(), extraKeys.begin(), extraKeys.end());
   checkIniKeys(cfg, section, keys, fileLabel);
-  if (!cfg.sectionExists(section)) return;
+  if (!cfg.sectionExists(section))
+    return;
   try
   {
     options.loadFromConfigFile(cfg, section);
@@ -65,7 +69,8 @@ void TPipelineOptions::load(const mrpt::config::CConfigFileBase& cfg, const std:
 
 void TPipelineOptions::loadFromFile(const std::string& file)
 {
-  if (!std::filesystem::is_regular_file(file)) throw std::runtime_error("ini " + file + ": cannot open");
+  if (!std::filesystem::is_regular_file(file))
+    throw std::runtime_error("ini " + file + ": cannot open");
   mrpt::config::CConfigFile cfg(file);
   load(cfg, file);
 }

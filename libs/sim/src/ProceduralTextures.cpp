@@ -220,9 +220,11 @@ cv::Mat makeWoodTexture(mrpt::random::CRandomGenerator& rng, cv::Size size, int 
       rng, cv::Size(size.width, size.height / 8 + 1), {128, 128, 128}, 60, 2);
   cv::Mat img(size, CV_8UC3);
   plankWidthPx = std::max(2, plankWidthPx);
+  const cv::Scalar wood(randInt(rng, 45, 70), randInt(rng, 85, 110), randInt(rng, 125, 160));
   for (int c0 = 0; c0 < size.width; c0 += plankWidthPx)
   {
-    const cv::Scalar tint(randInt(rng, 40, 70), randInt(rng, 80, 115), randInt(rng, 120, 165));
+    const double shade = rng.drawUniform(0.8, 1.15);  // planks differ a little
+    const cv::Scalar tint = wood * shade;
     const int seam = randInt(rng, 0, size.height);
     for (int r = 0; r < size.height; ++r)
     {

@@ -64,10 +64,11 @@ mrpt::opengl::COpenGLScene::Ptr CSlamSceneBuilder::build(const TSceneContent& co
         "ground_truth"));
   if (content.trajectory.size() > 1)
     scene->insert(makePolyline(
-        content.trajectory, mrpt::img::TColor(0, 0, 220), m_options.trajectoryWidth,
-        "trajectory"));
-  for (const auto& p : content.trajectory) grow(p.x, p.y, p.z);
-  for (const auto& p : content.groundTruth) grow(p.x, p.y, p.z);
+        content.trajectory, mrpt::img::TColor(0, 0, 220), m_options.trajectoryWidth, "trajectory"));
+  for (const auto& p : content.trajectory)
+    grow(p.x, p.y, p.z);
+  for (const auto& p : content.groundTruth)
+    grow(p.x, p.y, p.z);
 
   if (m_options.showGrid && lo[0] <= hi[0])
   {

@@ -9,7 +9,10 @@
  *  - ATE association (associate.py): every (gt, est) pair with
  *    |t_gt - (t_est + offset)| < max_difference is a candidate; candidates are
  *    taken greedily by smallest difference (ties by gt stamp, then est stamp),
- *    each stamp at most once (io::associateStamps()).
+ *    each stamp at most once (io::associateStamps(), called with a slightly
+ *    wider window and filtered with the script's exact test, so that pairs
+ *    whose double difference is just below max_difference are kept as the
+ *    script keeps them).
  *  - ATE alignment (evaluate_ate.py align()): closed-form least-squares
  *    rotation + translation, no scale, of the associated estimated positions
  *    onto the ground-truth positions (Horn's problem, solved as the script does
@@ -30,13 +33,18 @@
  *    is not aligned for RPE. The script's "too few overlapping stamps" check
  *    (fewer than 2 distinct round-trip matches) is reproduced.
  *  - Quaternions are normalised as evaluate_rpe.py does (io::loadTumTrajectory).
- * Where we deviate (never changes a figure on valid input):
+ * Where we deviate:
  *  - ATE needs at least 3 associated pairs (the script accepts 2, for which
  *    the rotation is not determined); RPE needs 2 pairs, as the script.
  *  - No random subsampling of RPE pairs (the script samples 10000 when there
  *    are more; our sequences have fewer).
- *  - Lines with NaN or an all-zero quaternion are skipped for ATE too (the
- *    ATE script only reads positions and keeps them).
+ *  - Files (io::loadTumTrajectory): lines with NaN or an all-zero quaternion
+ *    are skipped for ATE too (the ATE script keeps them, and a NaN makes its
+ *    SVD fail); a line must have exactly 8 numbers, and an infinite value is
+ *    an error (the scripts ignore extra columns and pass infinities on).
+ *  - Rotational figures near zero carry the acos() rounding noise of the
+ *    trace formula (about 1e-6 deg), as in the script, so two
+ *    implementations agree there only to that level.
  *
  * ini section [TrajectoryEvaluation] (TOptions):
  *   max_difference  double > 0   0.02  s   ATE association window

@@ -9,9 +9,12 @@
  * more than gap_break seconds, so missing stretches stay visible.
  *
  * The "up" axis (plotted over time; the other two form the top view) is
- * chosen by up_axis; "auto" takes the ground-truth axis with the smallest
- * position range, which is the vertical for hand-held and robot sequences
- * (TUM motion-capture frames have z up; optical frames have y down).
+ * chosen by up_axis; "auto" (autoUpAxis()) assumes camera poses in the TUM
+ * optical convention (x right, y down, z forward), whose x axis stays nearly
+ * horizontal for hand-held and robot motion: up is the world axis least
+ * visited by the camera x axis (ties: the one most aligned with the camera y
+ * axis). This gives z for TUM ground truth and our simulator (z up), also
+ * for rotation-only sequences where position ranges say nothing.
  */
 #pragma once
 
@@ -47,6 +50,10 @@ class CTrajectoryPlot
   void plot(
       const std::string& pngFile, const io::TTrajectory& groundTruth,
       const std::vector<TNamedTrajectory>& estimates) const;
+
+  /** The axis up_axis = "auto" picks for these camera poses: 0 = x, 1 = y,
+   *  2 = z (z for an empty trajectory). */
+  static int autoUpAxis(const io::TTrajectory& cameraPoses);
 
   const TOptions& options() const { return m_options; }
 

@@ -7,15 +7,13 @@
  */
 #pragma once
 
+#include <mrpt/math/TPoint3D.h>
+#include <mrpt/serialization/CSerializable.h>
 #include <roislam/features/TFeatureSet.h>
 #include <roislam/landmarks/TLandmarkSighting.h>
 
-#include <mrpt/math/TPoint3D.h>
-#include <mrpt/serialization/CSerializable.h>
-
-#include <opencv2/core.hpp>
-
 #include <cstdint>
+#include <opencv2/core.hpp>
 #include <vector>
 
 namespace roislam::landmarks
@@ -31,6 +29,10 @@ class CLandmark : public mrpt::serialization::CSerializable
   /** The ROI's features at first sight; keypoints in the pixel coordinates of
    *  that whole frame (not of the patch). */
   features::TFeatureSet features;
+  /** Optical-frame 3-D point of each feature at first sight (NaN where the
+   *  depth had no reading), metres; parallel to features.keypoints. Lets a
+   *  recall measure where the landmark is by 3-D alignment. */
+  std::vector<mrpt::math::TPoint3D> featurePoints;
   /** The ROI box at first sight, pixels of that frame. */
   cv::Rect box;
   /** Size of the frame of first sight. */

@@ -14,12 +14,11 @@
  */
 #pragma once
 
+#include <mrpt/config/CLoadableOptions.h>
+#include <mrpt/serialization/CSerializable.h>
 #include <roislam/landmarks/CLandmark.h>
 #include <roislam/matching/CFeatureMatcher.h>
 #include <roislam/matching/CHomographyLocator.h>
-
-#include <mrpt/config/CLoadableOptions.h>
-#include <mrpt/serialization/CSerializable.h>
 
 #include <optional>
 #include <string>
@@ -40,12 +39,19 @@ class CLandmarkDatabase : public mrpt::serialization::CSerializable
    *                      candidates; 0 = off (default 1.5)
    *  - min_votes         int >= 0: a voted candidate needs at least this many
    *                      votes (default 4)
+   *  - min_overlap       [0,1]: a recall needs the landmark, located in the
+   *                      query frame by the homography, to overlap the ROI
+   *                      with at least this intersection-over-union: a
+   *                      landmark that is only a small part of a bigger ROI
+   *                      (or the reverse) is a different region. 0.5 is the
+   *                      usual "same object" criterion (PASCAL VOC). (default 0.5)
    */
   struct TOptions : public mrpt::config::CLoadableOptions
   {
     int max_candidates = 8;
     double prefilter_radius = 1.5;
     int min_votes = 4;
+    double min_overlap = 0.5;
 
     void loadFromConfigFile(
         const mrpt::config::CConfigFileBase& source, const std::string& section) override;
@@ -62,8 +68,13 @@ class CLandmarkDatabase : public mrpt::serialization::CSerializable
     int inliers = 0;
     int matches = 0;
     int falseMatches = 0;
-    /** The recalled landmark's ROI located in the query frame. */
+    /** The recalled landmark's ROI located in the query frame, and its
+     *  intersection-over-union with the query ROI. */
     cv::Rect locatedBox;
+    double overlap = 0;
+    /** Homography inliers of the recall: queryIdx indexes the landmark's
+     *  features, trainIdx the query ROI's. */
+    std::vector<cv::DMatch> inlierMatches;
     /** Landmarks verified by homography for this query. */
     int candidates = 0;
   };
@@ -74,7 +85,8 @@ class CLandmarkDatabase : public mrpt::serialization::CSerializable
       const matching::CHomographyLocator::TOptions& locatorOptions);
 
   /** Matches a ROI's features (keypoints in its frame's pixels) against the
-   *  database. worldPosition enables the position prefilter. */
+   *  database; roiBox is the ROI in that frame (for the overlap test).
+   *  worldPosition enables the position prefilter. */
   TQueryResult query(
       const features::TFeatureSet& roiFeatures, const cv::Rect& roiBox, const cv::Size& imageSize,
       const std::optional<mrpt::math::TPoint3D>& worldPosition = std::nullopt) const;

@@ -9,11 +9,10 @@
  */
 #pragma once
 
-#include <roislam/io/TumTrajectory.h>
-
 #include <mrpt/config/CLoadableOptions.h>
 #include <mrpt/math/TPoint3D.h>
 #include <mrpt/poses/CPose3D.h>
+#include <roislam/io/TumTrajectory.h>
 
 #include <cstdint>
 #include <optional>

@@ -17,15 +17,14 @@
  */
 #pragma once
 
-#include <roislam/io/TRGBDFrame.h>
-#include <roislam/landmarks/CRoiLandmarkTracker.h>
-#include <roislam/landmarks/TFrameResult.h>
-#include <roislam/landmarks/TObservationOptions.h>
-
 #include <mrpt/img/TCamera.h>
 #include <mrpt/obs/CObservation3DRangeScan.h>
 #include <mrpt/obs/CObservationBearingRange.h>
 #include <mrpt/poses/CPose3D.h>
+#include <roislam/io/TRGBDFrame.h>
+#include <roislam/landmarks/CRoiLandmarkTracker.h>
+#include <roislam/landmarks/TFrameResult.h>
+#include <roislam/landmarks/TObservationOptions.h>
 
 #include <cstdint>
 #include <optional>
@@ -52,8 +51,9 @@ class CObservationProcessor
 
   /** A CObservation3DRangeScan with intensity and range images (external
    *  images must be loadable). The observation's sensorPose becomes the
-   *  bearing-range sensorLocationOnRobot. Throws std::invalid_argument when
-   *  either image is missing. */
+   *  bearing-range sensorLocationOnRobot. Frames are numbered 0, 1, ... in call
+   *  order. Throws std::invalid_argument when either image is missing or the
+   *  range image holds ray lengths (range_is_depth false). */
   TOutput process(
       const mrpt::obs::CObservation3DRangeScan& scan,
       const std::optional<mrpt::poses::CPose3D>& cameraPose = std::nullopt);
@@ -72,9 +72,12 @@ class CObservationProcessor
   CRoiLandmarkTracker& tracker() { return m_tracker; }
 
  private:
-  TOutput finish(TFrameResult result, const io::TRGBDFrame& frame, const mrpt::poses::CPose3D& pose);
+  TOutput finish(
+      TFrameResult result, const io::TRGBDFrame& frame, const mrpt::poses::CPose3D& pose);
 
   TObservationOptions m_options;
   CRoiLandmarkTracker m_tracker;
+  /** Frame index given to scans (they carry none). */
+  uint64_t m_scans = 0;
 };
 }  // namespace roislam::landmarks

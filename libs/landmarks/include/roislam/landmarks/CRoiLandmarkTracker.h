@@ -13,6 +13,7 @@
  */
 #pragma once
 
+#include <mrpt/poses/CPose3D.h>
 #include <roislam/features/CFeatureExtractor.h>
 #include <roislam/io/TRGBDFrame.h>
 #include <roislam/landmarks/CLandmarkDatabase.h>
@@ -21,8 +22,6 @@
 #include <roislam/matching/CFeatureMatcher.h>
 #include <roislam/matching/CHomographyLocator.h>
 #include <roislam/roi/CRoiDetector.h>
-
-#include <mrpt/poses/CPose3D.h>
 
 #include <optional>
 

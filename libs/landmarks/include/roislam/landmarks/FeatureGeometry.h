@@ -13,8 +13,8 @@
 #include <mrpt/math/TPoint3D.h>
 #include <mrpt/poses/CPose3D.h>
 
+#include <cmath>
 #include <opencv2/core.hpp>
-
 #include <optional>
 #include <vector>
 
@@ -39,6 +39,37 @@ struct TFeatureDepth
 TFeatureDepth featureDepth(
     const std::vector<cv::KeyPoint>& keypoints, const cv::Mat& depth,
     const mrpt::img::TCamera& camera, double minDepth, double maxDepth);
+
+/** Depth statistics and median position of points (invalid ones skipped). */
+TFeatureDepth depthStatistics(const std::vector<mrpt::math::TPoint3D>& points);
+
+/** The optical-frame 3-D point of each keypoint (same rules as
+ *  featureDepth); NaN coordinates where there is no valid depth. */
+std::vector<mrpt::math::TPoint3D> featurePoints(
+    const std::vector<cv::KeyPoint>& keypoints, const cv::Mat& depth,
+    const mrpt::img::TCamera& camera, double minDepth, double maxDepth);
+
+inline bool isValidPoint(const mrpt::math::TPoint3D& p)
+{
+  return std::isfinite(p.z);
+}
+
+struct TRigidFit
+{
+  /** pose such that a_i = pose (+) b_i for the inlier pairs. */
+  mrpt::poses::CPose3D pose;
+  int inliers = 0;
+  /** RMS residual of the inliers, metres. */
+  double rms = 0;
+};
+
+/** Rigid transform between corresponding 3-D points (Horn's closed form,
+ *  mrpt::tfest::se3_l2), made robust by twice dropping the pairs whose
+ *  residual exceeds max(3 x median residual, minThreshold) and refitting.
+ *  nullopt with fewer than 3 pairs or a degenerate fit. */
+std::optional<TRigidFit> fitRigid(
+    const std::vector<mrpt::math::TPoint3D>& a, const std::vector<mrpt::math::TPoint3D>& b,
+    double minThreshold = 0.01);
 
 /** Optical-frame point -> MRPT camera frame (x forward, y left, z up). */
 mrpt::math::TPoint3D opticalToMrptCamera(const mrpt::math::TPoint3D& p);

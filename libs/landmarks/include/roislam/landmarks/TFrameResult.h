@@ -7,9 +7,8 @@
 
 #include <mrpt/math/TPoint3D.h>
 
-#include <opencv2/core/types.hpp>
-
 #include <cstdint>
+#include <opencv2/core/types.hpp>
 #include <optional>
 #include <string>
 
@@ -49,8 +48,22 @@ struct TFrameResult
   int depthValid = 0;
   double depthMean = 0;
   double depthMedian = 0;
-  /** ROI position in the optical camera frame, when depth allowed it. */
+  /** ROI position in the optical camera frame (component-wise median of
+   *  the ROI features' 3-D points), when depth allowed it. */
   std::optional<mrpt::math::TPoint3D> roiPosition;
+  /** Where the landmark itself is in this frame (optical frame). For a
+   *  new landmark: the ROI box and roiPosition. For a recall: the landmark's
+   *  first-sight box located here by the homography, and its stored position
+   *  mapped into this frame by the rigid 3-D alignment of the homography
+   *  inliers (first-sight points -> current points), i.e. an observation of
+   *  the same physical point, whereas the detected ROI box may be bigger or
+   *  smaller than the landmark; when too few inliers have depth, the median
+   *  position of the features inside the located box. */
+  std::optional<cv::Rect> landmarkBox;
+  std::optional<mrpt::math::TPoint3D> landmarkPosition;
+  /** Pairs kept by that alignment and their RMS residual (m; NaN if none). */
+  int rigidInliers = 0;
+  double rigidRms = 0;
   /** Processing time of this frame (pipeline only, no I/O), seconds. */
   double seconds = 0;
 

@@ -4,6 +4,7 @@
  */
 #pragma once
 
+#include <mrpt/config/CConfigFileBase.h>
 #include <roislam/features/CFeatureExtractor.h>
 #include <roislam/landmarks/CLandmarkDatabase.h>
 #include <roislam/landmarks/CLandmarkScorer.h>
@@ -11,8 +12,6 @@
 #include <roislam/matching/CFeatureMatcher.h>
 #include <roislam/matching/CHomographyLocator.h>
 #include <roislam/roi/CRoiDetector.h>
-
-#include <mrpt/config/CConfigFileBase.h>
 
 #include <string>
 
@@ -24,12 +23,15 @@ namespace roislam::landmarks
  *  - confirm     bool: a ROI must be re-found in the previous frame before it
  *                is matched against the database, as in the dissertation
  *                (default true)
+ *  - min_rigid_pairs  int >= 3: homography inliers with depth needed to
+ *                locate a recalled landmark by 3-D alignment (default 6)
  */
 struct TTrackerOptions : public mrpt::config::CLoadableOptions
 {
   double min_depth = 0.1;
   double max_depth = 8.0;
   bool confirm = true;
+  int min_rigid_pairs = 6;
 
   void loadFromConfigFile(
       const mrpt::config::CConfigFileBase& source, const std::string& section) override;
@@ -40,14 +42,14 @@ struct TTrackerOptions : public mrpt::config::CLoadableOptions
 /** The whole configuration of roi-landmarks. */
 struct TPipelineOptions
 {
-  roi::CRoiDetector::TOptions roi;                     // [RoiDetector]
-  features::CFeatureExtractor::TOptions features;      // [FeatureExtractor]
-  matching::CFeatureMatcher::TOptions matcher;         // [FeatureMatcher]
-  matching::CHomographyLocator::TOptions locator;      // [HomographyLocator]
-  CLandmarkDatabase::TOptions database;                // [LandmarkDatabase]
-  TTrackerOptions tracker;                             // [RoiLandmarks]
-  CLandmarkScorer::TOptions scoring;                   // [LandmarkScoring]
-  TObservationOptions observations;                    // [ObservationProcessor]
+  roi::CRoiDetector::TOptions roi;                 // [RoiDetector]
+  features::CFeatureExtractor::TOptions features;  // [FeatureExtractor]
+  matching::CFeatureMatcher::TOptions matcher;     // [FeatureMatcher]
+  matching::CHomographyLocator::TOptions locator;  // [HomographyLocator]
+  CLandmarkDatabase::TOptions database;            // [LandmarkDatabase]
+  TTrackerOptions tracker;                         // [RoiLandmarks]
+  CLandmarkScorer::TOptions scoring;               // [LandmarkScoring]
+  TObservationOptions observations;                // [ObservationProcessor]
 
   /** Loads every section present (absent sections keep defaults), after
    *  checking that each of these sections holds only known keys;

@@ -18,7 +18,7 @@ class CSlamSceneBuilder
   /** Not read from an ini file (the SLAM app sets them in code). */
   struct TOptions
   {
-    float pointSize = 2.0f;       //!< pixels
+    float pointSize = 2.0f;        //!< pixels
     float trajectoryWidth = 3.0f;  //!< pixels
     bool showGrid = true;          //!< a 1 m grid under the scene's bounding box
   };

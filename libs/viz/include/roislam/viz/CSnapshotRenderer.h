@@ -17,10 +17,10 @@ class CSnapshotRenderer
   /** Not read from an ini file (the SLAM app sets them in code). */
   struct TOptions
   {
-    unsigned int width = 1024;   //!< pixels
-    unsigned int height = 768;   //!< pixels
-    float azimuthDeg = -60;      //!< orbit camera azimuth
-    float elevationDeg = 35;     //!< orbit camera elevation
+    unsigned int width = 1024;  //!< pixels
+    unsigned int height = 768;  //!< pixels
+    float azimuthDeg = -60;     //!< orbit camera azimuth
+    float elevationDeg = 35;    //!< orbit camera elevation
     /** Background grey level in [0,1]. */
     float background = 1.0f;
   };

@@ -1,0 +1,65 @@
+/* rgbd-simul: renders a synthetic indoor RGB-D sequence with exact ground truth
+ * and writes it in the TUM benchmark layout (see roislam::sim::CRgbdSimulator).
+ *
+ *   rgbd-simul --output DIR [--scene textured|featureless] [--frames N]
+ *              [--seed S] [--no-noise] [--config FILE]
+ *
+ * --config reads section [RgbdSimulator] of an ini file; command-line options
+ * given explicitly override it.
+ */
+#include <mrpt/config/CConfigFile.h>
+#include <roislam/sim/CRgbdSimulator.h>
+
+#include <CLI/CLI.hpp>
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <stdexcept>
+
+int main(int argc, char** argv)
+{
+  CLI::App app{"Synthetic RGB-D sequences (TUM layout) with ground truth"};
+  std::string output, config, scene = "textured";
+  unsigned frames = 90, seed = 1;
+  bool noNoise = false;
+  app.add_option("--output,-o", output, "Output folder (replaced if it is an earlier output)")
+      ->required();
+  auto* optScene = app.add_option("--scene", scene, "textured | featureless");
+  auto* optFrames = app.add_option("--frames", frames, "Number of frames (>= 2)");
+  auto* optSeed = app.add_option("--seed", seed, "Noise seed");
+  app.add_flag("--no-noise", noNoise, "Perfect depth and colour (range limits still apply)");
+  app.add_option("--config", config, "Ini file with a [RgbdSimulator] section");
+  CLI11_PARSE(app, argc, argv);
+
+  try
+  {
+    roislam::sim::CRgbdSimulator::TOptions opts;
+    if (!config.empty())
+    {
+      if (!std::filesystem::is_regular_file(config))
+        throw std::runtime_error("cannot read config file " + config);
+      opts.loadFromConfigFile(mrpt::config::CConfigFile(config), "RgbdSimulator");
+    }
+    if (optScene->count() || config.empty()) opts.scene = scene;
+    if (optFrames->count() || config.empty()) opts.frames = frames;
+    if (optSeed->count() || config.empty()) opts.seed = seed;
+    if (noNoise) opts.noise = false;
+
+    roislam::sim::CRgbdSimulator sim(opts);
+    std::cerr << "rgbd-simul: rendering " << opts.frames << " frames of the '" << opts.scene
+              << "' scene to " << output << "\n";
+    const auto st = sim.writeSequence(output);
+    std::fprintf(
+        stderr,
+        "rgbd-simul: wrote %zu frames in %.2f s (render+noise %.2f s, %.1f ms/frame; PNG %.2f s); "
+        "max speed %.2f m/s, %.1f deg/s\n",
+        st.frames, st.totalSeconds, st.renderSeconds, 1e3 * st.renderSeconds / st.frames,
+        st.writeSeconds, sim.path().maxLinearSpeed(), sim.path().maxAngularSpeedDeg());
+    return 0;
+  }
+  catch (const std::exception& e)
+  {
+    std::cerr << "rgbd-simul: error: " << e.what() << "\n";
+    return 1;
+  }
+}

@@ -1,0 +1,195 @@
+/* The SLAM front end: frame-to-keyframe RGB-D visual odometry.
+ *
+ * Per frame: features extracted ONCE on the whole image (CFeatureExtractor);
+ * in ROI modes the ROI (CRoiDetector) selects its subset; keypoints are
+ * undistorted and lifted to 3-D with the registered depth image (invalid depth
+ * skipped); matched (CFeatureMatcher) against the last keyframe (then, if that
+ * fails, up to recent_keyframes older ones); 3-D RANSAC (CRigidTransformRansac)
+ * followed by a Gauss-Newton refinement of the symmetric reprojection error
+ * over the inliers, whose Hessian gives the information matrix.
+ * When features fail: depth-only projective point-to-plane ICP against the
+ * reference keyframe, then constant velocity, so tracking never stops
+ * (except strict_roi, see below). A new keyframe is made when the motion from
+ * the reference keyframe exceeds the thresholds or the inliers drop; it brings
+ * constraints to the recent keyframes for the pose graph.
+ *
+ * Called by the graph-SLAM back end (roislam::graphslam) and apps, one frame
+ * at a time, in order. Not thread-safe.
+ *
+ * strict_roi (ROI modes only) reproduces the dissertation: no full-image
+ * fallback, no depth ICP and no constant velocity. A frame whose ROI has fewer
+ * than min_roi_features features (or none), or whose ROI features do not
+ * register against any recent keyframe, is Lost: TFrameResult::pose is
+ * nullopt, no keyframe is made, stats().lost is incremented and the next frame
+ * is again tracked against the last keyframe (so tracking resumes if the ROI
+ * comes back). Apps should report such a run as failed (the dissertation's
+ * "no trajectory"): see TStats::lost. Outside strict_roi, no frame is Lost.
+ *
+ * ini section "FrontEnd" (TOptions), units in brackets:
+ *  - mode                     traditional|roi_small|roi_big|roi (default traditional);
+ *                             roi_small/roi_big set the [RoiDetector] preset to
+ *                             small/big, roi uses [RoiDetector] as written
+ *  - strict_roi               bool (false), see above
+ *  - min_roi_features         int >= 3 (20): fewer ROI features with depth ->
+ *                             full-image fallback (or Lost if strict)
+ *  - min_inliers              int >= 3 (15): fewer inliers -> features failed
+ *  - keyframe_translation_m   [m] > 0 (0.10): new keyframe beyond this distance
+ *  - keyframe_rotation_deg    [deg] > 0 (10): ... or beyond this rotation angle
+ *  - keyframe_min_inliers     int >= 0 (60): ... or when inliers drop below this
+ *  - recent_keyframes         int >= 0 (3): older keyframes (besides the
+ *                             reference) tried for tracking fallback and for
+ *                             new-keyframe constraints
+ *  - ransac_threshold_m       [m] > 0 (0.03): 3-D inlier distance of RANSAC
+ *  - ransac_max_iterations    int >= 1 (200), adaptive (confidence 0.995)
+ *  - refine_iterations        int >= 0 (10): Gauss-Newton iterations on inliers
+ *  - reprojection_threshold_px [px] > 0 (3.0): inlier gate after refinement
+ *  - pixel_sigma_px           [px] > 0 (1.0): keypoint noise for the information
+ *  - min_depth_m, max_depth_m [m] (0.3, 4.0): depth range used for features
+ *  - depth_discontinuity_m    [m] >= 0 (0.05): skip keypoints whose 3x3 depth
+ *                             neighbourhood spans more than this * depth (0 = off)
+ *  - icp_fallback             bool (true): depth ICP when features fail
+ *  - icp_decimation           int >= 1 (4): ICP uses every n-th pixel/row
+ *  - icp_max_iterations       int >= 1 (15)
+ *  - icp_max_distance_m       [m] > 0 (0.10): correspondence gate
+ *  - icp_min_pairs            int >= 6 (500): fewer -> ICP failed
+ *  - constant_velocity_information_scale  double > 0 (1e-2): information of a
+ *                             constant-velocity keyframe edge = this * identity
+ *                             (0.01 -> sigma 10 m / 10 rad: it only links the graph)
+ * Sub-component sections: [RoiDetector] (CRoiDetector::TOptions),
+ * [FeatureExtractor] (CFeatureExtractor::TOptions), [FeatureMatcher]
+ * (CFeatureMatcher::TOptions). A bad value throws std::invalid_argument
+ * "[section] key: why".
+ */
+#pragma once
+
+#include <mrpt/config/CLoadableOptions.h>
+#include <mrpt/poses/CPose3D.h>
+#include <mrpt/system/COutputLogger.h>
+#include <roislam/features/CFeatureExtractor.h>
+#include <roislam/frontend/TFrameResult.h>
+#include <roislam/frontend/TKeyframe.h>
+#include <roislam/io/TRGBDFrame.h>
+#include <roislam/matching/CFeatureMatcher.h>
+#include <roislam/roi/CRoiDetector.h>
+
+#include <deque>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace roislam::frontend
+{
+enum class EFrontEndMode
+{
+  Traditional,
+  RoiSmall,
+  RoiBig,
+  /** ROI with the [RoiDetector] options exactly as configured. */
+  Roi
+};
+/** "traditional" | "roi_small" | "roi_big" | "roi"; throws std::invalid_argument. */
+EFrontEndMode frontEndModeFromString(const std::string& s);
+std::string toString(EFrontEndMode m);
+inline bool isRoiMode(EFrontEndMode m)
+{
+  return m != EFrontEndMode::Traditional;
+}
+
+class CRgbdOdometry : public mrpt::system::COutputLogger
+{
+ public:
+  struct TOptions : public mrpt::config::CLoadableOptions
+  {
+    EFrontEndMode mode = EFrontEndMode::Traditional;
+    bool strict_roi = false;
+    int min_roi_features = 20;
+    int min_inliers = 15;
+    double keyframe_translation_m = 0.10;
+    double keyframe_rotation_deg = 10.0;
+    int keyframe_min_inliers = 60;
+    int recent_keyframes = 3;
+    double ransac_threshold_m = 0.03;
+    int ransac_max_iterations = 200;
+    int refine_iterations = 10;
+    double reprojection_threshold_px = 3.0;
+    double pixel_sigma_px = 1.0;
+    double min_depth_m = 0.3;
+    double max_depth_m = 4.0;
+    double depth_discontinuity_m = 0.05;
+    bool icp_fallback = true;
+    int icp_decimation = 4;
+    int icp_max_iterations = 15;
+    double icp_max_distance_m = 0.10;
+    int icp_min_pairs = 500;
+    double constant_velocity_information_scale = 1e-2;
+
+    roi::CRoiDetector::TOptions roi;
+    features::CFeatureExtractor::TOptions extractor;
+    matching::CFeatureMatcher::TOptions matcher;
+
+    /** Reads `section` (normally "FrontEnd") and the sub-component sections
+     *  [RoiDetector], [FeatureExtractor], [FeatureMatcher]. */
+    void loadFromConfigFile(
+        const mrpt::config::CConfigFileBase& source, const std::string& section) override;
+    void saveToConfigFile(
+        mrpt::config::CConfigFileBase& target, const std::string& section) const override;
+    /** Throws std::invalid_argument "[FrontEnd] key: why" on a bad value. */
+    void validate() const;
+  };
+
+  /** Counters over the run. */
+  struct TStats
+  {
+    std::size_t frames = 0;
+    std::size_t initial = 0, features = 0, roiFeatures = 0, fullImageFallback = 0,
+                depthIcp = 0, constantVelocity = 0, lost = 0;
+    std::size_t keyframes = 0;
+    /** Frames of a ROI mode in which no ROI was detected at all. */
+    std::size_t noRoi = 0;
+  };
+
+  CRgbdOdometry();
+  /** Throws std::invalid_argument on invalid options. */
+  explicit CRgbdOdometry(const TOptions& options);
+  ~CRgbdOdometry() override;
+
+  /** World pose given to the first processed frame (default identity: world =
+   *  first camera frame). Call before the first process() (or after reset()). */
+  void setInitialPose(const mrpt::poses::CPose3D& pose) { m_initialPose = pose; }
+
+  /** Tracks one frame (frames in time order; rgb CV_8UC3, depth CV_32F metres,
+   *  same size; else std::invalid_argument). */
+  TFrameResult process(const io::TRGBDFrame& frame);
+
+  /** All keyframes so far; keyframes()[id].id == id. References are
+   *  invalidated by process() (the container may grow). */
+  const std::deque<TKeyframe>& keyframes() const { return m_keyframes; }
+  /** Throws std::out_of_range on a bad id. */
+  const TKeyframe& keyframe(std::size_t id) const;
+
+  /** Registers keyframe B against keyframe A from their stored features
+   *  (matching + 3-D RANSAC + refinement): pose(B) = pose(A) (+) result.pose.
+   *  nullopt when too few inliers. For loop-closure verification by the back
+   *  end. Throws std::out_of_range on a bad id. */
+  std::optional<TRelativePoseEstimate> registerKeyframes(std::size_t idA, std::size_t idB) const;
+
+  /** The back end pushes an optimised keyframe pose; tracking continues from
+   *  it (later frames are composed onto the corrected reference keyframe). */
+  void setKeyframePose(std::size_t id, const mrpt::poses::CPose3D& pose);
+
+  /** Forgets all keyframes and state (initial pose kept). */
+  void reset();
+
+  const TStats& stats() const { return m_stats; }
+  const TOptions& options() const { return m_options; }
+
+ private:
+  struct TImpl;
+  TOptions m_options;
+  mrpt::poses::CPose3D m_initialPose;
+  std::deque<TKeyframe> m_keyframes;
+  TStats m_stats;
+  std::unique_ptr<TImpl> m_impl;
+};
+}  // namespace roislam::frontend

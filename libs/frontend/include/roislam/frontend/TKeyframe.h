@@ -1,0 +1,42 @@
+/* A keyframe stored by the front end (CRgbdOdometry): its features with their
+ * 3-D points, computed once when the keyframe is created and reused for every
+ * later match (tracking, keyframe constraints, loop-closure verification by
+ * the back end).
+ */
+#pragma once
+
+#include <mrpt/math/TPoint3D.h>
+#include <mrpt/poses/CPose3D.h>
+#include <roislam/features/TFeatureSet.h>
+
+#include <cstddef>
+#include <opencv2/core/types.hpp>
+#include <optional>
+#include <vector>
+
+namespace roislam::frontend
+{
+struct TKeyframe
+{
+  /** 0-based, consecutive: keyframes()[id].id == id. */
+  std::size_t id = 0;
+  /** TRGBDFrame::index and ::timestamp of the frame. */
+  std::size_t frameIndex = 0;
+  double timestamp = 0;
+  /** World pose; replaced by setKeyframePose() when the back end optimises. */
+  mrpt::poses::CPose3D pose;
+
+  /** The features the frame was tracked with (ROI subset in ROI modes, full
+   *  image in traditional mode or after a fallback), only those with valid
+   *  depth. Parallel to points and pixels. */
+  features::TFeatureSet features;
+  /** 3-D point of each feature in this keyframe's camera (optical) frame, m. */
+  std::vector<mrpt::math::TPoint3D> points;
+  /** Undistorted pixel coordinates of each feature (for reprojection). */
+  std::vector<cv::Point2f> pixels;
+  /** The ROI of the frame (ROI modes), if one was found. */
+  std::optional<cv::Rect> roi;
+  /** True when features come from the full image although the mode is ROI. */
+  bool fullImageFallback = false;
+};
+}  // namespace roislam::frontend

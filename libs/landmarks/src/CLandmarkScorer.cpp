@@ -1,0 +1,147 @@
+#include "roislam/landmarks/CLandmarkScorer.h"
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
+#include <map>
+
+#include "IniRead.h"
+
+namespace roislam::landmarks
+{
+void CLandmarkScorer::TOptions::loadFromConfigFile(
+    const mrpt::config::CConfigFileBase& c, const std::string& s)
+{
+  match_radius = detail::readDouble(c, s, "match_radius", match_radius);
+  max_time_difference = detail::readDouble(c, s, "max_time_difference", max_time_difference);
+  interpolate = detail::readBool(c, s, "interpolate", interpolate);
+  detail::require(match_radius > 0, s, "match_radius", match_radius, "> 0");
+  detail::require(max_time_difference > 0, s, "max_time_difference", max_time_difference, "> 0");
+}
+
+void CLandmarkScorer::TOptions::saveToConfigFile(
+    mrpt::config::CConfigFileBase& c, const std::string& s) const
+{
+  c.write(s, "match_radius", match_radius);
+  c.write(s, "max_time_difference", max_time_difference);
+  c.write(s, "interpolate", interpolate);
+}
+
+const char* toString(CLandmarkScorer::EOutcome outcome)
+{
+  switch (outcome)
+  {
+    case CLandmarkScorer::EOutcome::TruePositive:
+      return "TP";
+    case CLandmarkScorer::EOutcome::FalsePositive:
+      return "FP";
+    case CLandmarkScorer::EOutcome::FalseNegative:
+      return "FN";
+    case CLandmarkScorer::EOutcome::TrueNegative:
+      return "TN";
+    case CLandmarkScorer::EOutcome::Unscored:
+      return "";
+  }
+  return "";
+}
+
+CLandmarkScorer::CLandmarkScorer(const TOptions& options, io::TTrajectory groundTruth)
+    : m_options(options), m_gt(std::move(groundTruth))
+{
+  std::sort(
+      m_gt.begin(), m_gt.end(),
+      [](const auto& a, const auto& b) { return a.timestamp < b.timestamp; });
+  m_stamps.reserve(m_gt.size());
+  for (const auto& p : m_gt)
+    m_stamps.push_back(p.timestamp);
+}
+
+std::optional<mrpt::poses::CPose3D> CLandmarkScorer::poseAt(double t) const
+{
+  if (m_gt.empty())
+    return std::nullopt;
+  // First stamp >= t; the nearest stamp is it or its predecessor.
+  const auto it = std::lower_bound(m_stamps.begin(), m_stamps.end(), t);
+  const std::size_t hi = static_cast<std::size_t>(it - m_stamps.begin());
+  std::size_t nearest = hi;
+  if (hi == m_stamps.size() || (hi > 0 && t - m_stamps[hi - 1] < m_stamps[hi] - t))
+    nearest = hi - 1;
+  if (std::abs(m_stamps[nearest] - t) > m_options.max_time_difference)
+    return std::nullopt;
+  if (!m_options.interpolate || hi == 0 || hi == m_stamps.size() || m_stamps[hi] == t)
+    return m_gt[nearest].pose;
+
+  const auto& a = m_gt[hi - 1];
+  const auto& b = m_gt[hi];
+  const double s = (t - a.timestamp) / (b.timestamp - a.timestamp);
+  const Eigen::Quaterniond qa(a.pose.getRotationMatrix().asEigen());
+  const Eigen::Quaterniond qb(b.pose.getRotationMatrix().asEigen());
+  const Eigen::Matrix3d R = qa.slerp(s, qb).toRotationMatrix();
+  const auto ta = a.pose.translation();
+  const auto tb = b.pose.translation();
+  mrpt::math::CMatrixDouble33 Rm;
+  Rm.asEigen() = R;
+  return mrpt::poses::CPose3D(Rm, mrpt::math::CVectorFixedDouble<3>(ta + (tb - ta) * s));
+}
+
+CLandmarkScorer::TScore CLandmarkScorer::score(const std::vector<TEvent>& events) const
+{
+  TScore out;
+  // World position of each landmark at its first sight (nullopt: unscorable).
+  std::map<int32_t, std::optional<mrpt::math::TPoint3D>> landmarkWorld;
+
+  for (const auto& e : events)
+  {
+    std::optional<mrpt::math::TPoint3D> world;
+    if (e.roiPosition)
+      if (const auto pose = poseAt(e.timestamp))
+        world = pose->composePoint(*e.roiPosition);
+
+    EOutcome outcome = EOutcome::Unscored;
+    if (e.isNew)
+    {
+      if (world)
+      {
+        const bool duplicate = std::any_of(
+            landmarkWorld.begin(), landmarkWorld.end(),
+            [&](const auto& kv)
+            { return kv.second && (*kv.second - *world).norm() <= m_options.match_radius; });
+        outcome = duplicate ? EOutcome::FalseNegative : EOutcome::TrueNegative;
+      }
+      landmarkWorld[e.landmarkId] = world;
+    }
+    else
+    {
+      const auto it = landmarkWorld.find(e.landmarkId);
+      if (world && it != landmarkWorld.end() && it->second)
+        outcome = (*it->second - *world).norm() <= m_options.match_radius ? EOutcome::TruePositive
+                                                                          : EOutcome::FalsePositive;
+    }
+
+    switch (outcome)
+    {
+      case EOutcome::TruePositive:
+        ++out.truePositives;
+        break;
+      case EOutcome::FalsePositive:
+        ++out.falsePositives;
+        break;
+      case EOutcome::FalseNegative:
+        ++out.falseNegatives;
+        break;
+      case EOutcome::TrueNegative:
+        ++out.trueNegatives;
+        break;
+      case EOutcome::Unscored:
+        ++out.unscored;
+        break;
+    }
+    out.outcomes.push_back(outcome);
+  }
+  if (out.truePositives + out.falsePositives > 0)
+    out.precision = double(out.truePositives) / (out.truePositives + out.falsePositives);
+  if (out.truePositives + out.falseNegatives > 0)
+    out.recall = double(out.truePositives) / (out.truePositives + out.falseNegatives);
+  return out;
+}
+}  // namespace roislam::landmarks

@@ -1,0 +1,169 @@
+#include "roislam/landmarks/CRoiLandmarkTracker.h"
+
+#include <chrono>
+#include <limits>
+
+#include "roislam/landmarks/FeatureGeometry.h"
+
+namespace roislam::landmarks
+{
+std::string TFrameResult::statusText() const
+{
+  switch (status)
+  {
+    case ERoiStatus::NoRoi:
+      return "NaN";
+    case ERoiStatus::NotConfirmed:
+      return "no new ROI";
+    case ERoiStatus::Landmark:
+      return "landmark " + std::to_string(landmarkId);
+  }
+  return "NaN";
+}
+
+CRoiLandmarkTracker::CRoiLandmarkTracker(const TPipelineOptions& options)
+    : m_options(options),
+      m_detector(options.roi),
+      m_extractor(options.features),
+      m_matcher(options.matcher),
+      m_locator(options.locator),
+      m_database(options.database, options.matcher, options.locator)
+{
+}
+
+void CRoiLandmarkTracker::resetSequence()
+{
+  m_previous.reset();
+}
+
+TFrameResult CRoiLandmarkTracker::process(
+    const io::TRGBDFrame& frame, const std::optional<mrpt::poses::CPose3D>& cameraPose)
+{
+  const auto t0 = std::chrono::steady_clock::now();
+  TFrameResult r;
+  r.frame = frame.index;
+  r.timestamp = frame.timestamp;
+  r.depthMean = r.depthMedian = r.rigidRms = std::numeric_limits<double>::quiet_NaN();
+
+  const cv::Mat grey = frame.grey();
+  const cv::Size size = grey.size();
+  const auto roi = m_detector.detect(grey);
+  features::TFeatureSet all = m_extractor.extract(grey);
+  r.features = static_cast<int>(all.size());
+
+  auto finish = [&]()
+  {
+    m_previous = std::move(all);
+    r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    return r;
+  };
+
+  if (!roi)
+    return finish();
+  r.roi = roi->box;
+  r.status = ERoiStatus::NotConfirmed;
+  const features::TFeatureSet roiFeatures = all.subset(roi->box);
+  r.roiFeatures = static_cast<int>(roiFeatures.size());
+
+  const auto roiPoints = featurePoints(
+      roiFeatures.keypoints, frame.depth, frame.camera, m_options.tracker.min_depth,
+      m_options.tracker.max_depth);
+  const TFeatureDepth depth = depthStatistics(roiPoints);
+  r.depthValid = depth.valid;
+  r.depthMean = depth.mean;
+  r.depthMedian = depth.median;
+  r.roiPosition = depth.position;
+
+  // Confirmation: the current ROI is re-found in the previous frame.
+  if (m_options.tracker.confirm)
+  {
+    if (!m_previous || roiFeatures.empty())
+      return finish();
+    const auto matches = m_matcher.match(roiFeatures, *m_previous);
+    r.matches = static_cast<int>(matches.size());
+    const auto located = m_locator.locate(roiFeatures, roi->box, *m_previous, size, matches);
+    if (!located)
+    {
+      r.falseMatches = r.matches;  // nothing located: no match is trusted
+      return finish();
+    }
+    r.falseMatches = located->falseMatches;
+  }
+  if (roiFeatures.empty())
+    return finish();
+
+  std::optional<mrpt::math::TPoint3D> world;
+  if (cameraPose && depth.position)
+    world = cameraPose->composePoint(*depth.position);
+
+  const auto q = m_database.query(roiFeatures, roi->box, size, world);
+  r.candidates = q.candidates;
+  r.status = ERoiStatus::Landmark;
+
+  TLandmarkSighting sighting;
+  sighting.frame = frame.index;
+  sighting.timestamp = frame.timestamp;
+  sighting.box = roi->box;
+  sighting.hasPosition = depth.position.has_value();
+  if (depth.position)
+    sighting.position = *depth.position;
+
+  if (q.landmarkId)
+  {
+    r.landmarkId = *q.landmarkId;
+    r.recallInliers = q.inliers;
+    r.landmarkBox = q.locatedBox & cv::Rect(cv::Point(0, 0), size);
+    // Where the stored landmark point is now: the 3-D alignment of the
+    // inliers' first-sight points with their current points maps it here.
+    const CLandmark& lm = m_database.landmark(*q.landmarkId);
+    std::optional<TRigidFit> fit;
+    if (lm.hasPositionCamera && lm.featurePoints.size() == lm.features.size())
+    {
+      std::vector<mrpt::math::TPoint3D> now, then;
+      for (const auto& m : q.inlierMatches)
+      {
+        now.push_back(roiPoints[m.trainIdx]);
+        then.push_back(lm.featurePoints[m.queryIdx]);
+      }
+      fit = fitRigid(now, then);
+    }
+    if (fit && fit->inliers >= m_options.tracker.min_rigid_pairs)
+    {
+      r.rigidInliers = fit->inliers;
+      r.rigidRms = fit->rms;
+      r.landmarkPosition = fit->pose.composePoint(lm.positionCamera);
+    }
+    else  // no usable depth: the features inside the located box
+      r.landmarkPosition = featureDepth(
+                               all.subset(*r.landmarkBox).keypoints, frame.depth, frame.camera,
+                               m_options.tracker.min_depth, m_options.tracker.max_depth)
+                               .position;
+    sighting.inliers = q.inliers;
+    m_database.addSighting(*q.landmarkId, sighting);
+    return finish();
+  }
+
+  CLandmark lm;
+  lm.features = roiFeatures;
+  lm.featurePoints = roiPoints;
+  lm.box = roi->box;
+  lm.imageSize = size;
+  lm.patch = frame.rgb.empty() ? grey(roi->box).clone() : frame.rgb(roi->box).clone();
+  if (depth.position)
+  {
+    lm.positionCamera = *depth.position;
+    lm.hasPositionCamera = true;
+  }
+  if (world)
+  {
+    lm.positionWorld = *world;
+    lm.hasPositionWorld = true;
+  }
+  lm.sightings.push_back(sighting);
+  r.landmarkBox = roi->box;
+  r.landmarkPosition = depth.position;
+  r.landmarkId = m_database.add(std::move(lm));
+  r.newLandmark = true;
+  return finish();
+}
+}  // namespace roislam::landmarks

@@ -1,0 +1,146 @@
+/* Synthetic RGB-D sequences with exact ground truth, for tests and demos.
+ *
+ * Renders a CSceneModel room offscreen (MRPT CFBORender, headless through EGL)
+ * along a closed CCameraPath, corrupts the frames with CKinectNoiseModel, and
+ * writes the TUM benchmark layout. Used by the rgbd-simul app and by tests that
+ * need frames with known poses.
+ *
+ * Output folder (writeSequence):
+ *   rgb/<stamp>.png     colour, 8-bit BGR PNG
+ *   depth/<stamp>.png   depth, 16-bit PNG, metres x 5000, 0 = no reading
+ *   rgb.txt, depth.txt  "timestamp filename" lists (TUM headers)
+ *   groundtruth.txt     "timestamp tx ty tz qx qy qz qw", colour optical centre in the world
+ *   camera.ini          [CAMERA_PARAMS] intrinsics (mrpt::img::TCamera), read by roislam::io
+ *   simulator.ini       [RgbdSimulator] options used (also marks the folder as ours)
+ * Everything goes to a temporary folder next to the output, renamed at the end.
+ *
+ * Ini section [RgbdSimulator] (every key optional; defaults in brackets):
+ *   scene              textured | featureless                         [textured]
+ *   frames             number of frames, >= 2                         [90]
+ *   seed               noise seed (uint32)                            [1]
+ *   texture_seed       seed of the procedural textures (uint32)       [1]
+ *   noise              Kinect-like corruption on/off (bool)           [true]
+ *   fps                frame rate, Hz, (0, 1000]                      [30]
+ *   base_timestamp     stamp of frame 0, s                            [1000000000.0]
+ *   depth_time_offset  depth stamp minus colour stamp, s, |.| < 0.02  [0.0]
+ *   width, height      image size, px                                 [640, 480]
+ *   fx, fy, cx, cy     pinhole intrinsics, px (no distortion)         [517.3 516.5 318.6 255.3]
+ *   min_depth          no reading below, m                            [0.4]
+ *   max_depth          no reading beyond, m (<= 13.1, PNG range)      [4.0]
+ *   depth_noise_a      sigma(z) = a + b (z - z0)^2: a, m              [0.0012]
+ *   depth_noise_b      b, 1/m                                         [0.0019]
+ *   depth_noise_z0     z0, m                                          [0.4]
+ *   edge_jump_ratio    relative 3x3 depth jump that drops a pixel     [0.03]
+ *   rgb_noise_std      colour noise, grey levels                      [2.0]
+ *   supersampling      colour anti-aliasing factor, 1..4              [2]
+ *   texels_per_metre   wall texture density (objects 2.5x), [50,3000] [600]
+ *   path_translation_amplitude  lateral half-extent of the loop, m    [0.3]
+ *   path_yaw_amplitude_deg, path_pitch_amplitude_deg,
+ *   path_roll_amplitude_deg     rotation wobble, deg                  [25, 5, 4]
+ *   max_linear_speed   path speed limit, m/s (amplitudes shrink)      [0.5]
+ *   max_angular_speed_deg  path angular speed limit, deg/s            [60]
+ * Noise off keeps the range limits but drops noise and edge dropout.
+ * A malformed value, a value out of range or an unknown key throws
+ * std::invalid_argument naming "[RgbdSimulator] <key>".
+ */
+#pragma once
+
+#include <mrpt/config/CLoadableOptions.h>
+#include <mrpt/img/TCamera.h>
+#include <mrpt/poses/CPose3D.h>
+#include <mrpt/system/COutputLogger.h>
+
+#include <opencv2/core/mat.hpp>
+
+#include <cstdint>
+#include <memory>
+#include <string>
+
+#include "roislam/sim/CCameraPath.h"
+#include "roislam/sim/CSceneModel.h"
+
+namespace roislam::sim
+{
+class CRgbdSimulator : public mrpt::system::COutputLogger
+{
+ public:
+  struct TOptions : public mrpt::config::CLoadableOptions
+  {
+    std::string scene = "textured";
+    unsigned frames = 90;
+    uint32_t seed = 1;
+    uint32_t textureSeed = 1;
+    bool noise = true;
+    double fps = 30.0;
+    double baseTimestamp = 1000000000.0;
+    double depthTimeOffset = 0.0;
+    unsigned width = 640, height = 480;
+    double fx = 517.3, fy = 516.5, cx = 318.6, cy = 255.3;
+    double minDepth = 0.4, maxDepth = 4.0;
+    double depthNoiseA = 0.0012, depthNoiseB = 0.0019, depthNoiseZ0 = 0.4;
+    double edgeJumpRatio = 0.03;
+    double rgbNoiseStd = 2.0;
+    unsigned supersampling = 2;
+    double texelsPerMetre = 600.0;
+    double pathTranslationAmplitude = 0.3;
+    double pathYawAmplitudeDeg = 25, pathPitchAmplitudeDeg = 5, pathRollAmplitudeDeg = 4;
+    double maxLinearSpeed = 0.5, maxAngularSpeedDeg = 60;
+
+    void loadFromConfigFile(
+        const mrpt::config::CConfigFileBase& cfg, const std::string& section) override;
+    void saveToConfigFile(
+        mrpt::config::CConfigFileBase& cfg, const std::string& section) const override;
+    /** Throws std::invalid_argument "[section] key: ..." on a bad value. */
+    void validate(const std::string& section = "RgbdSimulator") const;
+  };
+
+  struct TFrame
+  {
+    std::size_t index = 0;
+    double timestamp = 0, depthTimestamp = 0;
+    mrpt::poses::CPose3D pose;  //!< colour optical frame in the world (ground truth)
+    cv::Mat rgb;  //!< CV_8UC3 BGR
+    cv::Mat depth;  //!< CV_32FC1 metres, 0 = no reading (not yet quantised)
+  };
+
+  struct TWriteStats
+  {
+    std::size_t frames = 0;
+    double renderSeconds = 0;  //!< rendering and noise
+    double writeSeconds = 0;  //!< PNG encoding and files
+    double totalSeconds = 0;  //!< including scene construction
+  };
+
+  /** Validates the options and builds the scene and the path (no OpenGL yet). */
+  explicit CRgbdSimulator(const TOptions& options);
+  ~CRgbdSimulator() override;
+  CRgbdSimulator(const CRgbdSimulator&) = delete;
+  CRgbdSimulator& operator=(const CRgbdSimulator&) = delete;
+
+  const TOptions& options() const { return m_opts; }
+  /** Intrinsics of the written images (integer pixel centres, TUM convention). */
+  mrpt::img::TCamera camera() const;
+  const CSceneModel& scene() const { return m_scene; }
+  const CCameraPath& path() const { return m_path; }
+
+  double timestamp(std::size_t i) const;
+  /** Ground-truth pose of frame i (colour optical frame in the world). */
+  mrpt::poses::CPose3D groundTruthPose(std::size_t i) const;
+
+  /** Renders frame i (0 <= i < frames); noise per options, deterministic in
+   *  (seed, i). The OpenGL context is created on first call, in this thread. */
+  TFrame renderFrame(std::size_t i);
+
+  /** Renders every frame and writes the TUM layout to outDir (see above).
+   *  An existing outDir is replaced only if it is empty or an earlier output
+   *  of this class; throws std::runtime_error naming the path otherwise. */
+  TWriteStats writeSequence(const std::string& outDir);
+
+ private:
+  struct Impl;
+  TOptions m_opts;
+  CSceneModel m_scene;
+  CCameraPath m_path;
+  std::unique_ptr<Impl> m_impl;
+};
+}  // namespace roislam::sim

@@ -1,0 +1,529 @@
+#include "roislam/sim/CRgbdSimulator.h"
+
+#include <mrpt/config/CConfigFileMemory.h>
+#include <mrpt/img/CImage.h>
+#include <mrpt/math/CMatrixF.h>
+#include <mrpt/opengl/CCamera.h>
+#include <mrpt/opengl/CFBORender.h>
+#include <mrpt/random/RandomGenerators.h>
+#include <unistd.h>
+
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <limits>
+#include <set>
+#include <sstream>
+#include <stdexcept>
+#include <vector>
+
+#include "roislam/io/TumTrajectory.h"
+#include "roislam/sim/CKinectNoiseModel.h"
+
+namespace fs = std::filesystem;
+
+namespace roislam::sim
+{
+namespace
+{
+constexpr double kDepthScale = 5000.0;  // TUM: PNG value = metres x 5000
+
+std::string trim(const std::string& s)
+{
+  const auto b = s.find_first_not_of(" \t\r\n");
+  if (b == std::string::npos) return "";
+  return s.substr(b, s.find_last_not_of(" \t\r\n") - b + 1);
+}
+
+std::string fmtDouble(double v)
+{
+  std::ostringstream o;
+  o << std::setprecision(17) << v;
+  return o.str();
+}
+
+/** Strict reader: every value must parse completely; unknown keys are errors. */
+class CKeyReader
+{
+ public:
+  CKeyReader(const mrpt::config::CConfigFileBase& cfg, const std::string& section)
+      : m_cfg(cfg), m_sec(section)
+  {
+  }
+
+  template <class T>
+  void get(const std::string& key, T& value)
+  {
+    m_known.insert(key);
+    if (!m_cfg.keyExists(m_sec, key)) return;
+    const std::string s = trim(m_cfg.read_string(m_sec, key, ""));
+    if (!parse(s, value))
+      throw std::invalid_argument(
+          "[" + m_sec + "] " + key + ": cannot parse '" + s + "' as " + typeName(value));
+  }
+
+  void rejectUnknownKeys() const
+  {
+    std::vector<std::string> keys;
+    m_cfg.getAllKeys(m_sec, keys);
+    for (const auto& k : keys)
+      if (!m_known.count(k)) throw std::invalid_argument("[" + m_sec + "] " + k + ": unknown key");
+  }
+
+ private:
+  static bool parse(const std::string& s, double& v)
+  {
+    if (s.empty()) return false;
+    char* end = nullptr;
+    v = std::strtod(s.c_str(), &end);
+    return *end == '\0' && std::isfinite(v);
+  }
+  static bool parse(const std::string& s, unsigned& v)
+  {
+    if (s.empty() || s[0] == '-') return false;
+    char* end = nullptr;
+    const unsigned long long x = std::strtoull(s.c_str(), &end, 10);
+    if (*end != '\0' || x > std::numeric_limits<uint32_t>::max()) return false;
+    v = static_cast<unsigned>(x);
+    return true;
+  }
+  static bool parse(const std::string& s, bool& v)
+  {
+    if (s == "true" || s == "1" || s == "yes" || s == "on") return v = true, true;
+    if (s == "false" || s == "0" || s == "no" || s == "off") return v = false, true;
+    return false;
+  }
+  static bool parse(const std::string& s, std::string& v)
+  {
+    v = s;
+    return !s.empty();
+  }
+  static const char* typeName(double) { return "a number"; }
+  static const char* typeName(unsigned) { return "a non-negative integer"; }
+  static const char* typeName(bool) { return "a boolean (true|false)"; }
+  static const char* typeName(const std::string&) { return "a non-empty string"; }
+
+  const mrpt::config::CConfigFileBase& m_cfg;
+  std::string m_sec;
+  std::set<std::string> m_known;
+};
+
+CCameraPath::TParams pathParams(const CRgbdSimulator::TOptions& o)
+{
+  CCameraPath::TParams p;
+  p.translationAmplitude = o.pathTranslationAmplitude;
+  p.yawAmplitudeDeg = o.pathYawAmplitudeDeg;
+  p.pitchAmplitudeDeg = o.pathPitchAmplitudeDeg;
+  p.rollAmplitudeDeg = o.pathRollAmplitudeDeg;
+  p.maxLinearSpeed = o.maxLinearSpeed;
+  p.maxAngularSpeedDeg = o.maxAngularSpeedDeg;
+  return p;
+}
+
+const CRgbdSimulator::TOptions& validated(const CRgbdSimulator::TOptions& o)
+{
+  o.validate();
+  return o;
+}
+
+std::string stampName(double t)
+{
+  char buf[64];
+  std::snprintf(buf, sizeof(buf), "%.6f", t);
+  return buf;
+}
+
+void writeTextFile(const fs::path& file, const std::string& content)
+{
+  std::ofstream f(file);
+  f << content;
+  f.close();
+  if (!f) throw std::runtime_error("cannot write " + file.string());
+}
+
+void writePng(const fs::path& file, const cv::Mat& img)
+{
+  bool ok = false;
+  try
+  {
+    // OpenCV's default PNG settings measured fastest here (about 10 ms per
+    // noisy 640x480 colour image; explicit level 1 took 25 ms).
+    ok = cv::imwrite(file.string(), img);
+  }
+  catch (const cv::Exception& e)
+  {
+    throw std::runtime_error("cannot write " + file.string() + ": " + e.what());
+  }
+  if (!ok) throw std::runtime_error("cannot write " + file.string());
+}
+
+/** Depth at the centres of the W x H output pixels from a render supersampled
+ *  ss x ss. Odd ss: the central sample. Even ss: the centre is the corner
+ *  shared by the 2x2 central samples; on a plane inverse depth is affine in the
+ *  image, so the mean of their inverse depths is exact there. Where the four
+ *  samples are not coplanar (a discontinuity) the nearest one is kept, and a
+ *  block touching "no reading" gives no reading. */
+cv::Mat depthAtPixelCentres(const mrpt::math::CMatrixFloat& D, unsigned ss, unsigned W, unsigned H)
+{
+  cv::Mat out(H, W, CV_32FC1);
+  for (unsigned r = 0; r < H; ++r)
+  {
+    auto* o = out.ptr<float>(r);
+    for (unsigned c = 0; c < W; ++c)
+    {
+      if (ss % 2 == 1)
+      {
+        o[c] = D(ss * r + ss / 2, ss * c + ss / 2);
+        continue;
+      }
+      const unsigned r0 = ss * r + ss / 2 - 1, c0 = ss * c + ss / 2 - 1;
+      const float z00 = D(r0, c0), z01 = D(r0, c0 + 1), z10 = D(r0 + 1, c0), z11 = D(r0 + 1, c0 + 1);
+      if (z00 <= 0 || z01 <= 0 || z10 <= 0 || z11 <= 0)
+      {
+        o[c] = 0;
+        continue;
+      }
+      const double w00 = 1.0 / z00, w01 = 1.0 / z01, w10 = 1.0 / z10, w11 = 1.0 / z11;
+      const bool planar = std::abs(w00 + w11 - w01 - w10) <= 1e-4 * (w00 + w11);
+      o[c] = planar ? static_cast<float>(4.0 / (w00 + w01 + w10 + w11))
+                    : std::min(std::min(z00, z01), std::min(z10, z11));
+    }
+  }
+  return out;
+}
+
+bool isEmptyDir(const fs::path& p)
+{
+  return fs::is_directory(p) && fs::directory_iterator(p) == fs::directory_iterator();
+}
+}  // namespace
+
+// ---------------------------------------------------------------- TOptions
+
+void CRgbdSimulator::TOptions::loadFromConfigFile(
+    const mrpt::config::CConfigFileBase& cfg, const std::string& section)
+{
+  CKeyReader r(cfg, section);
+  r.get("scene", scene);
+  r.get("frames", frames);
+  r.get("seed", seed);
+  r.get("texture_seed", textureSeed);
+  r.get("noise", noise);
+  r.get("fps", fps);
+  r.get("base_timestamp", baseTimestamp);
+  r.get("depth_time_offset", depthTimeOffset);
+  r.get("width", width);
+  r.get("height", height);
+  r.get("fx", fx);
+  r.get("fy", fy);
+  r.get("cx", cx);
+  r.get("cy", cy);
+  r.get("min_depth", minDepth);
+  r.get("max_depth", maxDepth);
+  r.get("depth_noise_a", depthNoiseA);
+  r.get("depth_noise_b", depthNoiseB);
+  r.get("depth_noise_z0", depthNoiseZ0);
+  r.get("edge_jump_ratio", edgeJumpRatio);
+  r.get("rgb_noise_std", rgbNoiseStd);
+  r.get("supersampling", supersampling);
+  r.get("texels_per_metre", texelsPerMetre);
+  r.get("path_translation_amplitude", pathTranslationAmplitude);
+  r.get("path_yaw_amplitude_deg", pathYawAmplitudeDeg);
+  r.get("path_pitch_amplitude_deg", pathPitchAmplitudeDeg);
+  r.get("path_roll_amplitude_deg", pathRollAmplitudeDeg);
+  r.get("max_linear_speed", maxLinearSpeed);
+  r.get("max_angular_speed_deg", maxAngularSpeedDeg);
+  r.rejectUnknownKeys();
+  validate(section);
+}
+
+void CRgbdSimulator::TOptions::saveToConfigFile(
+    mrpt::config::CConfigFileBase& cfg, const std::string& section) const
+{
+  auto w = [&](const char* k, const std::string& v) { cfg.write(section, k, v); };
+  auto wd = [&](const char* k, double v) { w(k, fmtDouble(v)); };
+  w("scene", scene);
+  w("frames", std::to_string(frames));
+  w("seed", std::to_string(seed));
+  w("texture_seed", std::to_string(textureSeed));
+  w("noise", noise ? "true" : "false");
+  wd("fps", fps);
+  wd("base_timestamp", baseTimestamp);
+  wd("depth_time_offset", depthTimeOffset);
+  w("width", std::to_string(width));
+  w("height", std::to_string(height));
+  wd("fx", fx);
+  wd("fy", fy);
+  wd("cx", cx);
+  wd("cy", cy);
+  wd("min_depth", minDepth);
+  wd("max_depth", maxDepth);
+  wd("depth_noise_a", depthNoiseA);
+  wd("depth_noise_b", depthNoiseB);
+  wd("depth_noise_z0", depthNoiseZ0);
+  wd("edge_jump_ratio", edgeJumpRatio);
+  wd("rgb_noise_std", rgbNoiseStd);
+  w("supersampling", std::to_string(supersampling));
+  wd("texels_per_metre", texelsPerMetre);
+  wd("path_translation_amplitude", pathTranslationAmplitude);
+  wd("path_yaw_amplitude_deg", pathYawAmplitudeDeg);
+  wd("path_pitch_amplitude_deg", pathPitchAmplitudeDeg);
+  wd("path_roll_amplitude_deg", pathRollAmplitudeDeg);
+  wd("max_linear_speed", maxLinearSpeed);
+  wd("max_angular_speed_deg", maxAngularSpeedDeg);
+}
+
+void CRgbdSimulator::TOptions::validate(const std::string& section) const
+{
+  auto fail = [&](const std::string& key, const std::string& what)
+  { throw std::invalid_argument("[" + section + "] " + key + ": " + what); };
+  if (scene != "textured" && scene != "featureless")
+    fail("scene", "'" + scene + "' is not textured|featureless");
+  if (frames < 2) fail("frames", "must be >= 2");
+  if (!(fps > 0 && fps <= 1000)) fail("fps", "must be in (0, 1000]");
+  if (!(std::abs(depthTimeOffset) < 0.02)) fail("depth_time_offset", "must be within +-0.02 s");
+  if (width < 16 || width > 4096) fail("width", "must be in [16, 4096]");
+  if (height < 16 || height > 4096) fail("height", "must be in [16, 4096]");
+  if (!(fx > 0)) fail("fx", "must be > 0");
+  if (!(fy > 0)) fail("fy", "must be > 0");
+  if (!(cx >= 0 && cx <= width)) fail("cx", "must lie inside the image");
+  if (!(cy >= 0 && cy <= height)) fail("cy", "must lie inside the image");
+  if (!(minDepth >= 0)) fail("min_depth", "must be >= 0");
+  if (!(maxDepth > minDepth && maxDepth <= 65535 / kDepthScale))
+    fail("max_depth", "must be > min_depth and <= 13.1 (16-bit PNG range)");
+  if (!(depthNoiseA >= 0)) fail("depth_noise_a", "must be >= 0");
+  if (!(depthNoiseB >= 0)) fail("depth_noise_b", "must be >= 0");
+  if (!(edgeJumpRatio > 0)) fail("edge_jump_ratio", "must be > 0");
+  if (!(rgbNoiseStd >= 0 && rgbNoiseStd <= 64)) fail("rgb_noise_std", "must be in [0, 64]");
+  if (supersampling < 1 || supersampling > 4) fail("supersampling", "must be in [1, 4]");
+  if (!(texelsPerMetre >= 50 && texelsPerMetre <= 3000))
+    fail("texels_per_metre", "must be in [50, 3000]");
+  if (!(pathTranslationAmplitude >= 0 && pathTranslationAmplitude <= 0.6))
+    fail("path_translation_amplitude", "must be in [0, 0.6] (the room is small)");
+  for (auto [k, v] : {std::pair{"path_yaw_amplitude_deg", pathYawAmplitudeDeg},
+                      std::pair{"path_pitch_amplitude_deg", pathPitchAmplitudeDeg},
+                      std::pair{"path_roll_amplitude_deg", pathRollAmplitudeDeg}})
+    if (!(v >= 0 && v <= 45)) fail(k, "must be in [0, 45]");
+  if (!(maxLinearSpeed > 0)) fail("max_linear_speed", "must be > 0");
+  if (!(maxAngularSpeedDeg > 0)) fail("max_angular_speed_deg", "must be > 0");
+}
+
+// ---------------------------------------------------------------- simulator
+
+struct CRgbdSimulator::Impl
+{
+  mrpt::opengl::COpenGLScene::Ptr glScene;
+  std::unique_ptr<mrpt::opengl::CFBORender> fbo;
+};
+
+CRgbdSimulator::CRgbdSimulator(const TOptions& options)
+    : mrpt::system::COutputLogger("CRgbdSimulator"),
+      m_opts(validated(options)),
+      m_scene(CSceneModel::build(
+          CSceneModel::sceneTypeFromString(options.scene), options.textureSeed,
+          options.texelsPerMetre)),
+      m_path(pathParams(options), (options.frames - 1) / options.fps),
+      m_impl(std::make_unique<Impl>())
+{
+}
+
+CRgbdSimulator::~CRgbdSimulator() = default;
+
+mrpt::img::TCamera CRgbdSimulator::camera() const
+{
+  mrpt::img::TCamera c;
+  c.ncols = m_opts.width;
+  c.nrows = m_opts.height;
+  c.fx(m_opts.fx);
+  c.fy(m_opts.fy);
+  c.cx(m_opts.cx);
+  c.cy(m_opts.cy);
+  c.dist.fill(0);
+  c.cameraName = "rgbd-simul";
+  return c;
+}
+
+double CRgbdSimulator::timestamp(std::size_t i) const
+{
+  // Whole microseconds, so the "%.6f" file names parse back to the same value.
+  return m_opts.baseTimestamp + std::round(static_cast<double>(i) / m_opts.fps * 1e6) * 1e-6;
+}
+
+mrpt::poses::CPose3D CRgbdSimulator::groundTruthPose(std::size_t i) const
+{
+  return m_path.opticalPoseAt(static_cast<double>(i) / m_opts.fps);
+}
+
+CRgbdSimulator::TFrame CRgbdSimulator::renderFrame(std::size_t i)
+{
+  if (i >= m_opts.frames)
+    throw std::out_of_range("frame " + std::to_string(i) + " >= frames " + std::to_string(m_opts.frames));
+  const unsigned ss = m_opts.supersampling;
+  const unsigned W = m_opts.width, H = m_opts.height;
+  if (!m_impl->fbo)
+  {
+    // Exact linear depth (the default LUT reads e.g. 2.9996 for 3.0 m).
+    ::setenv("MRPT_FBORENDER_USE_LUT", "false", 1);
+    m_impl->glScene = m_scene.makeOpenGLScene();
+    m_impl->fbo = std::make_unique<mrpt::opengl::CFBORender>(W * ss, H * ss);
+  }
+  auto& fbo = *m_impl->fbo;
+  auto& glScene = *m_impl->glScene;
+
+  TFrame f;
+  f.index = i;
+  f.timestamp = timestamp(i);
+  f.depthTimestamp = f.timestamp + m_opts.depthTimeOffset;
+  f.pose = groundTruthPose(i);
+
+  mrpt::opengl::CCamera cam;
+  cam.set6DOFMode(true);
+  cam.setPose(f.pose);
+  // OpenGL samples pixel (u, v) at (u + 0.5, v + 0.5): shift the principal
+  // point so rays go through integer pixel centres as in MRPT/TUM. With ss x ss
+  // supersampling, output pixel u is the block centred at ss * u + ss / 2.
+  mrpt::img::TCamera pinhole;
+  pinhole.ncols = W * ss;
+  pinhole.nrows = H * ss;
+  pinhole.fx(m_opts.fx * ss);
+  pinhole.fy(m_opts.fy * ss);
+  pinhole.cx(m_opts.cx * ss + ss / 2.0);
+  pinhole.cy(m_opts.cy * ss + ss / 2.0);
+  cam.setProjectiveFromPinhole(pinhole);
+  fbo.setCamera(glScene, cam);
+
+  mrpt::img::CImage rgbImg;
+  mrpt::math::CMatrixFloat depthM;
+  fbo.render_RGBD(glScene, rgbImg, depthM);
+  if (ss == 1)
+    f.rgb = rgbImg.asCvMat<cv::Mat>(mrpt::img::DEEP_COPY);
+  else
+    cv::resize(rgbImg.asCvMatRef(), f.rgb, cv::Size(W, H), 0, 0, cv::INTER_AREA);
+  f.depth = depthAtPixelCentres(depthM, ss, W, H);
+
+  CKinectNoiseModel::applyRange(f.depth, m_opts.minDepth, m_opts.maxDepth);
+  if (m_opts.noise)
+  {
+    CKinectNoiseModel::TParams np;
+    np.sigmaA = m_opts.depthNoiseA;
+    np.sigmaB = m_opts.depthNoiseB;
+    np.sigmaZ0 = m_opts.depthNoiseZ0;
+    np.edgeJumpRatio = m_opts.edgeJumpRatio;
+    np.rgbNoiseStd = m_opts.rgbNoiseStd;
+    const CKinectNoiseModel model(np);
+    // One stream per (seed, frame): frames can be rendered in any order.
+    mrpt::random::CRandomGenerator rng(
+        m_opts.seed * 2654435761u ^ (static_cast<uint32_t>(i) * 40503u + 0x9e3779b9u));
+    model.corruptDepth(f.depth, rng);
+    model.corruptColour(f.rgb, rng);
+  }
+  return f;
+}
+
+CRgbdSimulator::TWriteStats CRgbdSimulator::writeSequence(const std::string& outDir)
+{
+  using Clock = std::chrono::steady_clock;
+  const auto t0 = Clock::now();
+  if (outDir.empty()) throw std::runtime_error("output folder name is empty");
+  fs::path out = fs::absolute(fs::path(outDir)).lexically_normal();
+  if (out.filename().empty()) out = out.parent_path();  // trailing '/'
+  const fs::path parent = out.parent_path();
+  const std::string name = out.filename().string();
+
+  std::error_code ec;
+  fs::create_directories(parent, ec);
+  if (ec || !fs::is_directory(parent))
+    throw std::runtime_error("cannot create folder " + parent.string() + ": " + ec.message());
+  if (fs::exists(out))
+  {
+    if (!fs::is_directory(out))
+      throw std::runtime_error("output " + out.string() + " exists and is not a folder");
+    if (!isEmptyDir(out) && !fs::exists(out / "simulator.ini"))
+      throw std::runtime_error(
+          "output folder " + out.string() +
+          " is not empty and was not written by rgbd-simul; refusing to replace it");
+  }
+  const std::string tag = std::to_string(::getpid());
+  const fs::path tmp = parent / ("." + name + ".tmp-" + tag);
+  fs::remove_all(tmp, ec);
+  fs::create_directories(tmp / "rgb", ec);
+  if (!ec) fs::create_directories(tmp / "depth", ec);
+  if (ec) throw std::runtime_error("cannot write to " + parent.string() + ": " + ec.message());
+
+  TWriteStats st;
+  try
+  {
+    std::ostringstream rgbTxt, depthTxt;
+    const std::string desc = "rgbd-simul scene " + m_opts.scene + " seed " +
+                             std::to_string(m_opts.seed) + (m_opts.noise ? "" : " no-noise");
+    rgbTxt << "# color images\n# file: '" << desc << "'\n# timestamp filename\n";
+    depthTxt << "# depth maps\n# file: '" << desc << "'\n# timestamp filename\n";
+    roislam::io::TTrajectory gt;
+    cv::Mat depth16;
+    for (std::size_t i = 0; i < m_opts.frames; ++i)
+    {
+      const auto r0 = Clock::now();
+      const TFrame f = renderFrame(i);
+      const auto r1 = Clock::now();
+      const std::string rgbName = "rgb/" + stampName(f.timestamp) + ".png";
+      const std::string depthName = "depth/" + stampName(f.depthTimestamp) + ".png";
+      // Round to the nearest 1/5000 m; beyond 13.1 m cannot occur (max_depth).
+      f.depth.convertTo(depth16, CV_16UC1, kDepthScale);
+      writePng(tmp / rgbName, f.rgb);
+      writePng(tmp / depthName, depth16);
+      rgbTxt << stampName(f.timestamp) << ' ' << rgbName << '\n';
+      depthTxt << stampName(f.depthTimestamp) << ' ' << depthName << '\n';
+      gt.push_back({f.timestamp, f.pose});
+      st.renderSeconds += std::chrono::duration<double>(r1 - r0).count();
+      st.writeSeconds += std::chrono::duration<double>(Clock::now() - r1).count();
+      MRPT_LOG_DEBUG_STREAM("frame " << i << " written");
+    }
+    st.frames = m_opts.frames;
+    writeTextFile(tmp / "rgb.txt", rgbTxt.str());
+    writeTextFile(tmp / "depth.txt", depthTxt.str());
+    roislam::io::saveTumTrajectory(
+        (tmp / "groundtruth.txt").string(), gt,
+        "ground truth of " + desc + ": colour optical centre in the world");
+
+    mrpt::config::CConfigFileMemory camCfg;
+    camera().saveToConfigFile("CAMERA_PARAMS", camCfg);
+    writeTextFile(tmp / "camera.ini", camCfg.getContent());
+    mrpt::config::CConfigFileMemory simCfg;
+    m_opts.saveToConfigFile(simCfg, "RgbdSimulator");
+    writeTextFile(tmp / "simulator.ini", simCfg.getContent());
+
+    if (fs::exists(out))
+    {
+      const fs::path old = parent / ("." + name + ".old-" + tag);
+      fs::remove_all(old, ec);
+      fs::rename(out, old);
+      fs::rename(tmp, out);
+      fs::remove_all(old, ec);
+    }
+    else
+    {
+      fs::rename(tmp, out);
+    }
+  }
+  catch (const fs::filesystem_error& e)
+  {
+    fs::remove_all(tmp, ec);
+    throw std::runtime_error("cannot write " + out.string() + ": " + e.what());
+  }
+  catch (...)
+  {
+    fs::remove_all(tmp, ec);
+    throw;
+  }
+  st.totalSeconds = std::chrono::duration<double>(Clock::now() - t0).count();
+  return st;
+}
+}  // namespace roislam::sim

@@ -1,0 +1,173 @@
+/* tum2rawlog end to end: the executable on a small temporary TUM folder and on
+ * the shared fr1/rpy sequence, checked with our reader and with MRPT's
+ * rawlog-edit run from a different working directory (skipped when
+ * rawlog-edit is not installed). */
+#include <roislam/io/CRawlogFrameSource.h>
+#include <roislam/io/CTumFrameSource.h>
+#include <roislam/io/CameraPresets.h>
+#include <roislam/testing/TestData.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <regex>
+#include <sstream>
+
+#include "TumFolderFixture.h"
+
+namespace fs = std::filesystem;
+using namespace roislam::io;
+using namespace roislam::iotest;
+
+namespace
+{
+std::string tum2rawlog()
+{
+  return roislam::testing::binaryDir() + "/apps/tum2rawlog/tum2rawlog";
+}
+
+std::optional<std::string> findRawlogEdit()
+{
+  const char* path = std::getenv("PATH");
+  std::stringstream ss(path ? path : "");
+  std::string dir;
+  while (std::getline(ss, dir, ':'))
+    if (!dir.empty() && fs::exists(fs::path(dir) / "rawlog-edit"))
+      return (fs::path(dir) / "rawlog-edit").string();
+  return std::nullopt;
+}
+
+std::string slurp(const std::string& file)
+{
+  std::ifstream in(file);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+struct TRun
+{
+  int exitCode = -1;
+  std::string out;  // stdout + stderr
+};
+
+// Runs `command` in folder `cwd`, capturing both output streams.
+TRun run(const std::string& cwd, const std::string& command, const std::string& logFile)
+{
+  const std::string full =
+      "cd '" + cwd + "' && " + command + " > '" + logFile + "' 2>&1 </dev/null";
+  const int rc = std::system(full.c_str());
+  TRun r;
+  r.exitCode = WIFEXITED(rc) ? WEXITSTATUS(rc) : -1;
+  r.out = slurp(logFile);
+  return r;
+}
+
+// "Overall number of objects : N" from rawlog-edit --info.
+long objectsInInfo(const std::string& out)
+{
+  std::smatch m;
+  if (std::regex_search(out, m, std::regex("Overall number of objects\\s*:\\s*([0-9]+)")))
+    return std::stol(m[1]);
+  return -1;
+}
+}  // namespace
+
+TEST(Tum2RawlogApp, EndToEndOnSmallFolder)
+{
+  ASSERT_TRUE(fs::exists(tum2rawlog())) << tum2rawlog();
+  const auto tmp = roislam::testing::makeTempDir("io_t2r_e2e");
+  const auto dir =
+      writeTumFolder(tmp, "seq", {1.0, 2.0, 3.0, 4.0, 5.0}, {1.01, 2.0, 3.3, 4.0, 4.99});
+  writeCameraIni((fs::path(dir) / "camera.ini").string(), smallCamera());
+  std::ofstream(fs::path(dir) / "groundtruth.txt") << "1.0 0 0 0 0 0 0 1\n2.0 1 0 0 0 0 0 1\n";
+  fs::create_directories(tmp + "/out");
+  fs::create_directories(tmp + "/elsewhere");
+
+  // Relative paths are resolved against the working directory of the call.
+  const auto r =
+      run(tmp, "'" + tum2rawlog() + "' --input seq --output out/seq.rawlog", tmp + "/log.txt");
+  ASSERT_EQ(r.exitCode, 0) << r.out;
+  EXPECT_NE(r.out.find("4 observations, 1 colour frames skipped"), std::string::npos) << r.out;
+  const auto rawlog = tmp + "/out/seq.rawlog";
+  ASSERT_TRUE(fs::exists(rawlog));
+  EXPECT_TRUE(fs::exists(tmp + "/out/seq.groundtruth.txt"));
+  EXPECT_EQ(slurp(tmp + "/out/seq.groundtruth.txt"), slurp(dir + "/groundtruth.txt"));
+
+  CRawlogFrameSource src(rawlog);
+  EXPECT_EQ(src.size(), 4u);
+  CTumFrameSource tum(dir, smallCamera());
+  while (auto a = tum.next())
+  {
+    auto b = src.next();
+    ASSERT_TRUE(b);
+    EXPECT_EQ(cv::norm(a->rgb, b->rgb, cv::NORM_INF), 0.0);
+    EXPECT_EQ(cv::norm(a->depth, b->depth, cv::NORM_INF), 0.0);
+  }
+
+  // Bad input: exit code 1, one line "tum2rawlog: error: ...", no output.
+  const auto bad =
+      run(tmp, "'" + tum2rawlog() + "' --input seq --output out/bad.rawlog --camera fr1",
+          tmp + "/log2.txt");
+  EXPECT_EQ(bad.exitCode, 1);
+  EXPECT_NE(bad.out.find("tum2rawlog: error: "), std::string::npos) << bad.out;
+  EXPECT_NE(bad.out.find("16x12"), std::string::npos) << bad.out;
+  EXPECT_FALSE(fs::exists(tmp + "/out/bad.rawlog"));
+  EXPECT_FALSE(fs::exists(tmp + "/out/bad_Images"));
+
+  const auto rawlogEdit = findRawlogEdit();
+  if (!rawlogEdit)
+    GTEST_SKIP() << "rawlog-edit not installed; MRPT tool checks skipped";
+  const auto info = run(
+      tmp + "/elsewhere", "'" + *rawlogEdit + "' --info -i '" + rawlog + "'", tmp + "/log3.txt");
+  ASSERT_EQ(info.exitCode, 0) << info.out;
+  EXPECT_EQ(objectsInInfo(info.out), 4) << info.out;
+  EXPECT_NE(info.out.find("RGBD"), std::string::npos) << info.out;
+
+  // Needs the depth of every observation: run from another folder, too.
+  const auto pc =
+      run(tmp + "/elsewhere",
+          "'" + *rawlogEdit + "' --generate-3d-pointclouds -i '" + rawlog + "' -o '" + tmp +
+              "/elsewhere/pc.rawlog'",
+          tmp + "/log4.txt");
+  EXPECT_EQ(pc.exitCode, 0) << pc.out;
+  EXPECT_NE(pc.out.find("Entries modified                  : 4"), std::string::npos) << pc.out;
+  fs::remove_all(tmp);
+}
+
+TEST(Tum2RawlogApp, SharedSequenceConvertsTo250Observations)
+{
+  ROISLAM_REQUIRE_SHARED_TUM(dir);
+  const auto tmp = roislam::testing::makeTempDir("io_t2r_shared");
+  const auto rawlog = tmp + "/fr1_rpy.rawlog";
+  const auto r =
+      run(tmp, "'" + tum2rawlog() + "' --input '" + dir + "' --output '" + rawlog + "'",
+          tmp + "/log.txt");
+  ASSERT_EQ(r.exitCode, 0) << r.out;
+  EXPECT_NE(r.out.find("250 observations, 0 colour frames skipped"), std::string::npos) << r.out;
+  EXPECT_TRUE(fs::exists(tmp + "/fr1_rpy.groundtruth.txt"));
+
+  CRawlogFrameSource src(rawlog);
+  EXPECT_EQ(src.size(), 250u);
+  EXPECT_DOUBLE_EQ(src.camera().fx(), 517.306408);
+  ASSERT_TRUE(src.groundTruthFile());
+  // The first frames are identical to reading the folder directly.
+  CTumFrameSource tum(dir, cameraPreset("fr1"));
+  for (int k = 0; k < 5; ++k)
+  {
+    auto a = tum.next();
+    auto b = src.next();
+    ASSERT_TRUE(a && b);
+    EXPECT_NEAR(a->timestamp, b->timestamp, 1e-6);
+    EXPECT_EQ(cv::norm(a->rgb, b->rgb, cv::NORM_INF), 0.0);
+    EXPECT_EQ(cv::norm(a->depth, b->depth, cv::NORM_INF), 0.0);
+  }
+
+  const auto rawlogEdit = findRawlogEdit();
+  if (!rawlogEdit)
+    GTEST_SKIP() << "rawlog-edit not installed";
+  const auto info = run("/", "'" + *rawlogEdit + "' --info -i '" + rawlog + "'", tmp + "/log2.txt");
+  ASSERT_EQ(info.exitCode, 0) << info.out;
+  EXPECT_EQ(objectsInInfo(info.out), 250) << info.out;
+  fs::remove_all(tmp);
+}

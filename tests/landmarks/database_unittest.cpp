@@ -1,0 +1,136 @@
+/* CLandmarkDatabase: recall / new / best-of-several logic, candidate voting and
+ * the position prefilter, on synthetic textured patches and warped copies. */
+#include <gtest/gtest.h>
+#include <roislam/features/CFeatureExtractor.h>
+#include <roislam/landmarks/CLandmarkDatabase.h>
+
+#include <opencv2/imgproc.hpp>
+
+#include "SyntheticScene.h"
+
+using namespace roislam;
+using namespace roislam::landmarks;
+
+namespace
+{
+const cv::Rect kBox(100, 100, 220, 180);
+
+features::TFeatureSet roiFeatures(
+    const cv::Mat& bgr, const cv::Rect& box,
+    features::EFeatureType type = features::EFeatureType::ORB)
+{
+  features::CFeatureExtractor::TOptions o;
+  o.feature_type = type;
+  cv::Mat grey;
+  cv::cvtColor(bgr, grey, cv::COLOR_BGR2GRAY);
+  return features::CFeatureExtractor(o).extract(grey).subset(box);
+}
+
+CLandmark makeLandmark(unsigned seed, features::EFeatureType type = features::EFeatureType::ORB)
+{
+  const cv::Mat img = test::onCanvas(test::texturePatch(seed), kBox.tl());
+  CLandmark lm;
+  lm.features = roiFeatures(img, kBox, type);
+  lm.box = kBox;
+  lm.imageSize = img.size();
+  lm.patch = img(kBox).clone();
+  return lm;
+}
+
+/** Features of the seed's patch seen again: rotated, shifted, in a box around it. */
+features::TFeatureSet seenAgain(
+    unsigned seed, features::EFeatureType type = features::EFeatureType::ORB)
+{
+  const cv::Mat img =
+      test::warped(test::onCanvas(test::texturePatch(seed), kBox.tl()), 7, {35, 20});
+  return roiFeatures(img, cv::Rect(105, 95, 270, 230), type);
+}
+}  // namespace
+
+TEST(LandmarkDatabase, EmptyDatabaseGivesNew)
+{
+  CLandmarkDatabase db;
+  const auto q = db.query(seenAgain(1), kBox, {640, 480});
+  EXPECT_FALSE(q.landmarkId);
+  EXPECT_EQ(q.candidates, 0);
+}
+
+TEST(LandmarkDatabase, RecallsTheSameTextureAndRejectsADifferentOne)
+{
+  CLandmarkDatabase db;
+  const auto lm = makeLandmark(1);
+  ASSERT_GT(lm.features.size(), 50u);
+  EXPECT_EQ(db.add(lm), 0);
+
+  const auto same = db.query(seenAgain(1), kBox, {640, 480});
+  ASSERT_TRUE(same.landmarkId);
+  EXPECT_EQ(*same.landmarkId, 0);
+  EXPECT_GE(same.inliers, 10);
+  // The located box is the landmark's box moved by about the applied shift.
+  EXPECT_NEAR(same.locatedBox.x + same.locatedBox.width / 2.0, kBox.x + kBox.width / 2.0 + 35, 25);
+
+  const auto other = db.query(seenAgain(2), kBox, {640, 480});
+  EXPECT_FALSE(other.landmarkId);
+}
+
+TEST(LandmarkDatabase, PicksTheRightLandmarkAmongSeveralWithAndWithoutVoting)
+{
+  for (int maxCandidates : {0, 2})
+  {
+    CLandmarkDatabase::TOptions o;
+    o.max_candidates = maxCandidates;
+    CLandmarkDatabase db(o, {}, {});
+    for (unsigned seed = 1; seed <= 6; ++seed)
+      db.add(makeLandmark(seed));
+    ASSERT_EQ(db.size(), 6u);
+    for (unsigned seed : {2u, 4u, 6u})
+    {
+      const auto q = db.query(seenAgain(seed), kBox, {640, 480});
+      ASSERT_TRUE(q.landmarkId) << "seed " << seed << " max_candidates " << maxCandidates;
+      EXPECT_EQ(*q.landmarkId, static_cast<int32_t>(seed - 1));
+      if (maxCandidates > 0)
+        EXPECT_LE(q.candidates, maxCandidates);
+    }
+    EXPECT_FALSE(db.query(seenAgain(9), kBox, {640, 480}).landmarkId);
+  }
+}
+
+TEST(LandmarkDatabase, WorksWithSiftToo)
+{
+  CLandmarkDatabase db;
+  db.add(makeLandmark(1, features::EFeatureType::SIFT));
+  db.add(makeLandmark(2, features::EFeatureType::SIFT));
+  const auto q = db.query(seenAgain(2, features::EFeatureType::SIFT), kBox, {640, 480});
+  ASSERT_TRUE(q.landmarkId);
+  EXPECT_EQ(*q.landmarkId, 1);
+  // Mixing feature types is an error, not a silent miss.
+  EXPECT_THROW(db.query(seenAgain(2), kBox, {640, 480}), std::invalid_argument);
+  EXPECT_THROW(db.add(makeLandmark(3)), std::invalid_argument);
+}
+
+TEST(LandmarkDatabase, PositionPrefilterExcludesFarLandmarks)
+{
+  CLandmarkDatabase::TOptions o;
+  o.prefilter_radius = 1.0;
+  CLandmarkDatabase db(o, {}, {});
+  auto lm = makeLandmark(1);
+  lm.positionWorld = {5, 0, 0};
+  lm.hasPositionWorld = true;
+  db.add(lm);
+  EXPECT_FALSE(db.query(seenAgain(1), kBox, {640, 480}, mrpt::math::TPoint3D(0, 0, 0)).landmarkId);
+  EXPECT_TRUE(db.query(seenAgain(1), kBox, {640, 480}, mrpt::math::TPoint3D(4.5, 0, 0)).landmarkId);
+  EXPECT_TRUE(db.query(seenAgain(1), kBox, {640, 480}).landmarkId);
+}
+
+TEST(LandmarkDatabase, SightingsAndBadIds)
+{
+  CLandmarkDatabase db;
+  db.add(makeLandmark(1));
+  TLandmarkSighting s;
+  s.frame = 7;
+  db.addSighting(0, s);
+  EXPECT_EQ(db.landmark(0).sightings.size(), 1u);
+  EXPECT_EQ(db.landmark(0).sightings[0].frame, 7u);
+  EXPECT_THROW(db.addSighting(3, s), std::out_of_range);
+  EXPECT_THROW(db.landmark(-1), std::out_of_range);
+}

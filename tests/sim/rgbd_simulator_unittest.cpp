@@ -1,0 +1,353 @@
+// CRgbdSimulator: rendered frames against the analytic scene, noise,
+// determinism, options and the written TUM layout.
+#include <gtest/gtest.h>
+#include <mrpt/config/CConfigFile.h>
+#include <mrpt/config/CConfigFileMemory.h>
+#include <roislam/io/TumTrajectory.h>
+#include <roislam/sim/CRgbdSimulator.h>
+#include <roislam/testing/TestData.h>
+
+#include <opencv2/features2d.hpp>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+namespace fs = std::filesystem;
+using roislam::sim::CRgbdSimulator;
+
+namespace
+{
+CRgbdSimulator::TOptions opts(const std::string& scene, bool noise, unsigned frames = 10)
+{
+  CRgbdSimulator::TOptions o;
+  o.scene = scene;
+  o.noise = noise;
+  o.frames = frames;
+  return o;
+}
+
+struct TDepthCheck
+{
+  int compared = 0, depthOk = 0, surfaceOk = 0;
+};
+
+/** Compares the rendered depth of a noise-free frame with the analytic scene on
+ *  a pixel grid, away from depth discontinuities. */
+TDepthCheck checkDepth(const CRgbdSimulator& sim, const CRgbdSimulator::TFrame& f)
+{
+  const auto cam = sim.camera();
+  TDepthCheck res;
+  for (int v = 4; v < f.depth.rows - 4; v += 7)
+    for (int u = 4; u < f.depth.cols - 4; u += 7)
+    {
+      const float z = f.depth.at<float>(v, u);
+      const auto za = sim.scene().depthAt(f.pose, cam, u, v);
+      if (z <= 0 || !za) continue;
+      bool smooth = true;  // all 3x3 neighbours on the same surface nearby
+      for (int dv = -1; dv <= 1; ++dv)
+        for (int du = -1; du <= 1; ++du)
+        {
+          const auto zn = sim.scene().depthAt(f.pose, cam, u + du, v + dv);
+          smooth = smooth && zn && std::abs(*zn - *za) < 0.01 * *za;
+        }
+      if (!smooth) continue;
+      ++res.compared;
+      if (std::abs(z - *za) < 0.0005) ++res.depthOk;
+      // Unproject with the intrinsics and the ground-truth pose.
+      const mrpt::math::TPoint3D pc((u - cam.cx()) * z / cam.fx(), (v - cam.cy()) * z / cam.fy(), z);
+      const auto pw = f.pose.composePoint(pc);
+      if (sim.scene().distanceToSurface(pw) < 0.002) ++res.surfaceOk;
+    }
+  return res;
+}
+
+double gradientAbove(const cv::Mat& bgr, double thr)
+{
+  cv::Mat g, gx, gy, mag;
+  cv::cvtColor(bgr, g, cv::COLOR_BGR2GRAY);
+  cv::Sobel(g, gx, CV_32F, 1, 0);
+  cv::Sobel(g, gy, CV_32F, 0, 1);
+  cv::magnitude(gx, gy, mag);
+  return cv::countNonZero(mag > thr) / static_cast<double>(mag.total());
+}
+
+int orbCount(const cv::Mat& bgr)
+{
+  cv::Mat g;
+  cv::cvtColor(bgr, g, cv::COLOR_BGR2GRAY);
+  std::vector<cv::KeyPoint> kps;
+  cv::ORB::create(1000)->detect(g, kps);
+  return static_cast<int>(kps.size());
+}
+
+std::size_t countLines(const fs::path& p)
+{
+  std::ifstream f(p);
+  std::string l;
+  std::size_t n = 0;
+  while (std::getline(f, l))
+    if (!l.empty() && l[0] != '#') ++n;
+  return n;
+}
+}  // namespace
+
+TEST(RgbdSimulator, TexturedDepthMatchesGeometryExactly)
+{
+  CRgbdSimulator sim(opts("textured", false));
+  for (std::size_t i : {0, 6})
+  {
+    const auto f = sim.renderFrame(i);
+    ASSERT_EQ(f.depth.cols, 640);
+    ASSERT_EQ(f.depth.rows, 480);
+    const auto r = checkDepth(sim, f);
+    EXPECT_GT(r.compared, 3000) << "frame " << i;
+    EXPECT_GE(r.depthOk, r.compared * 0.995) << "frame " << i;
+    EXPECT_GE(r.surfaceOk, r.compared * 0.995) << "frame " << i;
+    // Kinect range: everything in the room is within 0.4-4 m from the path.
+    EXPECT_GT(cv::countNonZero(f.depth > 0), 0.99 * f.depth.total());
+  }
+}
+
+TEST(RgbdSimulator, TexturedSceneIsRichFeaturelessIsFlat)
+{
+  cv::Mat texturedRgb, featurelessRgb;
+  {
+    CRgbdSimulator sim(opts("textured", false));
+    texturedRgb = sim.renderFrame(3).rgb;
+  }
+  CRgbdSimulator sim(opts("featureless", false));
+  const auto f = sim.renderFrame(3);
+  featurelessRgb = f.rgb;
+
+  EXPECT_GT(orbCount(texturedRgb), 800);
+  EXPECT_LT(orbCount(featurelessRgb), 250);
+  // Canny 250/300 (stage 1 of the ROI detector) fires on the textured scene only.
+  cv::Mat g, e;
+  cv::cvtColor(texturedRgb, g, cv::COLOR_BGR2GRAY);
+  cv::Canny(g, e, 250, 300);
+  EXPECT_GT(cv::countNonZero(e), 5000);
+  cv::cvtColor(featurelessRgb, g, cv::COLOR_BGR2GRAY);
+  cv::Canny(g, e, 250, 300);
+  EXPECT_LT(cv::countNonZero(e), 50);
+
+  // On the walls of the featureless scene, the colour gradient is zero away
+  // from face boundaries.
+  const auto cam = sim.camera();
+  cv::Mat grey, gx, gy;
+  cv::cvtColor(featurelessRgb, grey, cv::COLOR_BGR2GRAY);
+  cv::Sobel(grey, gx, CV_32F, 1, 0);
+  cv::Sobel(grey, gy, CV_32F, 0, 1);
+  int wallPixels = 0, flat = 0;
+  for (int v = 5; v < 475; v += 5)
+    for (int u = 5; u < 635; u += 5)
+    {
+      bool sameWall = true;
+      std::size_t rect = 0;
+      for (int dv = -3; dv <= 3 && sameWall; dv += 3)
+        for (int du = -3; du <= 3 && sameWall; du += 3)
+        {
+          const auto pose = f.pose;
+          const auto R = pose.getRotationMatrix();
+          const double dc[3] = {(u + du - cam.cx()) / cam.fx(), (v + dv - cam.cy()) / cam.fy(), 1};
+          mrpt::math::TVector3D d(0, 0, 0);
+          for (int k = 0; k < 3; ++k)
+          {
+            d.x += R(0, k) * dc[k];
+            d.y += R(1, k) * dc[k];
+            d.z += R(2, k) * dc[k];
+          }
+          const auto hit = sim.scene().raycast({pose.x(), pose.y(), pose.z()}, d);
+          sameWall = hit && sim.scene().rects()[hit->rect].name.rfind("wall", 0) == 0 &&
+                     (du == -3 && dv == -3 ? (rect = hit->rect, true) : hit->rect == rect);
+        }
+      if (!sameWall) continue;
+      ++wallPixels;
+      if (std::hypot(gx.at<float>(v, u), gy.at<float>(v, u)) < 1.0) ++flat;
+    }
+  EXPECT_GT(wallPixels, 500);
+  EXPECT_EQ(flat, wallPixels);
+  EXPECT_LT(gradientAbove(featurelessRgb, 20.0), 0.03);
+}
+
+TEST(RgbdSimulator, NoiseIsDeterministicPerSeedAndHasKinectSpread)
+{
+  cv::Mat clean, a, b, c;
+  {
+    CRgbdSimulator sim(opts("textured", false));
+    clean = sim.renderFrame(4).depth;
+  }
+  auto noisy = [](uint32_t seed)
+  {
+    auto o = opts("textured", true);
+    o.seed = seed;
+    CRgbdSimulator sim(o);
+    return sim.renderFrame(4);
+  };
+  const auto fa = noisy(3), fb = noisy(3), fc = noisy(4);
+  EXPECT_EQ(cv::norm(fa.depth, fb.depth, cv::NORM_INF), 0.0);
+  EXPECT_EQ(cv::norm(fa.rgb, fb.rgb, cv::NORM_INF), 0.0);
+  const cv::Mat bothValid = (fa.depth > 0) & (fc.depth > 0);
+  EXPECT_GT(cv::countNonZero((fa.depth != fc.depth) & bothValid), 0.9 * cv::countNonZero(bothValid));
+
+  // Residuals against the clean depth, normalised by the model sigma.
+  double sum2 = 0;
+  int n = 0, dropped = 0, valid = 0;
+  for (int r = 0; r < clean.rows; ++r)
+    for (int col = 0; col < clean.cols; ++col)
+    {
+      const float z0 = clean.at<float>(r, col), z = fa.depth.at<float>(r, col);
+      if (z0 <= 0) continue;
+      ++valid;
+      if (z <= 0)
+      {
+        ++dropped;
+        continue;
+      }
+      const double s = 0.0012 + 0.0019 * (z0 - 0.4) * (z0 - 0.4);
+      sum2 += (z - z0) * (z - z0) / (s * s);
+      ++n;
+    }
+  EXPECT_NEAR(std::sqrt(sum2 / n), 1.0, 0.05);
+  // Edge dropout removes some, but not many, readings.
+  EXPECT_GT(dropped, 500);
+  EXPECT_LT(dropped, 0.1 * valid);
+}
+
+TEST(RgbdSimulator, OptionsLoadValidateAndRoundTrip)
+{
+  mrpt::config::CConfigFileMemory cfg;
+  cfg.write("RgbdSimulator", "scene", "featureless");
+  cfg.write("RgbdSimulator", "frames", "12");
+  cfg.write("RgbdSimulator", "noise", "false");
+  cfg.write("RgbdSimulator", "max_depth", "3.5");
+  CRgbdSimulator::TOptions o;
+  o.loadFromConfigFile(cfg, "RgbdSimulator");
+  EXPECT_EQ(o.scene, "featureless");
+  EXPECT_EQ(o.frames, 12u);
+  EXPECT_FALSE(o.noise);
+  EXPECT_DOUBLE_EQ(o.maxDepth, 3.5);
+  EXPECT_DOUBLE_EQ(o.fx, 517.3);  // untouched default
+
+  mrpt::config::CConfigFileMemory saved;
+  o.saveToConfigFile(saved, "S");
+  CRgbdSimulator::TOptions back;
+  back.loadFromConfigFile(saved, "S");
+  EXPECT_EQ(back.scene, o.scene);
+  EXPECT_EQ(back.frames, o.frames);
+  EXPECT_DOUBLE_EQ(back.baseTimestamp, o.baseTimestamp);
+  EXPECT_DOUBLE_EQ(back.cx, o.cx);
+
+  auto expectError = [](const std::string& key, const std::string& value)
+  {
+    mrpt::config::CConfigFileMemory bad;
+    bad.write("RgbdSimulator", key, value);
+    CRgbdSimulator::TOptions x;
+    try
+    {
+      x.loadFromConfigFile(bad, "RgbdSimulator");
+      ADD_FAILURE() << key << " = " << value << " accepted";
+    }
+    catch (const std::invalid_argument& e)
+    {
+      EXPECT_NE(std::string(e.what()).find("[RgbdSimulator] " + key), std::string::npos)
+          << e.what();
+    }
+  };
+  expectError("frames", "abc");
+  expectError("frames", "1");
+  expectError("frames", "-5");
+  expectError("scene", "kitchen");
+  expectError("max_depth", "20");
+  expectError("fps", "0");
+  expectError("noise", "maybe");
+  expectError("depth_time_offset", "0.05");
+  expectError("framez", "10");  // unknown key
+}
+
+TEST(RgbdSimulator, WritesTumLayoutMatchingRenderedFrames)
+{
+  const std::string dir = roislam::testing::makeTempDir("sim_write");
+  const fs::path out = fs::path(dir) / "seq";
+  auto o = opts("textured", true, 4);
+  o.seed = 9;
+  {
+    CRgbdSimulator sim(o);
+    const auto st = sim.writeSequence(out.string());
+    EXPECT_EQ(st.frames, 4u);
+  }
+  for (const char* f : {"rgb.txt", "depth.txt", "groundtruth.txt", "camera.ini", "simulator.ini"})
+    EXPECT_TRUE(fs::is_regular_file(out / f)) << f;
+  EXPECT_EQ(countLines(out / "rgb.txt"), 4u);
+  EXPECT_EQ(countLines(out / "depth.txt"), 4u);
+  // Nothing but the output is left in the parent folder.
+  EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator()), 1);
+
+  CRgbdSimulator sim(o);
+  const auto gt = roislam::io::loadTumTrajectory((out / "groundtruth.txt").string());
+  ASSERT_EQ(gt.size(), 4u);
+  for (std::size_t i = 0; i < 4; ++i)
+  {
+    EXPECT_NEAR(gt[i].timestamp, sim.timestamp(i), 1e-6);
+    EXPECT_LT((gt[i].pose.translation() - sim.groundTruthPose(i).translation()).norm(), 1e-9);
+  }
+  EXPECT_NEAR(sim.timestamp(1) - sim.timestamp(0), 1 / 30.0, 1e-6);
+
+  // Depth PNG = rendered depth x 5000, rounded; same seed gives the same noise.
+  const auto f2 = sim.renderFrame(2);
+  char name[64];
+  std::snprintf(name, sizeof(name), "depth/%.6f.png", f2.depthTimestamp);
+  const cv::Mat png = cv::imread((out / name).string(), cv::IMREAD_UNCHANGED);
+  ASSERT_EQ(png.type(), CV_16UC1) << name;
+  cv::Mat expected;
+  f2.depth.convertTo(expected, CV_16UC1, 5000.0);
+  EXPECT_EQ(cv::norm(png, expected, cv::NORM_INF), 0.0);
+  std::snprintf(name, sizeof(name), "rgb/%.6f.png", f2.timestamp);
+  const cv::Mat rgb = cv::imread((out / name).string(), cv::IMREAD_UNCHANGED);
+  ASSERT_EQ(rgb.type(), CV_8UC3);
+  EXPECT_EQ(cv::norm(rgb, f2.rgb, cv::NORM_INF), 0.0);
+
+  mrpt::img::TCamera cam;
+  cam.loadFromConfigFile("CAMERA_PARAMS", mrpt::config::CConfigFile((out / "camera.ini").string()));
+  EXPECT_DOUBLE_EQ(cam.fx(), 517.3);
+  EXPECT_DOUBLE_EQ(cam.cy(), 255.3);
+  EXPECT_EQ(cam.ncols, 640u);
+
+  // Writing again replaces the earlier output.
+  auto o2 = o;
+  o2.frames = 2;
+  CRgbdSimulator(o2).writeSequence(out.string());
+  EXPECT_EQ(countLines(out / "rgb.txt"), 2u);
+  fs::remove_all(dir);
+}
+
+TEST(RgbdSimulator, BadOutputPathsFailCleanly)
+{
+  const std::string dir = roislam::testing::makeTempDir("sim_bad");
+  const fs::path file = fs::path(dir) / "plain.txt";
+  std::ofstream(file) << "x";
+  CRgbdSimulator sim(opts("featureless", false, 2));
+  // Parent is a regular file.
+  try
+  {
+    sim.writeSequence((file / "seq").string());
+    ADD_FAILURE() << "no error for an output below a file";
+  }
+  catch (const std::runtime_error& e)
+  {
+    EXPECT_NE(std::string(e.what()).find(file.string()), std::string::npos) << e.what();
+  }
+  // A non-empty folder that is not ours is never replaced.
+  const fs::path foreign = fs::path(dir) / "foreign";
+  fs::create_directories(foreign);
+  std::ofstream(foreign / "keep.txt") << "precious";
+  EXPECT_THROW(sim.writeSequence(foreign.string()), std::runtime_error);
+  EXPECT_TRUE(fs::exists(foreign / "keep.txt"));
+  EXPECT_FALSE(fs::exists(foreign / "rgb.txt"));
+  // No temporary folders left behind.
+  EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator()), 2);
+  fs::remove_all(dir);
+}
