@@ -15,6 +15,7 @@
 #include <filesystem>
 #include <iostream>
 #include <stdexcept>
+#include <string>
 
 int main(int argc, char** argv)
 {
@@ -40,10 +41,14 @@ int main(int argc, char** argv)
         throw std::runtime_error("cannot read config file " + config);
       opts.loadFromConfigFile(mrpt::config::CConfigFile(config), "RgbdSimulator");
     }
-    if (optScene->count() || config.empty()) opts.scene = scene;
-    if (optFrames->count() || config.empty()) opts.frames = frames;
-    if (optSeed->count() || config.empty()) opts.seed = seed;
-    if (noNoise) opts.noise = false;
+    if (optScene->count() || config.empty())
+      opts.scene = scene;
+    if (optFrames->count() || config.empty())
+      opts.frames = frames;
+    if (optSeed->count() || config.empty())
+      opts.seed = seed;
+    if (noNoise)
+      opts.noise = false;
 
     roislam::sim::CRgbdSimulator sim(opts);
     std::cerr << "rgbd-simul: rendering " << opts.frames << " frames of the '" << opts.scene
@@ -59,7 +64,8 @@ int main(int argc, char** argv)
   }
   catch (const std::exception& e)
   {
-    std::cerr << "rgbd-simul: error: " << e.what() << "\n";
+    const std::string msg = e.what();  // first line only: MRPT adds call stacks
+    std::cerr << "rgbd-simul: error: " << msg.substr(0, msg.find('\n')) << "\n";
     return 1;
   }
 }

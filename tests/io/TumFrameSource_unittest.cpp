@@ -224,6 +224,12 @@ TEST(TumFrameSource, BadInput)
   }
   expectError([&] { CTumFrameSource(dir, cam); }, "depth.txt:1:");
 
+  // Nothing listed, or nothing associated.
+  dir = writeTumFolder(tmp, "emptylist", {}, {1.0});
+  expectError([&] { CTumFrameSource(dir, cam); }, "rgb.txt: no frames listed");
+  dir = writeTumFolder(tmp, "noassoc", {1.0, 2.0}, {1.5, 2.5});
+  expectError([&] { CTumFrameSource(dir, cam); }, "no colour frame has a depth image");
+
   // Listed image missing: named at open.
   dir = writeTumFolder(tmp, "missing", {1.0, 2.0}, {1.0, 2.0});
   fs::remove(fs::path(dir) / "rgb/2.000000.png");

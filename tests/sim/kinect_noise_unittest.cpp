@@ -2,9 +2,8 @@
 #include <gtest/gtest.h>
 #include <roislam/sim/CKinectNoiseModel.h>
 
-#include <opencv2/core.hpp>
-
 #include <cmath>
+#include <opencv2/core.hpp>
 
 using roislam::sim::CKinectNoiseModel;
 

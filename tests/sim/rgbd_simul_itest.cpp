@@ -8,14 +8,13 @@
 #include <roislam/sim/CSceneModel.h>
 #include <roislam/testing/TestData.h>
 
-#include <opencv2/features2d.hpp>
-#include <opencv2/imgproc.hpp>
-
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <opencv2/features2d.hpp>
+#include <opencv2/imgproc.hpp>
 #include <vector>
 
 namespace fs = std::filesystem;
@@ -32,12 +31,14 @@ double medianSurfaceError(const roislam::io::TRGBDFrame& f, const mrpt::poses::C
     for (int u = 0; u < f.depth.cols; u += 9)
     {
       const float z = f.depth.at<float>(v, u);
-      if (z <= 0) continue;
+      if (z <= 0)
+        continue;
       const mrpt::math::TPoint3D pc(
           (u - f.camera.cx()) * z / f.camera.fx(), (v - f.camera.cy()) * z / f.camera.fy(), z);
       err.push_back(scene.distanceToSurface(pose.composePoint(pc)));
     }
-  if (err.empty()) return 1e9;
+  if (err.empty())
+    return 1e9;
   std::nth_element(err.begin(), err.begin() + err.size() / 2, err.end());
   return err[err.size() / 2];
 }
@@ -56,7 +57,8 @@ void checkSequence(const std::string& dir, std::size_t frames, int minOrb)
   const auto d = gt.front().pose - gt.back().pose;
   EXPECT_LT(d.translation().norm(), 0.03);
   const auto R = d.getRotationMatrix();
-  EXPECT_LT(mrpt::RAD2DEG(std::acos(std::clamp((R(0, 0) + R(1, 1) + R(2, 2) - 1) / 2, -1.0, 1.0))), 2.0);
+  EXPECT_LT(
+      mrpt::RAD2DEG(std::acos(std::clamp((R(0, 0) + R(1, 1) + R(2, 2) - 1) / 2, -1.0, 1.0))), 2.0);
 
   std::size_t i = 0;
   while (auto f = src->next())
@@ -96,7 +98,8 @@ TEST(RgbdSimulApp, FeaturelessFixtureSequence)
 TEST(RgbdSimulApp, UnwritableOutputIsAOneLineError)
 {
   const std::string exe = roislam::testing::binaryDir() + "/apps/rgbd-simul/rgbd-simul";
-  if (!fs::exists(exe)) GTEST_SKIP() << exe << " not built";
+  if (!fs::exists(exe))
+    GTEST_SKIP() << exe << " not built";
   const std::string dir = roislam::testing::makeTempDir("simul_app");
   const fs::path file = fs::path(dir) / "file.txt";
   std::ofstream(file) << "x";
@@ -107,7 +110,8 @@ TEST(RgbdSimulApp, UnwritableOutputIsAOneLineError)
   EXPECT_TRUE(WIFEXITED(rc) && WEXITSTATUS(rc) == 1) << rc;
   std::ifstream in(err);
   std::vector<std::string> lines;
-  for (std::string l; std::getline(in, l);) lines.push_back(l);
+  for (std::string l; std::getline(in, l);)
+    lines.push_back(l);
   ASSERT_FALSE(lines.empty());
   EXPECT_EQ(lines.back().rfind("rgbd-simul: error: ", 0), 0u) << lines.back();
   EXPECT_NE(lines.back().find(file.string()), std::string::npos) << lines.back();

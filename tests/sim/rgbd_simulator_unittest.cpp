@@ -7,13 +7,12 @@
 #include <roislam/sim/CRgbdSimulator.h>
 #include <roislam/testing/TestData.h>
 
-#include <opencv2/features2d.hpp>
-#include <opencv2/imgcodecs.hpp>
-#include <opencv2/imgproc.hpp>
-
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <opencv2/features2d.hpp>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
 #include <string>
 
 namespace fs = std::filesystem;
@@ -46,7 +45,8 @@ TDepthCheck checkDepth(const CRgbdSimulator& sim, const CRgbdSimulator::TFrame& 
     {
       const float z = f.depth.at<float>(v, u);
       const auto za = sim.scene().depthAt(f.pose, cam, u, v);
-      if (z <= 0 || !za) continue;
+      if (z <= 0 || !za)
+        continue;
       bool smooth = true;  // all 3x3 neighbours on the same surface nearby
       for (int dv = -1; dv <= 1; ++dv)
         for (int du = -1; du <= 1; ++du)
@@ -54,13 +54,17 @@ TDepthCheck checkDepth(const CRgbdSimulator& sim, const CRgbdSimulator::TFrame& 
           const auto zn = sim.scene().depthAt(f.pose, cam, u + du, v + dv);
           smooth = smooth && zn && std::abs(*zn - *za) < 0.01 * *za;
         }
-      if (!smooth) continue;
+      if (!smooth)
+        continue;
       ++res.compared;
-      if (std::abs(z - *za) < 0.0005) ++res.depthOk;
+      if (std::abs(z - *za) < 0.0005)
+        ++res.depthOk;
       // Unproject with the intrinsics and the ground-truth pose.
-      const mrpt::math::TPoint3D pc((u - cam.cx()) * z / cam.fx(), (v - cam.cy()) * z / cam.fy(), z);
+      const mrpt::math::TPoint3D pc(
+          (u - cam.cx()) * z / cam.fx(), (v - cam.cy()) * z / cam.fy(), z);
       const auto pw = f.pose.composePoint(pc);
-      if (sim.scene().distanceToSurface(pw) < 0.002) ++res.surfaceOk;
+      if (sim.scene().distanceToSurface(pw) < 0.002)
+        ++res.surfaceOk;
     }
   return res;
 }
@@ -90,7 +94,8 @@ std::size_t countLines(const fs::path& p)
   std::string l;
   std::size_t n = 0;
   while (std::getline(f, l))
-    if (!l.empty() && l[0] != '#') ++n;
+    if (!l.empty() && l[0] != '#')
+      ++n;
   return n;
 }
 }  // namespace
@@ -164,9 +169,11 @@ TEST(RgbdSimulator, TexturedSceneIsRichFeaturelessIsFlat)
           sameWall = hit && sim.scene().rects()[hit->rect].name.rfind("wall", 0) == 0 &&
                      (du == -3 && dv == -3 ? (rect = hit->rect, true) : hit->rect == rect);
         }
-      if (!sameWall) continue;
+      if (!sameWall)
+        continue;
       ++wallPixels;
-      if (std::hypot(gx.at<float>(v, u), gy.at<float>(v, u)) < 1.0) ++flat;
+      if (std::hypot(gx.at<float>(v, u), gy.at<float>(v, u)) < 1.0)
+        ++flat;
     }
   EXPECT_GT(wallPixels, 500);
   EXPECT_EQ(flat, wallPixels);
@@ -191,7 +198,8 @@ TEST(RgbdSimulator, NoiseIsDeterministicPerSeedAndHasKinectSpread)
   EXPECT_EQ(cv::norm(fa.depth, fb.depth, cv::NORM_INF), 0.0);
   EXPECT_EQ(cv::norm(fa.rgb, fb.rgb, cv::NORM_INF), 0.0);
   const cv::Mat bothValid = (fa.depth > 0) & (fc.depth > 0);
-  EXPECT_GT(cv::countNonZero((fa.depth != fc.depth) & bothValid), 0.9 * cv::countNonZero(bothValid));
+  EXPECT_GT(
+      cv::countNonZero((fa.depth != fc.depth) & bothValid), 0.9 * cv::countNonZero(bothValid));
 
   // Residuals against the clean depth, normalised by the model sigma.
   double sum2 = 0;
@@ -200,7 +208,8 @@ TEST(RgbdSimulator, NoiseIsDeterministicPerSeedAndHasKinectSpread)
     for (int col = 0; col < clean.cols; ++col)
     {
       const float z0 = clean.at<float>(r, col), z = fa.depth.at<float>(r, col);
-      if (z0 <= 0) continue;
+      if (z0 <= 0)
+        continue;
       ++valid;
       if (z <= 0)
       {

@@ -3,9 +3,8 @@
 #include <mrpt/core/bits_math.h>
 #include <roislam/sim/CSceneModel.h>
 
-#include <opencv2/imgproc.hpp>
-
 #include <cmath>
+#include <opencv2/imgproc.hpp>
 #include <stdexcept>
 
 using roislam::sim::CSceneModel;
@@ -116,5 +115,6 @@ TEST(SceneModel, TexturesAreDeterministicPerSeed)
 
 TEST(SceneModel, RejectsAbsurdTextureDensity)
 {
-  EXPECT_THROW(CSceneModel::build(CSceneModel::TSceneType::Textured, 1, 1.0), std::invalid_argument);
+  EXPECT_THROW(
+      CSceneModel::build(CSceneModel::TSceneType::Textured, 1, 1.0), std::invalid_argument);
 }

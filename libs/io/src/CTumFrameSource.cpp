@@ -135,6 +135,11 @@ CTumFrameSource::CTumFrameSource(
   const auto rgb = readList(root / "rgb.txt");
   const auto depth = readList(root / "depth.txt");
 
+  if (rgb.empty())
+    throw std::runtime_error((root / "rgb.txt").string() + ": no frames listed");
+  if (depth.empty())
+    throw std::runtime_error((root / "depth.txt").string() + ": no frames listed");
+
   std::vector<double> rgbStamps, depthStamps;
   for (const auto& r : rgb)
     rgbStamps.push_back(r.stamp);
@@ -158,6 +163,10 @@ CTumFrameSource::CTumFrameSource(
       m_entries.begin(), m_entries.end(),
       [](const TEntry& a, const TEntry& b) { return a.rgbStamp < b.rgbStamp; });
   m_skipped = rgb.size() - pairs.size();
+  if (m_entries.empty())
+    throw std::runtime_error(
+        m_dir + ": no colour frame has a depth image within " +
+        std::to_string(options.maxTimeDifference) + " s");
 }
 
 CTumFrameSource::CTumFrameSource(const std::string& dir, const mrpt::img::TCamera& camera)

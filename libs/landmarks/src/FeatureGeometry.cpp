@@ -1,12 +1,14 @@
 #include "roislam/landmarks/FeatureGeometry.h"
 
 #include <mrpt/core/bits_math.h>
+#include <mrpt/math/geometry.h>
 #include <mrpt/poses/CPose3DQuat.h>
 #include <mrpt/tfest/se3.h>
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <random>
 #include <opencv2/calib3d.hpp>
 
 namespace roislam::landmarks
@@ -87,48 +89,75 @@ std::vector<mrpt::math::TPoint3D> featurePoints(
 
 std::optional<TRigidFit> fitRigid(
     const std::vector<mrpt::math::TPoint3D>& a, const std::vector<mrpt::math::TPoint3D>& b,
-    double minThreshold)
+    double threshold, int iterations)
 {
-  std::vector<std::size_t> keep;
+  std::vector<mrpt::math::TPoint3D> va, vb;
   for (std::size_t i = 0; i < a.size() && i < b.size(); ++i)
     if (isValidPoint(a[i]) && isValidPoint(b[i]))
-      keep.push_back(i);
-  TRigidFit fit;
-  for (int round = 0; round < 3; ++round)
-  {
-    if (keep.size() < 3)
-      return std::nullopt;
-    std::vector<mrpt::math::TPoint3D> sa, sb;
-    for (auto i : keep)
     {
-      sa.push_back(a[i]);
-      sb.push_back(b[i]);
+      va.push_back(a[i]);
+      vb.push_back(b[i]);
+    }
+  const std::size_t n = va.size();
+  if (n < 3) return std::nullopt;
+
+  auto fit = [&](const std::vector<std::size_t>& idx) -> std::optional<mrpt::poses::CPose3D>
+  {
+    std::vector<mrpt::math::TPoint3D> sa, sb;
+    for (auto i : idx)
+    {
+      sa.push_back(va[i]);
+      sb.push_back(vb[i]);
     }
     mrpt::poses::CPose3DQuat q;
     double scale = 1;
-    if (!mrpt::tfest::se3_l2(sa, sb, q, scale, true))
-      return std::nullopt;
-    fit.pose = mrpt::poses::CPose3D(q);
-    std::vector<double> res;
-    for (auto i : keep)
-      res.push_back((fit.pose.composePoint(b[i]) - a[i]).norm());
-    double sq = 0;
-    for (double r : res)
-      sq += r * r;
-    fit.inliers = static_cast<int>(keep.size());
-    fit.rms = std::sqrt(sq / res.size());
-    if (round == 2)
-      break;
-    const double thr = std::max(3 * median(res), minThreshold);
-    std::vector<std::size_t> next;
-    for (std::size_t k = 0; k < keep.size(); ++k)
-      if (res[k] <= thr)
-        next.push_back(keep[k]);
-    if (next.size() == keep.size())
-      break;
-    keep = std::move(next);
+    if (!mrpt::tfest::se3_l2(sa, sb, q, scale, true)) return std::nullopt;
+    const mrpt::poses::CPose3D p(q);
+    if (!std::isfinite(p.x()) || !std::isfinite(p.yaw())) return std::nullopt;
+    return p;
+  };
+  auto inliersOf = [&](const mrpt::poses::CPose3D& p)
+  {
+    std::vector<std::size_t> in;
+    for (std::size_t i = 0; i < n; ++i)
+      if ((p.composePoint(vb[i]) - va[i]).norm() <= threshold) in.push_back(i);
+    return in;
+  };
+
+  std::mt19937 rng(12345);  // deterministic: same input, same answer
+  std::uniform_int_distribution<std::size_t> pick(0, n - 1);
+  std::vector<std::size_t> best;
+  for (int it = 0; it < iterations; ++it)
+  {
+    const std::size_t i = pick(rng), j = pick(rng), k = pick(rng);
+    if (i == j || j == k || i == k) continue;
+    // Nearly collinear samples give an ill-defined rotation.
+    const auto u = vb[j] - vb[i], v = vb[k] - vb[i];
+    if (mrpt::math::crossProduct3D(u, v).norm() < 1e-6) continue;
+    const auto p = fit({i, j, k});
+    if (!p) continue;
+    auto in = inliersOf(*p);
+    if (in.size() > best.size()) best = std::move(in);
+    if (best.size() == n) break;
   }
-  return fit;
+  if (best.size() < 3) return std::nullopt;
+  // Refit on the consensus set, then recount once with the refined pose.
+  auto p = fit(best);
+  if (!p) return std::nullopt;
+  auto in = inliersOf(*p);
+  if (in.size() >= 3 && in.size() >= best.size())
+  {
+    if (auto p2 = fit(in)) p = p2;
+    best = std::move(in);
+  }
+  TRigidFit out;
+  out.pose = *p;
+  out.pairs = static_cast<int>(n);
+  out.inliers = static_cast<int>(best.size());
+  double sq = 0;
+  for (auto i : best) sq += (p->composePoint(vb[i]) - va[i]).sqrNorm();
+  out.rms = std::sqrt(sq / best.size());
+  return out;
 }
 
 TFeatureDepth featureDepth(

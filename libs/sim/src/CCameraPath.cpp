@@ -18,7 +18,8 @@ constexpr int kSpeedSamples = 2000;
 
 CCameraPath::CCameraPath(const TParams& params, double duration) : m_p(params), m_duration(duration)
 {
-  if (!(duration > 0)) throw std::invalid_argument("camera path duration must be > 0");
+  if (!(duration > 0))
+    throw std::invalid_argument("camera path duration must be > 0");
   if (!(params.maxLinearSpeed > 0) || !(params.maxAngularSpeedDeg > 0))
     throw std::invalid_argument("camera path speed limits must be > 0");
   // Position and angles are (nearly) linear in their scale factors, so a few
@@ -27,9 +28,12 @@ CCameraPath::CCameraPath(const TParams& params, double duration) : m_p(params), 
   {
     const double v = maxLinearSpeed(), w = maxAngularSpeedDeg();
     const bool okV = v <= m_p.maxLinearSpeed, okW = w <= m_p.maxAngularSpeedDeg;
-    if (okV && okW) break;
-    if (!okV) m_linScale *= 0.98 * m_p.maxLinearSpeed / v;
-    if (!okW) m_angScale *= 0.98 * m_p.maxAngularSpeedDeg / w;
+    if (okV && okW)
+      break;
+    if (!okV)
+      m_linScale *= 0.98 * m_p.maxLinearSpeed / v;
+    if (!okW)
+      m_angScale *= 0.98 * m_p.maxAngularSpeedDeg / w;
   }
 }
 
@@ -49,8 +53,8 @@ mrpt::poses::CPose3D CCameraPath::opticalPoseAt(double t) const
   const double yaw = yaw0 + s * mrpt::DEG2RAD(m_p.yawAmplitudeDeg) * std::sin(phi);
   const double pitch = mrpt::DEG2RAD(m_p.pitchDeg) +
                        s * mrpt::DEG2RAD(m_p.pitchAmplitudeDeg) * std::sin(2 * phi + 0.7);
-  const double roll = mrpt::DEG2RAD(m_p.rollDeg) +
-                      s * mrpt::DEG2RAD(m_p.rollAmplitudeDeg) * std::sin(phi + 1.3);
+  const double roll =
+      mrpt::DEG2RAD(m_p.rollDeg) + s * mrpt::DEG2RAD(m_p.rollAmplitudeDeg) * std::sin(phi + 1.3);
   return mrpt::poses::CPose3D(x, y, m_p.z + dz, yaw, pitch, roll) + kBodyToOptical;
 }
 

@@ -1,10 +1,9 @@
 #include "roislam/sim/CKinectNoiseModel.h"
 
-#include <opencv2/core.hpp>
-#include <opencv2/imgproc.hpp>
-
 #include <algorithm>
 #include <cmath>
+#include <opencv2/core.hpp>
+#include <opencv2/imgproc.hpp>
 
 namespace roislam::sim
 {
@@ -39,7 +38,8 @@ void CKinectNoiseModel::corruptDepth(cv::Mat& depth, mrpt::random::CRandomGenera
     for (int c = 0; c < depth.cols; ++c)
     {
       const float z = d[c];
-      if (z <= 0) continue;
+      if (z <= 0)
+        continue;
       const bool edge = l[c] <= 0 || h[c] - z > ratio * z || z - l[c] > ratio * z;
       d[c] = edge ? 0.0f : std::max(1e-4f, z + g[c] * static_cast<float>(depthSigma(z)));
     }
@@ -49,7 +49,8 @@ void CKinectNoiseModel::corruptDepth(cv::Mat& depth, mrpt::random::CRandomGenera
 void CKinectNoiseModel::corruptColour(cv::Mat& rgb, mrpt::random::CRandomGenerator& rng) const
 {
   CV_Assert(rgb.type() == CV_8UC3);
-  if (m_p.rgbNoiseStd <= 0) return;
+  if (m_p.rgbNoiseStd <= 0)
+    return;
   // Same seeding scheme as corruptDepth.
   const uint64_t seed =
       (static_cast<uint64_t>(rng.drawUniform32bit()) << 32) | rng.drawUniform32bit();

@@ -8,9 +8,6 @@
 #include <mrpt/random/RandomGenerators.h>
 #include <unistd.h>
 
-#include <opencv2/imgcodecs.hpp>
-#include <opencv2/imgproc.hpp>
-
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -20,6 +17,8 @@
 #include <fstream>
 #include <iomanip>
 #include <limits>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
 #include <set>
 #include <sstream>
 #include <stdexcept>
@@ -39,7 +38,8 @@ constexpr double kDepthScale = 5000.0;  // TUM: PNG value = metres x 5000
 std::string trim(const std::string& s)
 {
   const auto b = s.find_first_not_of(" \t\r\n");
-  if (b == std::string::npos) return "";
+  if (b == std::string::npos)
+    return "";
   return s.substr(b, s.find_last_not_of(" \t\r\n") - b + 1);
 }
 
@@ -63,7 +63,8 @@ class CKeyReader
   void get(const std::string& key, T& value)
   {
     m_known.insert(key);
-    if (!m_cfg.keyExists(m_sec, key)) return;
+    if (!m_cfg.keyExists(m_sec, key))
+      return;
     const std::string s = trim(m_cfg.read_string(m_sec, key, ""));
     if (!parse(s, value))
       throw std::invalid_argument(
@@ -75,30 +76,36 @@ class CKeyReader
     std::vector<std::string> keys;
     m_cfg.getAllKeys(m_sec, keys);
     for (const auto& k : keys)
-      if (!m_known.count(k)) throw std::invalid_argument("[" + m_sec + "] " + k + ": unknown key");
+      if (!m_known.count(k))
+        throw std::invalid_argument("[" + m_sec + "] " + k + ": unknown key");
   }
 
  private:
   static bool parse(const std::string& s, double& v)
   {
-    if (s.empty()) return false;
+    if (s.empty())
+      return false;
     char* end = nullptr;
     v = std::strtod(s.c_str(), &end);
     return *end == '\0' && std::isfinite(v);
   }
   static bool parse(const std::string& s, unsigned& v)
   {
-    if (s.empty() || s[0] == '-') return false;
+    if (s.empty() || s[0] == '-')
+      return false;
     char* end = nullptr;
     const unsigned long long x = std::strtoull(s.c_str(), &end, 10);
-    if (*end != '\0' || x > std::numeric_limits<uint32_t>::max()) return false;
+    if (*end != '\0' || x > std::numeric_limits<uint32_t>::max())
+      return false;
     v = static_cast<unsigned>(x);
     return true;
   }
   static bool parse(const std::string& s, bool& v)
   {
-    if (s == "true" || s == "1" || s == "yes" || s == "on") return v = true, true;
-    if (s == "false" || s == "0" || s == "no" || s == "off") return v = false, true;
+    if (s == "true" || s == "1" || s == "yes" || s == "on")
+      return v = true, true;
+    if (s == "false" || s == "0" || s == "no" || s == "off")
+      return v = false, true;
     return false;
   }
   static bool parse(const std::string& s, std::string& v)
@@ -146,7 +153,8 @@ void writeTextFile(const fs::path& file, const std::string& content)
   std::ofstream f(file);
   f << content;
   f.close();
-  if (!f) throw std::runtime_error("cannot write " + file.string());
+  if (!f)
+    throw std::runtime_error("cannot write " + file.string());
 }
 
 void writePng(const fs::path& file, const cv::Mat& img)
@@ -162,7 +170,8 @@ void writePng(const fs::path& file, const cv::Mat& img)
   {
     throw std::runtime_error("cannot write " + file.string() + ": " + e.what());
   }
-  if (!ok) throw std::runtime_error("cannot write " + file.string());
+  if (!ok)
+    throw std::runtime_error("cannot write " + file.string());
 }
 
 /** Depth at the centres of the W x H output pixels from a render supersampled
@@ -185,7 +194,8 @@ cv::Mat depthAtPixelCentres(const mrpt::math::CMatrixFloat& D, unsigned ss, unsi
         continue;
       }
       const unsigned r0 = ss * r + ss / 2 - 1, c0 = ss * c + ss / 2 - 1;
-      const float z00 = D(r0, c0), z01 = D(r0, c0 + 1), z10 = D(r0 + 1, c0), z11 = D(r0 + 1, c0 + 1);
+      const float z00 = D(r0, c0), z01 = D(r0, c0 + 1), z10 = D(r0 + 1, c0),
+                  z11 = D(r0 + 1, c0 + 1);
       if (z00 <= 0 || z01 <= 0 || z10 <= 0 || z11 <= 0)
       {
         o[c] = 0;
@@ -287,33 +297,52 @@ void CRgbdSimulator::TOptions::validate(const std::string& section) const
   { throw std::invalid_argument("[" + section + "] " + key + ": " + what); };
   if (scene != "textured" && scene != "featureless")
     fail("scene", "'" + scene + "' is not textured|featureless");
-  if (frames < 2) fail("frames", "must be >= 2");
-  if (!(fps > 0 && fps <= 1000)) fail("fps", "must be in (0, 1000]");
-  if (!(std::abs(depthTimeOffset) < 0.02)) fail("depth_time_offset", "must be within +-0.02 s");
-  if (width < 16 || width > 4096) fail("width", "must be in [16, 4096]");
-  if (height < 16 || height > 4096) fail("height", "must be in [16, 4096]");
-  if (!(fx > 0)) fail("fx", "must be > 0");
-  if (!(fy > 0)) fail("fy", "must be > 0");
-  if (!(cx >= 0 && cx <= width)) fail("cx", "must lie inside the image");
-  if (!(cy >= 0 && cy <= height)) fail("cy", "must lie inside the image");
-  if (!(minDepth >= 0)) fail("min_depth", "must be >= 0");
+  if (frames < 2)
+    fail("frames", "must be >= 2");
+  if (!(fps > 0 && fps <= 1000))
+    fail("fps", "must be in (0, 1000]");
+  if (!(std::abs(depthTimeOffset) < 0.02))
+    fail("depth_time_offset", "must be within +-0.02 s");
+  if (width < 16 || width > 4096)
+    fail("width", "must be in [16, 4096]");
+  if (height < 16 || height > 4096)
+    fail("height", "must be in [16, 4096]");
+  if (!(fx > 0))
+    fail("fx", "must be > 0");
+  if (!(fy > 0))
+    fail("fy", "must be > 0");
+  if (!(cx >= 0 && cx <= width))
+    fail("cx", "must lie inside the image");
+  if (!(cy >= 0 && cy <= height))
+    fail("cy", "must lie inside the image");
+  if (!(minDepth >= 0))
+    fail("min_depth", "must be >= 0");
   if (!(maxDepth > minDepth && maxDepth <= 65535 / kDepthScale))
     fail("max_depth", "must be > min_depth and <= 13.1 (16-bit PNG range)");
-  if (!(depthNoiseA >= 0)) fail("depth_noise_a", "must be >= 0");
-  if (!(depthNoiseB >= 0)) fail("depth_noise_b", "must be >= 0");
-  if (!(edgeJumpRatio > 0)) fail("edge_jump_ratio", "must be > 0");
-  if (!(rgbNoiseStd >= 0 && rgbNoiseStd <= 64)) fail("rgb_noise_std", "must be in [0, 64]");
-  if (supersampling < 1 || supersampling > 4) fail("supersampling", "must be in [1, 4]");
+  if (!(depthNoiseA >= 0))
+    fail("depth_noise_a", "must be >= 0");
+  if (!(depthNoiseB >= 0))
+    fail("depth_noise_b", "must be >= 0");
+  if (!(edgeJumpRatio > 0))
+    fail("edge_jump_ratio", "must be > 0");
+  if (!(rgbNoiseStd >= 0 && rgbNoiseStd <= 64))
+    fail("rgb_noise_std", "must be in [0, 64]");
+  if (supersampling < 1 || supersampling > 4)
+    fail("supersampling", "must be in [1, 4]");
   if (!(texelsPerMetre >= 50 && texelsPerMetre <= 3000))
     fail("texels_per_metre", "must be in [50, 3000]");
   if (!(pathTranslationAmplitude >= 0 && pathTranslationAmplitude <= 0.6))
     fail("path_translation_amplitude", "must be in [0, 0.6] (the room is small)");
-  for (auto [k, v] : {std::pair{"path_yaw_amplitude_deg", pathYawAmplitudeDeg},
-                      std::pair{"path_pitch_amplitude_deg", pathPitchAmplitudeDeg},
-                      std::pair{"path_roll_amplitude_deg", pathRollAmplitudeDeg}})
-    if (!(v >= 0 && v <= 45)) fail(k, "must be in [0, 45]");
-  if (!(maxLinearSpeed > 0)) fail("max_linear_speed", "must be > 0");
-  if (!(maxAngularSpeedDeg > 0)) fail("max_angular_speed_deg", "must be > 0");
+  for (auto [k, v] :
+       {std::pair{"path_yaw_amplitude_deg", pathYawAmplitudeDeg},
+        std::pair{"path_pitch_amplitude_deg", pathPitchAmplitudeDeg},
+        std::pair{"path_roll_amplitude_deg", pathRollAmplitudeDeg}})
+    if (!(v >= 0 && v <= 45))
+      fail(k, "must be in [0, 45]");
+  if (!(maxLinearSpeed > 0))
+    fail("max_linear_speed", "must be > 0");
+  if (!(maxAngularSpeedDeg > 0))
+    fail("max_angular_speed_deg", "must be > 0");
 }
 
 // ---------------------------------------------------------------- simulator
@@ -365,7 +394,8 @@ mrpt::poses::CPose3D CRgbdSimulator::groundTruthPose(std::size_t i) const
 CRgbdSimulator::TFrame CRgbdSimulator::renderFrame(std::size_t i)
 {
   if (i >= m_opts.frames)
-    throw std::out_of_range("frame " + std::to_string(i) + " >= frames " + std::to_string(m_opts.frames));
+    throw std::out_of_range(
+        "frame " + std::to_string(i) + " >= frames " + std::to_string(m_opts.frames));
   const unsigned ss = m_opts.supersampling;
   const unsigned W = m_opts.width, H = m_opts.height;
   if (!m_impl->fbo)
@@ -373,7 +403,17 @@ CRgbdSimulator::TFrame CRgbdSimulator::renderFrame(std::size_t i)
     // Exact linear depth (the default LUT reads e.g. 2.9996 for 3.0 m).
     ::setenv("MRPT_FBORENDER_USE_LUT", "false", 1);
     m_impl->glScene = m_scene.makeOpenGLScene();
-    m_impl->fbo = std::make_unique<mrpt::opengl::CFBORender>(W * ss, H * ss);
+    try
+    {
+      m_impl->fbo = std::make_unique<mrpt::opengl::CFBORender>(W * ss, H * ss);
+    }
+    catch (const std::exception& e)
+    {
+      // MRPT messages span several lines; keep the first for a one-line error.
+      const std::string msg = e.what();
+      throw std::runtime_error(
+          "cannot create the offscreen OpenGL (EGL) renderer: " + msg.substr(0, msg.find('\n')));
+    }
   }
   auto& fbo = *m_impl->fbo;
   auto& glScene = *m_impl->glScene;
@@ -432,9 +472,11 @@ CRgbdSimulator::TWriteStats CRgbdSimulator::writeSequence(const std::string& out
 {
   using Clock = std::chrono::steady_clock;
   const auto t0 = Clock::now();
-  if (outDir.empty()) throw std::runtime_error("output folder name is empty");
+  if (outDir.empty())
+    throw std::runtime_error("output folder name is empty");
   fs::path out = fs::absolute(fs::path(outDir)).lexically_normal();
-  if (out.filename().empty()) out = out.parent_path();  // trailing '/'
+  if (out.filename().empty())
+    out = out.parent_path();  // trailing '/'
   const fs::path parent = out.parent_path();
   const std::string name = out.filename().string();
 
@@ -455,8 +497,10 @@ CRgbdSimulator::TWriteStats CRgbdSimulator::writeSequence(const std::string& out
   const fs::path tmp = parent / ("." + name + ".tmp-" + tag);
   fs::remove_all(tmp, ec);
   fs::create_directories(tmp / "rgb", ec);
-  if (!ec) fs::create_directories(tmp / "depth", ec);
-  if (ec) throw std::runtime_error("cannot write to " + parent.string() + ": " + ec.message());
+  if (!ec)
+    fs::create_directories(tmp / "depth", ec);
+  if (ec)
+    throw std::runtime_error("cannot write to " + parent.string() + ": " + ec.message());
 
   TWriteStats st;
   try

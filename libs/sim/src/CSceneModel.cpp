@@ -5,11 +5,10 @@
 #include <mrpt/opengl/CSetOfTexturedTriangles.h>
 #include <mrpt/random/RandomGenerators.h>
 
-#include <opencv2/imgproc.hpp>
-
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <opencv2/imgproc.hpp>
 #include <stdexcept>
 
 #include "roislam/sim/ProceduralTextures.h"
@@ -21,12 +20,18 @@ namespace
 using mrpt::math::TPoint3D;
 using mrpt::math::TVector3D;
 
-double dot(const TVector3D& a, const TVector3D& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+double dot(const TVector3D& a, const TVector3D& b)
+{
+  return a.x * b.x + a.y * b.y + a.z * b.z;
+}
 TVector3D cross(const TVector3D& a, const TVector3D& b)
 {
   return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
 }
-TVector3D normalized(const TVector3D& v) { return v * (1.0 / std::sqrt(dot(v, v))); }
+TVector3D normalized(const TVector3D& v)
+{
+  return v * (1.0 / std::sqrt(dot(v, v)));
+}
 
 /** Pose of a rectangle centred at c, facing along normal n, with "up" u. */
 mrpt::poses::CPose3D rectPose(const TPoint3D& c, const TVector3D& n, const TVector3D& u)
@@ -88,7 +93,8 @@ class CRoomBuilder
     r.pose = rectPose(c, n, up);
     r.width = w;
     r.height = h;
-    if (!m_textured) texture = cv::Mat(4, 4, CV_8UC3, cv::Scalar(246, 246, 246));
+    if (!m_textured)
+      texture = cv::Mat(4, 4, CV_8UC3, cv::Scalar(246, 246, 246));
     texture.convertTo(r.texture, CV_8UC3, shading(n));
     m_rects.push_back(std::move(r));
   }
@@ -110,8 +116,10 @@ class CRoomBuilder
       double w, h, offset;
     };
     const Face faces[] = {
-        {"-x", ex * -1.0, ez, sy, sz, sx / 2}, {"+x", ex, ez, sy, sz, sx / 2},
-        {"-y", ey * -1.0, ez, sx, sz, sy / 2}, {"+y", ey, ez, sx, sz, sy / 2},
+        {"-x", ex * -1.0, ez, sy, sz, sx / 2},
+        {"+x", ex, ez, sy, sz, sx / 2},
+        {"-y", ey * -1.0, ez, sx, sz, sy / 2},
+        {"+y", ey, ez, sx, sz, sy / 2},
         {"top", ez, ex, sy, sx, sz / 2}};
     for (int i = 0; i < 5; ++i)
     {
@@ -136,7 +144,9 @@ void place(cv::Mat& tex, double pxPerM, double left, double top, const cv::Mat& 
 {
   pasteTexture(
       tex, patch,
-      cv::Point(static_cast<int>(std::lround(left * pxPerM)), static_cast<int>(std::lround(top * pxPerM))));
+      cv::Point(
+          static_cast<int>(std::lround(left * pxPerM)),
+          static_cast<int>(std::lround(top * pxPerM))));
 }
 
 cv::Size metres(double w, double h, double pxPerM)
@@ -149,8 +159,10 @@ cv::Size metres(double w, double h, double pxPerM)
 
 CSceneModel::TSceneType CSceneModel::sceneTypeFromString(const std::string& s)
 {
-  if (s == "textured") return TSceneType::Textured;
-  if (s == "featureless") return TSceneType::Featureless;
+  if (s == "textured")
+    return TSceneType::Textured;
+  if (s == "featureless")
+    return TSceneType::Featureless;
   throw std::invalid_argument("unknown scene '" + s + "' (expected textured|featureless)");
 }
 
@@ -176,13 +188,15 @@ CSceneModel CSceneModel::build(TSceneType type, uint32_t textureSeed, double tex
   // Floor: wooden planks along +x.
   {
     const double w = y1 - y0 + 2 * overlap, h = x1 - x0 + 2 * overlap;
-    cv::Mat t = tx ? makeWoodTexture(rng, b.texSize(w, h, 1), static_cast<int>(0.16 * d1)) : cv::Mat();
+    cv::Mat t =
+        tx ? makeWoodTexture(rng, b.texSize(w, h, 1), static_cast<int>(0.16 * d1)) : cv::Mat();
     b.add("floor", {(x0 + x1) / 2, 0, 0}, {0, 0, 1}, {1, 0, 0}, w, h, t);
   }
   // Ceiling: rarely seen, plain plaster at a third of the density.
   {
     const double w = y1 - y0 + 2 * overlap, h = x1 - x0 + 2 * overlap;
-    cv::Mat t = tx ? makeNoiseTexture(rng, b.texSize(w, h, 0.33), {225, 228, 230}, 12, 2) : cv::Mat();
+    cv::Mat t =
+        tx ? makeNoiseTexture(rng, b.texSize(w, h, 0.33), {225, 228, 230}, 12, 2) : cv::Mat();
     b.add("ceiling", {(x0 + x1) / 2, 0, zTop}, {0, 0, -1}, {1, 0, 0}, w, h, t);
   }
   // Front wall (x = x1), seen facing +x: texture left is +y.
@@ -194,7 +208,9 @@ CSceneModel CSceneModel::build(TSceneType type, uint32_t textureSeed, double tex
       // Heights are measured from the wall top (z = zTop + overlap).
       place(t, d1, 0.30, 0.60, makePoster(rng, metres(0.60, 0.80, d1)));
       place(t, d1, 1.05, 0.75, makeTextPage(rng, metres(1.00, 0.70, d1), 0.035 * d1));
-      place(t, d1, 2.25, 0.80, makeCheckerboard(rng, metres(0.50, 0.50, d1), static_cast<int>(0.0625 * d1)));
+      place(
+          t, d1, 2.25, 0.80,
+          makeCheckerboard(rng, metres(0.50, 0.50, d1), static_cast<int>(0.0625 * d1)));
       place(t, d1, 2.30, 1.40, makeTextPage(rng, metres(0.30, 0.30, d1), 0.02 * d1));
       place(t, d1, 0.55, 1.48, makeTextPage(rng, metres(0.21, 0.30, d1), 0.015 * d1));
     }
@@ -221,7 +237,9 @@ CSceneModel CSceneModel::build(TSceneType type, uint32_t textureSeed, double tex
     {
       place(t, d1, 0.35, 0.70, makeTextPage(rng, metres(0.55, 0.75, d1), 0.028 * d1));
       place(t, d1, 1.20, 0.60, makePoster(rng, metres(0.80, 0.60, d1)));
-      place(t, d1, 1.30, 1.35, makeCheckerboard(rng, metres(0.60, 0.30, d1), static_cast<int>(0.05 * d1)));
+      place(
+          t, d1, 1.30, 1.35,
+          makeCheckerboard(rng, metres(0.60, 0.30, d1), static_cast<int>(0.05 * d1)));
       place(t, d1, 2.50, 0.80, makePoster(rng, metres(0.50, 0.70, d1)));
     }
     b.add("wall_right", {(x0 + x1) / 2, y0, zTop / 2}, {0, 1, 0}, {0, 0, 1}, w, h, t);
@@ -229,8 +247,10 @@ CSceneModel CSceneModel::build(TSceneType type, uint32_t textureSeed, double tex
   // Back wall (x = x0): behind the camera, half density.
   {
     const double w = y1 - y0 + 2 * overlap, h = zTop + 2 * overlap;
-    cv::Mat t = tx ? makeNoiseTexture(rng, b.texSize(w, h, 0.5), {205, 215, 205}, 22, 2) : cv::Mat();
-    if (tx) place(t, 0.5 * d1, 1.2, 0.8, makePoster(rng, metres(0.8, 0.6, 0.5 * d1)));
+    cv::Mat t =
+        tx ? makeNoiseTexture(rng, b.texSize(w, h, 0.5), {205, 215, 205}, 22, 2) : cv::Mat();
+    if (tx)
+      place(t, 0.5 * d1, 1.2, 0.8, makePoster(rng, metres(0.8, 0.6, 0.5 * d1)));
     b.add("wall_back", {x0, 0, zTop / 2}, {1, 0, 0}, {0, 0, 1}, w, h, t);
   }
 
@@ -241,7 +261,8 @@ CSceneModel CSceneModel::build(TSceneType type, uint32_t textureSeed, double tex
       "desk", (deskX0 + x1) / 2, 0, 0, x1 - deskX0, 2 * deskY, deskH, 0.0,
       [&](int face, double w, double h)
       {
-        if (!tx) return cv::Mat();
+        if (!tx)
+          return cv::Mat();
         cv::Mat t = makeWoodTexture(rng, b.texSize(w, h, dDesk), static_cast<int>(0.12 * dk));
         if (face == 4)
         {  // top: rows run along +x; papers and a mouse pad
@@ -259,7 +280,8 @@ CSceneModel CSceneModel::build(TSceneType type, uint32_t textureSeed, double tex
       "box_cereal", 1.85, -0.45, deskH, 0.08, 0.28, 0.36, mrpt::DEG2RAD(10.0),
       [&](int face, double w, double h)
       {
-        if (!tx) return cv::Mat();
+        if (!tx)
+          return cv::Mat();
         const cv::Size s = b.texSize(w, h, dObj);
         if (face == 0)
         {
@@ -274,16 +296,19 @@ CSceneModel CSceneModel::build(TSceneType type, uint32_t textureSeed, double tex
       "box_book", 1.95, 0.40, deskH, 0.30, 0.22, 0.10, mrpt::DEG2RAD(-15.0),
       [&](int face, double w, double h)
       {
-        if (!tx) return cv::Mat();
+        if (!tx)
+          return cv::Mat();
         const cv::Size s = b.texSize(w, h, dObj);
-        if (face == 4) return makeTextPage(rng, s, 0.010 * dob);
+        if (face == 4)
+          return makeTextPage(rng, s, 0.010 * dob);
         return makeNoiseTexture(rng, s, {40, 40, 140}, 35, 2);
       });
   b.addBox(
       "box_cube", 1.80, 0.02, deskH, 0.20, 0.20, 0.20, mrpt::DEG2RAD(30.0),
       [&](int face, double w, double h)
       {
-        if (!tx) return cv::Mat();
+        if (!tx)
+          return cv::Mat();
         const cv::Size s = b.texSize(w, h, dObj);
         switch (face)
         {
@@ -302,12 +327,14 @@ CSceneModel CSceneModel::build(TSceneType type, uint32_t textureSeed, double tex
       "box_monitor", 2.25, 0.05, deskH, 0.05, 0.55, 0.38, 0.0,
       [&](int face, double w, double h)
       {
-        if (!tx) return cv::Mat();
+        if (!tx)
+          return cv::Mat();
         const cv::Size s = b.texSize(w, h, dObj);
         if (face == 0)
         {  // the screen: dark frame around a page of text
           cv::Mat t(s, CV_8UC3, cv::Scalar(30, 30, 30));
-          place(t, dob, 0.02, 0.02, makeTextPage(rng, metres(w - 0.04, h - 0.04, dob), 0.011 * dob));
+          place(
+              t, dob, 0.02, 0.02, makeTextPage(rng, metres(w - 0.04, h - 0.04, dob), 0.011 * dob));
           return t;
         }
         return makeNoiseTexture(rng, s, {50, 50, 50}, 20, 2);
@@ -327,14 +354,17 @@ std::optional<TRayHit> CSceneModel::raycast(const TPoint3D& origin, const TVecto
     const TVector3D n{R(0, 2), R(1, 2), R(2, 2)};
     const TPoint3D c{r.pose.x(), r.pose.y(), r.pose.z()};
     const double denom = dot(n, dir);
-    if (std::abs(denom) < 1e-12) continue;
+    if (std::abs(denom) < 1e-12)
+      continue;
     const double t = dot(n, c - origin) / denom;
-    if (t <= 1e-9 || (best && t >= best->distance)) continue;
+    if (t <= 1e-9 || (best && t >= best->distance))
+      continue;
     const TPoint3D p = origin + dir * t;
     const TVector3D rel = p - c;
     const double a = rel.x * R(0, 0) + rel.y * R(1, 0) + rel.z * R(2, 0);
     const double bb = rel.x * R(0, 1) + rel.y * R(1, 1) + rel.z * R(2, 1);
-    if (std::abs(a) > r.width / 2 || std::abs(bb) > r.height / 2) continue;
+    if (std::abs(a) > r.width / 2 || std::abs(bb) > r.height / 2)
+      continue;
     best = TRayHit{t, i, p};
   }
   return best;
@@ -355,7 +385,8 @@ std::optional<double> CSceneModel::depthAt(
   }
   // The optical Z of dir is 1, so the ray parameter is the depth.
   const auto hit = raycast({cameraPose.x(), cameraPose.y(), cameraPose.z()}, dir);
-  if (!hit) return std::nullopt;
+  if (!hit)
+    return std::nullopt;
   return hit->distance;
 }
 

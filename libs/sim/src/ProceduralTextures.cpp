@@ -1,9 +1,8 @@
 #include "roislam/sim/ProceduralTextures.h"
 
-#include <opencv2/imgproc.hpp>
-
 #include <algorithm>
 #include <cmath>
+#include <opencv2/imgproc.hpp>
 #include <string>
 
 namespace roislam::sim
@@ -24,7 +23,8 @@ cv::Scalar randColour(mrpt::random::CRandomGenerator& rng, int lo, int hi)
 cv::Scalar vividColour(mrpt::random::CRandomGenerator& rng)
 {
   int c[3] = {randInt(rng, 0, 255), randInt(rng, 0, 60), randInt(rng, 190, 255)};
-  for (int i = 2; i > 0; --i) std::swap(c[i], c[randInt(rng, 0, i)]);
+  for (int i = 2; i > 0; --i)
+    std::swap(c[i], c[randInt(rng, 0, i)]);
   return cv::Scalar(c[0], c[1], c[2]);
 }
 
@@ -39,7 +39,8 @@ std::string randomWord(mrpt::random::CRandomGenerator& rng, int minLen, int maxL
     const double r = rng.drawUniform(0.0, 1.0);
     w += kLetters[static_cast<int>(r * r * 26) % 26];
   }
-  if (randInt(rng, 0, 5) == 0) w[0] = static_cast<char>(std::toupper(w[0]));
+  if (randInt(rng, 0, 5) == 0)
+    w[0] = static_cast<char>(std::toupper(w[0]));
   return w;
 }
 
@@ -71,7 +72,8 @@ void writeLine(
   {
     const std::string w = randomWord(rng, 1, 9);
     const cv::Size s = cv::getTextSize(w, font, scale, thickness, &baseline);
-    if (x + s.width > xEnd) break;
+    if (x + s.width > xEnd)
+      break;
     cv::putText(img, w, cv::Point(x, baselineY), font, scale, ink, thickness, cv::LINE_AA);
     x += s.width + space;
   }
@@ -97,14 +99,16 @@ cv::Mat makeNoiseTexture(
         cell == 1 ? cv::INTER_NEAREST : cv::INTER_CUBIC);
     acc += up(cv::Rect(cell, cell, size.width, size.height));
   }
-  if (octaves > 0) acc *= 1.0 / std::sqrt(static_cast<double>(octaves));
+  if (octaves > 0)
+    acc *= 1.0 / std::sqrt(static_cast<double>(octaves));
   cv::Mat out(size, CV_8UC3);
   for (int r = 0; r < size.height; ++r)
   {
     const float* a = acc.ptr<float>(r);
     auto* o = out.ptr<cv::Vec3b>(r);
     for (int c = 0; c < size.width; ++c)
-      for (int k = 0; k < 3; ++k) o[c][k] = cv::saturate_cast<uchar>(base[k] + contrast * a[c]);
+      for (int k = 0; k < 3; ++k)
+        o[c][k] = cv::saturate_cast<uchar>(base[k] + contrast * a[c]);
   }
   return out;
 }
@@ -128,8 +132,7 @@ cv::Mat makeTextPage(mrpt::random::CRandomGenerator& rng, cv::Size size, double 
       const double h = lineHeightPx * rng.drawUniform(1.3, 2.0);
       y += h * 1.4;
       writeLine(
-          rng, img, x0, x0 + static_cast<int>((x1 - x0) * 0.7), static_cast<int>(y), font, h,
-          ink);
+          rng, img, x0, x0 + static_cast<int>((x1 - x0) * 0.7), static_cast<int>(y), font, h, ink);
       y += h * 0.8;
     }
     else if (kind == 1 && y + 6 * lineHeightPx < size.height - margin)
@@ -196,8 +199,8 @@ cv::Mat makePoster(mrpt::random::CRandomGenerator& rng, cv::Size size)
   const int band = size.height / 6;
   cv::rectangle(img, cv::Rect(0, 0, size.width, band), randColour(rng, 0, 60), cv::FILLED);
   writeLine(
-      rng, img, size.width / 20, size.width - size.width / 20, band * 3 / 4, kFonts[randInt(rng, 0, 3)],
-      band * 0.5, cv::Scalar(245, 245, 245));
+      rng, img, size.width / 20, size.width - size.width / 20, band * 3 / 4,
+      kFonts[randInt(rng, 0, 3)], band * 0.5, cv::Scalar(245, 245, 245));
   return img;
 }
 
@@ -216,8 +219,8 @@ cv::Mat makeCheckerboard(mrpt::random::CRandomGenerator& rng, cv::Size size, int
 cv::Mat makeWoodTexture(mrpt::random::CRandomGenerator& rng, cv::Size size, int plankWidthPx)
 {
   // Grain: noise stretched along the planks (image rows), one tint per plank.
-  cv::Mat grain = makeNoiseTexture(
-      rng, cv::Size(size.width, size.height / 8 + 1), {128, 128, 128}, 60, 2);
+  cv::Mat grain =
+      makeNoiseTexture(rng, cv::Size(size.width, size.height / 8 + 1), {128, 128, 128}, 60, 2);
   cv::Mat img(size, CV_8UC3);
   plankWidthPx = std::max(2, plankWidthPx);
   const cv::Scalar wood(randInt(rng, 45, 70), randInt(rng, 85, 110), randInt(rng, 125, 160));
@@ -244,7 +247,8 @@ cv::Mat makeWoodTexture(mrpt::random::CRandomGenerator& rng, cv::Size size, int 
 void pasteTexture(cv::Mat& dst, const cv::Mat& patch, cv::Point topLeft)
 {
   const cv::Rect target = cv::Rect(topLeft, patch.size()) & cv::Rect(0, 0, dst.cols, dst.rows);
-  if (target.empty()) return;
+  if (target.empty())
+    return;
   patch(cv::Rect(target.tl() - topLeft, target.size())).copyTo(dst(target));
 }
 }  // namespace roislam::sim

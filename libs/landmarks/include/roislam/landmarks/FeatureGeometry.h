@@ -59,17 +59,20 @@ struct TRigidFit
   /** pose such that a_i = pose (+) b_i for the inlier pairs. */
   mrpt::poses::CPose3D pose;
   int inliers = 0;
+  /** Valid pairs considered. */
+  int pairs = 0;
   /** RMS residual of the inliers, metres. */
   double rms = 0;
 };
 
-/** Rigid transform between corresponding 3-D points (Horn's closed form,
- *  mrpt::tfest::se3_l2), made robust by twice dropping the pairs whose
- *  residual exceeds max(3 x median residual, minThreshold) and refitting.
- *  nullopt with fewer than 3 pairs or a degenerate fit. */
+/** Rigid transform between corresponding 3-D points: RANSAC over minimal
+ *  3-pair samples (deterministic seed) with inlier distance `threshold`
+ *  (metres), then Horn's closed form (mrpt::tfest::se3_l2) refitted on the
+ *  inliers. Pairs with an invalid point are ignored. nullopt with fewer than
+ *  3 valid pairs or no non-degenerate sample. */
 std::optional<TRigidFit> fitRigid(
     const std::vector<mrpt::math::TPoint3D>& a, const std::vector<mrpt::math::TPoint3D>& b,
-    double minThreshold = 0.01);
+    double threshold, int iterations = 100);
 
 /** Optical-frame point -> MRPT camera frame (x forward, y left, z up). */
 mrpt::math::TPoint3D opticalToMrptCamera(const mrpt::math::TPoint3D& p);

@@ -16,11 +16,11 @@ class CCameraPath
   struct TParams
   {
     /** Body pose (x forward, y left, z up) at the start and centre of the wobble. */
-    double x = 0.1, y = 0.0, z = 1.35;  //!< metres
+    double x = 0.1, y = 0.0, z = 1.35;              //!< metres
     double yawDeg = 0, pitchDeg = 17, rollDeg = 0;  //!< pitch > 0 looks down
-    double translationAmplitude = 0.3;  //!< metres, lateral half-extent of the loop
+    double translationAmplitude = 0.3;              //!< metres, lateral half-extent of the loop
     double yawAmplitudeDeg = 25, pitchAmplitudeDeg = 5, rollAmplitudeDeg = 4;
-    double maxLinearSpeed = 0.5;  //!< m/s
+    double maxLinearSpeed = 0.5;     //!< m/s
     double maxAngularSpeedDeg = 60;  //!< deg/s
   };
 

@@ -23,11 +23,11 @@ class CKinectNoiseModel
  public:
   struct TParams
   {
-    double sigmaA = 0.0012;  //!< metres
-    double sigmaB = 0.0019;  //!< metres / metre^2
-    double sigmaZ0 = 0.4;  //!< metres
+    double sigmaA = 0.0012;       //!< metres
+    double sigmaB = 0.0019;       //!< metres / metre^2
+    double sigmaZ0 = 0.4;         //!< metres
     double edgeJumpRatio = 0.03;  //!< relative depth jump that drops a pixel
-    double rgbNoiseStd = 2.0;  //!< grey levels
+    double rgbNoiseStd = 2.0;     //!< grey levels
   };
 
   explicit CKinectNoiseModel(const TParams& p) : m_p(p) {}

@@ -50,10 +50,9 @@
 #include <mrpt/poses/CPose3D.h>
 #include <mrpt/system/COutputLogger.h>
 
-#include <opencv2/core/mat.hpp>
-
 #include <cstdint>
 #include <memory>
+#include <opencv2/core/mat.hpp>
 #include <string>
 
 #include "roislam/sim/CCameraPath.h"
@@ -99,16 +98,16 @@ class CRgbdSimulator : public mrpt::system::COutputLogger
     std::size_t index = 0;
     double timestamp = 0, depthTimestamp = 0;
     mrpt::poses::CPose3D pose;  //!< colour optical frame in the world (ground truth)
-    cv::Mat rgb;  //!< CV_8UC3 BGR
-    cv::Mat depth;  //!< CV_32FC1 metres, 0 = no reading (not yet quantised)
+    cv::Mat rgb;                //!< CV_8UC3 BGR
+    cv::Mat depth;              //!< CV_32FC1 metres, 0 = no reading (not yet quantised)
   };
 
   struct TWriteStats
   {
     std::size_t frames = 0;
     double renderSeconds = 0;  //!< rendering and noise
-    double writeSeconds = 0;  //!< PNG encoding and files
-    double totalSeconds = 0;  //!< including scene construction
+    double writeSeconds = 0;   //!< PNG encoding and files
+    double totalSeconds = 0;   //!< including scene construction
   };
 
   /** Validates the options and builds the scene and the path (no OpenGL yet). */

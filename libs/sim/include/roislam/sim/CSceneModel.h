@@ -17,9 +17,8 @@
 #include <mrpt/opengl/COpenGLScene.h>
 #include <mrpt/poses/CPose3D.h>
 
-#include <opencv2/core/mat.hpp>
-
 #include <cstdint>
+#include <opencv2/core/mat.hpp>
 #include <optional>
 #include <string>
 #include <vector>
@@ -33,15 +32,15 @@ namespace roislam::sim
 struct TTexturedRect
 {
   std::string name;
-  mrpt::poses::CPose3D pose;  //!< rectangle frame in the world
+  mrpt::poses::CPose3D pose;     //!< rectangle frame in the world
   double width = 1, height = 1;  //!< metres
-  cv::Mat texture;  //!< CV_8UC3 BGR, already shaded
+  cv::Mat texture;               //!< CV_8UC3 BGR, already shaded
 };
 
 /** Result of a ray cast against the scene. */
 struct TRayHit
 {
-  double distance = 0;  //!< along the (unnormalised) direction: point = origin + distance * dir
+  double distance = 0;   //!< along the (unnormalised) direction: point = origin + distance * dir
   std::size_t rect = 0;  //!< index into CSceneModel::rects()
   mrpt::math::TPoint3D point;  //!< world coordinates
 };
