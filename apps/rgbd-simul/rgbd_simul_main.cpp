@@ -30,7 +30,14 @@ int main(int argc, char** argv)
   auto* optSeed = app.add_option("--seed", seed, "Noise seed");
   app.add_flag("--no-noise", noNoise, "Perfect depth and colour (range limits still apply)");
   app.add_option("--config", config, "Ini file with a [RgbdSimulator] section");
-  CLI11_PARSE(app, argc, argv);
+  try
+  {
+    app.parse(argc, argv);
+  }
+  catch (const CLI::ParseError& e)
+  {
+    return app.exit(e) == 0 ? 0 : 1;  // --help is not an error
+  }
 
   try
   {

@@ -295,36 +295,38 @@ TEST(RgbdSimulator, WritesTumLayoutMatchingRenderedFrames)
   // Nothing but the output is left in the parent folder.
   EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator()), 1);
 
-  CRgbdSimulator sim(o);
-  const auto gt = roislam::io::loadTumTrajectory((out / "groundtruth.txt").string());
-  ASSERT_EQ(gt.size(), 4u);
-  for (std::size_t i = 0; i < 4; ++i)
-  {
-    EXPECT_NEAR(gt[i].timestamp, sim.timestamp(i), 1e-6);
-    EXPECT_LT((gt[i].pose.translation() - sim.groundTruthPose(i).translation()).norm(), 1e-9);
+  {  // one rendering simulator per thread at a time
+    CRgbdSimulator sim(o);
+    const auto gt = roislam::io::loadTumTrajectory((out / "groundtruth.txt").string());
+    ASSERT_EQ(gt.size(), 4u);
+    for (std::size_t i = 0; i < 4; ++i)
+    {
+      EXPECT_NEAR(gt[i].timestamp, sim.timestamp(i), 1e-6);
+      EXPECT_LT((gt[i].pose.translation() - sim.groundTruthPose(i).translation()).norm(), 1e-9);
+    }
+    EXPECT_NEAR(sim.timestamp(1) - sim.timestamp(0), 1 / 30.0, 1e-6);
+
+    // Depth PNG = rendered depth x 5000, rounded; same seed gives the same noise.
+    const auto f2 = sim.renderFrame(2);
+    char name[64];
+    std::snprintf(name, sizeof(name), "depth/%.6f.png", f2.depthTimestamp);
+    const cv::Mat png = cv::imread((out / name).string(), cv::IMREAD_UNCHANGED);
+    ASSERT_EQ(png.type(), CV_16UC1) << name;
+    cv::Mat expected;
+    f2.depth.convertTo(expected, CV_16UC1, 5000.0);
+    EXPECT_EQ(cv::norm(png, expected, cv::NORM_INF), 0.0);
+    std::snprintf(name, sizeof(name), "rgb/%.6f.png", f2.timestamp);
+    const cv::Mat rgb = cv::imread((out / name).string(), cv::IMREAD_UNCHANGED);
+    ASSERT_EQ(rgb.type(), CV_8UC3);
+    EXPECT_EQ(cv::norm(rgb, f2.rgb, cv::NORM_INF), 0.0);
+
+    mrpt::img::TCamera cam;
+    cam.loadFromConfigFile(
+        "CAMERA_PARAMS", mrpt::config::CConfigFile((out / "camera.ini").string()));
+    EXPECT_DOUBLE_EQ(cam.fx(), 517.3);
+    EXPECT_DOUBLE_EQ(cam.cy(), 255.3);
+    EXPECT_EQ(cam.ncols, 640u);
   }
-  EXPECT_NEAR(sim.timestamp(1) - sim.timestamp(0), 1 / 30.0, 1e-6);
-
-  // Depth PNG = rendered depth x 5000, rounded; same seed gives the same noise.
-  const auto f2 = sim.renderFrame(2);
-  char name[64];
-  std::snprintf(name, sizeof(name), "depth/%.6f.png", f2.depthTimestamp);
-  const cv::Mat png = cv::imread((out / name).string(), cv::IMREAD_UNCHANGED);
-  ASSERT_EQ(png.type(), CV_16UC1) << name;
-  cv::Mat expected;
-  f2.depth.convertTo(expected, CV_16UC1, 5000.0);
-  EXPECT_EQ(cv::norm(png, expected, cv::NORM_INF), 0.0);
-  std::snprintf(name, sizeof(name), "rgb/%.6f.png", f2.timestamp);
-  const cv::Mat rgb = cv::imread((out / name).string(), cv::IMREAD_UNCHANGED);
-  ASSERT_EQ(rgb.type(), CV_8UC3);
-  EXPECT_EQ(cv::norm(rgb, f2.rgb, cv::NORM_INF), 0.0);
-
-  mrpt::img::TCamera cam;
-  cam.loadFromConfigFile("CAMERA_PARAMS", mrpt::config::CConfigFile((out / "camera.ini").string()));
-  EXPECT_DOUBLE_EQ(cam.fx(), 517.3);
-  EXPECT_DOUBLE_EQ(cam.cy(), 255.3);
-  EXPECT_EQ(cam.ncols, 640u);
-
   // Writing again replaces the earlier output.
   auto o2 = o;
   o2.frames = 2;
@@ -359,4 +361,20 @@ TEST(RgbdSimulator, BadOutputPathsFailCleanly)
   // No temporary folders left behind.
   EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator()), 2);
   fs::remove_all(dir);
+}
+
+TEST(RgbdSimulator, OneRenderingSimulatorPerThread)
+{
+  cv::Mat first;
+  {
+    CRgbdSimulator a(opts("textured", false, 4));
+    first = a.renderFrame(1).rgb;
+    CRgbdSimulator b(opts("featureless", false, 4));
+    // b would share a's per-thread GL state and render garbage: refused.
+    EXPECT_THROW(b.renderFrame(1), std::logic_error);
+    EXPECT_EQ(cv::norm(first, a.renderFrame(1).rgb, cv::NORM_INF), 0.0);
+  }
+  // Once a is gone, a new simulator renders normally.
+  CRgbdSimulator c(opts("textured", false, 4));
+  EXPECT_EQ(cv::norm(first, c.renderFrame(1).rgb, cv::NORM_INF), 0.0);
 }

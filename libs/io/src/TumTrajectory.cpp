@@ -69,8 +69,11 @@ mrpt::poses::CPose3D poseFromTum(const std::array<double, 8>& v)
 /** Shortest text that reads back as exactly the same double. */
 std::string formatDouble(double x)
 {
-  std::array<char, 64> buf{};
-  const auto [ptr, ec] = std::to_chars(buf.data(), buf.data() + buf.size(), x);
+  std::array<char, 400> buf{};
+  // Shortest fixed-notation text that reads back exactly: TUM files never
+  // use exponents (a stamp of 1e+09 would look foreign to other tools).
+  const auto [ptr, ec] =
+      std::to_chars(buf.data(), buf.data() + buf.size(), x, std::chars_format::fixed);
   if (ec != std::errc())
     throw std::runtime_error("cannot format a number");
   return std::string(buf.data(), ptr);

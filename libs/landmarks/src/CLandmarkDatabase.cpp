@@ -44,6 +44,14 @@ void CLandmarkDatabase::TOptions::loadFromConfigFile(
   prefilter_radius = detail::readDouble(c, s, "prefilter_radius", prefilter_radius);
   min_votes = detail::readInt(c, s, "min_votes", min_votes);
   min_overlap = detail::readDouble(c, s, "min_overlap", min_overlap);
+  rigid_threshold = detail::readDouble(c, s, "rigid_threshold", rigid_threshold);
+  min_rigid_inliers = detail::readInt(c, s, "min_rigid_inliers", min_rigid_inliers);
+  min_rigid_fraction = detail::readDouble(c, s, "min_rigid_fraction", min_rigid_fraction);
+  detail::require(rigid_threshold > 0, s, "rigid_threshold", rigid_threshold, "> 0");
+  detail::require(min_rigid_inliers >= 3, s, "min_rigid_inliers", min_rigid_inliers, ">= 3");
+  detail::require(
+      min_rigid_fraction >= 0 && min_rigid_fraction <= 1, s, "min_rigid_fraction",
+      min_rigid_fraction, "in [0, 1]");
   detail::require(max_candidates >= 0, s, "max_candidates", max_candidates, ">= 0");
   detail::require(prefilter_radius >= 0, s, "prefilter_radius", prefilter_radius, ">= 0");
   detail::require(min_votes >= 0, s, "min_votes", min_votes, ">= 0");
@@ -57,6 +65,9 @@ void CLandmarkDatabase::TOptions::saveToConfigFile(
   c.write(s, "prefilter_radius", prefilter_radius);
   c.write(s, "min_votes", min_votes);
   c.write(s, "min_overlap", min_overlap);
+  c.write(s, "rigid_threshold", rigid_threshold);
+  c.write(s, "min_rigid_inliers", min_rigid_inliers);
+  c.write(s, "min_rigid_fraction", min_rigid_fraction);
 }
 
 CLandmarkDatabase::CLandmarkDatabase()
@@ -161,8 +172,10 @@ std::vector<int32_t> CLandmarkDatabase::candidates(
 
 CLandmarkDatabase::TQueryResult CLandmarkDatabase::query(
     const features::TFeatureSet& roiFeatures, const cv::Rect& roiBox, const cv::Size& imageSize,
+    const std::vector<mrpt::math::TPoint3D>& roiPoints,
     const std::optional<mrpt::math::TPoint3D>& worldPosition) const
 {
+  const bool haveRoiPoints = roiPoints.size() == roiFeatures.size();
   TQueryResult best;
   if (roiFeatures.empty() || m_landmarks.empty())
     return best;
@@ -187,7 +200,31 @@ CLandmarkDatabase::TQueryResult CLandmarkDatabase::query(
     const double overlap = uni > 0 ? inter / uni : 0;
     if (overlap < m_options.min_overlap)
       continue;
-    const int inliers = static_cast<int>(located->inliers.size());
+    int inliers = static_cast<int>(located->inliers.size());
+
+    // 3-D check: the inliers' first-sight and current points must be related
+    // by one rigid motion (a similar texture elsewhere is not).
+    std::optional<TRigidFit> rigid;
+    if (haveRoiPoints && lm.featurePoints.size() == lm.features.size())
+    {
+      std::vector<mrpt::math::TPoint3D> now, then;
+      for (const auto& m : located->inliers)
+      {
+        now.push_back(roiPoints[m.trainIdx]);
+        then.push_back(lm.featurePoints[m.queryIdx]);
+      }
+      int pairs = 0;
+      for (std::size_t i = 0; i < now.size(); ++i)
+        pairs += isValidPoint(now[i]) && isValidPoint(then[i]);
+      if (pairs >= m_options.min_rigid_inliers)
+      {
+        rigid = fitRigid(now, then, m_options.rigid_threshold);
+        if (!rigid || rigid->inliers < m_options.min_rigid_inliers ||
+            rigid->inliers < m_options.min_rigid_fraction * rigid->pairs)
+          continue;
+        inliers = rigid->inliers;
+      }
+    }
     if (inliers > best.inliers)
     {
       best.landmarkId = id;
@@ -197,6 +234,7 @@ CLandmarkDatabase::TQueryResult CLandmarkDatabase::query(
       best.locatedBox = located->box;
       best.overlap = overlap;
       best.inlierMatches = located->inliers;
+      best.rigid = rigid;
     }
   }
   return best;

@@ -96,7 +96,7 @@ TFrameResult CRoiLandmarkTracker::process(
   if (cameraPose && depth.position)
     world = cameraPose->composePoint(*depth.position);
 
-  const auto q = m_database.query(roiFeatures, roi->box, size, world);
+  const auto q = m_database.query(roiFeatures, roi->box, size, roiPoints, world);
   r.candidates = q.candidates;
   r.status = ERoiStatus::Landmark;
 
@@ -116,22 +116,11 @@ TFrameResult CRoiLandmarkTracker::process(
     // Where the stored landmark point is now: the 3-D alignment of the
     // inliers' first-sight points with their current points maps it here.
     const CLandmark& lm = m_database.landmark(*q.landmarkId);
-    std::optional<TRigidFit> fit;
-    if (lm.hasPositionCamera && lm.featurePoints.size() == lm.features.size())
+    if (q.rigid && lm.hasPositionCamera)
     {
-      std::vector<mrpt::math::TPoint3D> now, then;
-      for (const auto& m : q.inlierMatches)
-      {
-        now.push_back(roiPoints[m.trainIdx]);
-        then.push_back(lm.featurePoints[m.queryIdx]);
-      }
-      fit = fitRigid(now, then);
-    }
-    if (fit && fit->inliers >= m_options.tracker.min_rigid_pairs)
-    {
-      r.rigidInliers = fit->inliers;
-      r.rigidRms = fit->rms;
-      r.landmarkPosition = fit->pose.composePoint(lm.positionCamera);
+      r.rigidInliers = q.rigid->inliers;
+      r.rigidRms = q.rigid->rms;
+      r.landmarkPosition = q.rigid->pose.composePoint(lm.positionCamera);
     }
     else  // no usable depth: the features inside the located box
       r.landmarkPosition = featureDepth(

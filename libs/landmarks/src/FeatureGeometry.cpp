@@ -8,8 +8,8 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <random>
 #include <opencv2/calib3d.hpp>
+#include <random>
 
 namespace roislam::landmarks
 {
@@ -99,7 +99,8 @@ std::optional<TRigidFit> fitRigid(
       vb.push_back(b[i]);
     }
   const std::size_t n = va.size();
-  if (n < 3) return std::nullopt;
+  if (n < 3)
+    return std::nullopt;
 
   auto fit = [&](const std::vector<std::size_t>& idx) -> std::optional<mrpt::poses::CPose3D>
   {
@@ -111,16 +112,19 @@ std::optional<TRigidFit> fitRigid(
     }
     mrpt::poses::CPose3DQuat q;
     double scale = 1;
-    if (!mrpt::tfest::se3_l2(sa, sb, q, scale, true)) return std::nullopt;
+    if (!mrpt::tfest::se3_l2(sa, sb, q, scale, true))
+      return std::nullopt;
     const mrpt::poses::CPose3D p(q);
-    if (!std::isfinite(p.x()) || !std::isfinite(p.yaw())) return std::nullopt;
+    if (!std::isfinite(p.x()) || !std::isfinite(p.yaw()))
+      return std::nullopt;
     return p;
   };
   auto inliersOf = [&](const mrpt::poses::CPose3D& p)
   {
     std::vector<std::size_t> in;
     for (std::size_t i = 0; i < n; ++i)
-      if ((p.composePoint(vb[i]) - va[i]).norm() <= threshold) in.push_back(i);
+      if ((p.composePoint(vb[i]) - va[i]).norm() <= threshold)
+        in.push_back(i);
     return in;
   };
 
@@ -130,24 +134,32 @@ std::optional<TRigidFit> fitRigid(
   for (int it = 0; it < iterations; ++it)
   {
     const std::size_t i = pick(rng), j = pick(rng), k = pick(rng);
-    if (i == j || j == k || i == k) continue;
+    if (i == j || j == k || i == k)
+      continue;
     // Nearly collinear samples give an ill-defined rotation.
     const auto u = vb[j] - vb[i], v = vb[k] - vb[i];
-    if (mrpt::math::crossProduct3D(u, v).norm() < 1e-6) continue;
+    if (mrpt::math::crossProduct3D(u, v).norm() < 1e-6)
+      continue;
     const auto p = fit({i, j, k});
-    if (!p) continue;
+    if (!p)
+      continue;
     auto in = inliersOf(*p);
-    if (in.size() > best.size()) best = std::move(in);
-    if (best.size() == n) break;
+    if (in.size() > best.size())
+      best = std::move(in);
+    if (best.size() == n)
+      break;
   }
-  if (best.size() < 3) return std::nullopt;
+  if (best.size() < 3)
+    return std::nullopt;
   // Refit on the consensus set, then recount once with the refined pose.
   auto p = fit(best);
-  if (!p) return std::nullopt;
+  if (!p)
+    return std::nullopt;
   auto in = inliersOf(*p);
   if (in.size() >= 3 && in.size() >= best.size())
   {
-    if (auto p2 = fit(in)) p = p2;
+    if (auto p2 = fit(in))
+      p = p2;
     best = std::move(in);
   }
   TRigidFit out;
@@ -155,7 +167,8 @@ std::optional<TRigidFit> fitRigid(
   out.pairs = static_cast<int>(n);
   out.inliers = static_cast<int>(best.size());
   double sq = 0;
-  for (auto i : best) sq += (p->composePoint(vb[i]) - va[i]).sqrNorm();
+  for (auto i : best)
+    sq += (p->composePoint(vb[i]) - va[i]).sqrNorm();
   out.rms = std::sqrt(sq / best.size());
   return out;
 }

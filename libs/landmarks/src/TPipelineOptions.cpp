@@ -16,8 +16,6 @@ void TTrackerOptions::loadFromConfigFile(
   min_depth = detail::readDouble(c, s, "min_depth", min_depth);
   max_depth = detail::readDouble(c, s, "max_depth", max_depth);
   confirm = detail::readBool(c, s, "confirm", confirm);
-  min_rigid_pairs = detail::readInt(c, s, "min_rigid_pairs", min_rigid_pairs);
-  detail::require(min_rigid_pairs >= 3, s, "min_rigid_pairs", min_rigid_pairs, ">= 3");
   detail::require(min_depth > 0, s, "min_depth", min_depth, "> 0");
   detail::require(max_depth > min_depth, s, "max_depth", max_depth, "> min_depth");
 }
@@ -27,7 +25,6 @@ void TTrackerOptions::saveToConfigFile(mrpt::config::CConfigFileBase& c, const s
   c.write(s, "min_depth", min_depth);
   c.write(s, "max_depth", max_depth);
   c.write(s, "confirm", confirm);
-  c.write(s, "min_rigid_pairs", min_rigid_pairs);
 }
 
 namespace

@@ -347,6 +347,13 @@ void CRgbdSimulator::TOptions::validate(const std::string& section) const
 
 // ---------------------------------------------------------------- simulator
 
+namespace
+{
+// MRPT binds GL resources per thread, not per context: a second live renderer
+// in the same thread silently renders garbage. One owner per thread is enforced.
+thread_local const void* tGlOwner = nullptr;
+}  // namespace
+
 struct CRgbdSimulator::Impl
 {
   mrpt::opengl::COpenGLScene::Ptr glScene;
@@ -364,7 +371,15 @@ CRgbdSimulator::CRgbdSimulator(const TOptions& options)
 {
 }
 
-CRgbdSimulator::~CRgbdSimulator() = default;
+CRgbdSimulator::~CRgbdSimulator()
+{
+  if (m_impl && m_impl->fbo && tGlOwner == this)
+  {
+    m_impl->fbo.reset();
+    m_impl->glScene.reset();
+    tGlOwner = nullptr;
+  }
+}
 
 mrpt::img::TCamera CRgbdSimulator::camera() const
 {
@@ -400,12 +415,17 @@ CRgbdSimulator::TFrame CRgbdSimulator::renderFrame(std::size_t i)
   const unsigned W = m_opts.width, H = m_opts.height;
   if (!m_impl->fbo)
   {
+    if (tGlOwner != nullptr)
+      throw std::logic_error(
+          "another CRgbdSimulator already renders in this thread; destroy it before rendering "
+          "with a second one (MRPT keeps GL state per thread)");
     // Exact linear depth (the default LUT reads e.g. 2.9996 for 3.0 m).
     ::setenv("MRPT_FBORENDER_USE_LUT", "false", 1);
     m_impl->glScene = m_scene.makeOpenGLScene();
     try
     {
       m_impl->fbo = std::make_unique<mrpt::opengl::CFBORender>(W * ss, H * ss);
+      tGlOwner = this;
     }
     catch (const std::exception& e)
     {

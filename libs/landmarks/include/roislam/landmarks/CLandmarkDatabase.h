@@ -1,7 +1,9 @@
 /* The landmark database of the dissertation's Test 1: starts empty; a
  * confirmed ROI is matched against the stored landmarks (descriptor matching
- * + RANSAC homography verification); the landmark with the most homography
- * inliers is recalled, otherwise the ROI becomes a new landmark.
+ * + RANSAC homography verification, then, where the features have depth, a
+ * RANSAC rigid 3-D alignment of the homography inliers: a recall must be the
+ * same physical surface, not just a similar-looking one); the landmark with
+ * the most inliers is recalled, otherwise the ROI becomes a new landmark.
  *
  * To keep a query cheap as the database grows, at most max_candidates
  * landmarks are verified: when there are more, every ROI feature votes for the
@@ -17,6 +19,7 @@
 #include <mrpt/config/CLoadableOptions.h>
 #include <mrpt/serialization/CSerializable.h>
 #include <roislam/landmarks/CLandmark.h>
+#include <roislam/landmarks/FeatureGeometry.h>
 #include <roislam/matching/CFeatureMatcher.h>
 #include <roislam/matching/CHomographyLocator.h>
 
@@ -41,17 +44,28 @@ class CLandmarkDatabase : public mrpt::serialization::CSerializable
    *                      votes (default 4)
    *  - min_overlap       [0,1]: a recall needs the landmark, located in the
    *                      query frame by the homography, to overlap the ROI
-   *                      with at least this intersection-over-union: a
-   *                      landmark that is only a small part of a bigger ROI
-   *                      (or the reverse) is a different region. 0.5 is the
-   *                      usual "same object" criterion (PASCAL VOC). (default 0.5)
+   *                      with at least this intersection-over-union; 0 = off
+   *                      (default 0: the ROI detector's box varies a lot
+   *                      between frames for the same surface)
+   *  - rigid_threshold   metres > 0: inlier distance of the 3-D alignment
+   *                      (default 0.05: 3 sigma of Kinect depth noise at about
+   *                      3 m, Khoshelham & Elberink 2012)
+   *  - min_rigid_inliers int >= 3: homography inliers with depth needed to
+   *                      run the 3-D check; with fewer the homography alone
+   *                      decides (default 6)
+   *  - min_rigid_fraction [0,1]: share of those pairs the alignment must
+   *                      explain for the recall to stand (default 0.5: a
+   *                      majority)
    */
   struct TOptions : public mrpt::config::CLoadableOptions
   {
     int max_candidates = 8;
     double prefilter_radius = 1.5;
     int min_votes = 4;
-    double min_overlap = 0.5;
+    double min_overlap = 0;
+    double rigid_threshold = 0.05;
+    int min_rigid_inliers = 6;
+    double min_rigid_fraction = 0.5;
 
     void loadFromConfigFile(
         const mrpt::config::CConfigFileBase& source, const std::string& section) override;
@@ -75,6 +89,9 @@ class CLandmarkDatabase : public mrpt::serialization::CSerializable
     /** Homography inliers of the recall: queryIdx indexes the landmark's
      *  features, trainIdx the query ROI's. */
     std::vector<cv::DMatch> inlierMatches;
+    /** The 3-D check of the recall, when enough inliers had depth: pose
+     *  maps the landmark's first-sight camera frame into the query frame. */
+    std::optional<TRigidFit> rigid;
     /** Landmarks verified by homography for this query. */
     int candidates = 0;
   };
@@ -86,9 +103,12 @@ class CLandmarkDatabase : public mrpt::serialization::CSerializable
 
   /** Matches a ROI's features (keypoints in its frame's pixels) against the
    *  database; roiBox is the ROI in that frame (for the overlap test).
-   *  worldPosition enables the position prefilter. */
+   *  roiPoints: optical-frame 3-D points of the ROI features (parallel to
+   *  roiFeatures, NaN = no depth; empty = no 3-D check). worldPosition
+   *  enables the position prefilter. */
   TQueryResult query(
       const features::TFeatureSet& roiFeatures, const cv::Rect& roiBox, const cv::Size& imageSize,
+      const std::vector<mrpt::math::TPoint3D>& roiPoints = {},
       const std::optional<mrpt::math::TPoint3D>& worldPosition = std::nullopt) const;
 
   /** Stores a new landmark; assigns and returns its id (its index). */

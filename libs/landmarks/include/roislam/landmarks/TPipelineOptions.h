@@ -23,15 +23,12 @@ namespace roislam::landmarks
  *  - confirm     bool: a ROI must be re-found in the previous frame before it
  *                is matched against the database, as in the dissertation
  *                (default true)
- *  - min_rigid_pairs  int >= 3: homography inliers with depth needed to
- *                locate a recalled landmark by 3-D alignment (default 6)
  */
 struct TTrackerOptions : public mrpt::config::CLoadableOptions
 {
   double min_depth = 0.1;
   double max_depth = 8.0;
   bool confirm = true;
-  int min_rigid_pairs = 6;
 
   void loadFromConfigFile(
       const mrpt::config::CConfigFileBase& source, const std::string& section) override;

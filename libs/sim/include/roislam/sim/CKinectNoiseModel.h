@@ -8,7 +8,9 @@
  *  - colour sensor noise, Gaussian with rgbNoiseStd grey levels per channel.
  * The range limits (no reading outside [minDepth, maxDepth]) hold for noise-free
  * frames too and are applied by the simulator separately (applyRange).
- * Deterministic: all randomness comes from the generator passed in.
+ * Deterministic: the per-pixel normal draws come from OpenCV's cv::RNG (fast)
+ * seeded with draws of the MRPT generator passed in, so the result depends
+ * only on that generator's state.
  */
 #pragma once
 

@@ -32,7 +32,8 @@
  *   depth_noise_z0     z0, m                                          [0.4]
  *   edge_jump_ratio    relative 3x3 depth jump that drops a pixel     [0.03]
  *   rgb_noise_std      colour noise, grey levels                      [2.0]
- *   supersampling      colour anti-aliasing factor, 1..4              [2]
+ *   supersampling      render ss x ss samples per pixel, 1..4         [2]
+ *                      (colour: block mean; depth stays exact at pixel centres)
  *   texels_per_metre   wall texture density (objects 2.5x), [50,3000] [600]
  *   path_translation_amplitude  lateral half-extent of the loop, m    [0.3]
  *   path_yaw_amplitude_deg, path_pitch_amplitude_deg,
@@ -127,7 +128,11 @@ class CRgbdSimulator : public mrpt::system::COutputLogger
   mrpt::poses::CPose3D groundTruthPose(std::size_t i) const;
 
   /** Renders frame i (0 <= i < frames); noise per options, deterministic in
-   *  (seed, i). The OpenGL context is created on first call, in this thread. */
+   *  (seed, i). The OpenGL (EGL) context is created on first call, in this
+   *  thread; that call also sets MRPT_FBORENDER_USE_LUT=false in the process
+   *  environment so MRPT returns exact linear depth. Only one simulator per thread
+   *  may render at a time (MRPT keeps GL state per thread): rendering with a
+   *  second one while the first is alive throws std::logic_error. */
   TFrame renderFrame(std::size_t i);
 
   /** Renders every frame and writes the TUM layout to outDir (see above).
