@@ -7,6 +7,7 @@
 #include <roislam/landmarks/FeatureGeometry.h>
 
 #include <cmath>
+#include <limits>
 
 #include "SyntheticScene.h"
 
@@ -105,6 +106,30 @@ TEST(FeatureGeometry, DepthStatisticsAndPositionOnAPlane)
   EXPECT_EQ(none.valid, 0);
   EXPECT_TRUE(std::isnan(none.mean));
   EXPECT_FALSE(none.position);
+}
+
+TEST(FeatureGeometry, RigidFitRecoversAMotionDespiteOutliers)
+{
+  const mrpt::poses::CPose3D motion(0.1, -0.05, 0.2, 0.3, -0.1, 0.05);
+  std::vector<mrpt::math::TPoint3D> before, after;
+  for (int i = 0; i < 40; ++i)
+  {
+    const mrpt::math::TPoint3D p(0.05 * (i % 7) - 0.15, 0.04 * (i % 5) - 0.1, 1.0 + 0.03 * (i % 9));
+    before.push_back(p);
+    after.push_back(motion.composePoint(p));
+  }
+  for (int i = 0; i < 40; i += 5)
+    after[i].z += 0.5;  // 8 outliers (depth edges, say)
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  before[1] = {nan, nan, nan};  // no depth: ignored
+  const auto fit = fitRigid(after, before, 0.01);
+  ASSERT_TRUE(fit);
+  EXPECT_EQ(fit->pairs, 39);
+  EXPECT_EQ(fit->inliers, 31);
+  EXPECT_LT(fit->rms, 1e-6);
+  EXPECT_NEAR(fit->pose.x(), 0.1, 1e-6);
+  EXPECT_NEAR(fit->pose.yaw(), 0.3, 1e-6);
+  EXPECT_FALSE(fitRigid({{0, 0, 1}, {1, 0, 1}}, {{0, 0, 1}, {1, 0, 1}}, 0.01));
 }
 
 TEST(FeatureGeometry, OpticalToMrptCamera)

@@ -5,8 +5,10 @@
 #include <roislam/landmarks/CLandmarkDatabase.h>
 #include <roislam/testing/TestData.h>
 
+#include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <opencv2/imgproc.hpp>
 
 #include "SyntheticScene.h"
@@ -29,7 +31,11 @@ CLandmark landmarkOf(unsigned seed, features::EFeatureType type)
   lm.box = box;
   lm.imageSize = img.size();
   lm.patch = img(box).clone();
-  lm.positionCamera = {0.1 * seed, -0.2, 1.5};
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  for (std::size_t i = 0; i < lm.features.size(); ++i)
+    lm.featurePoints.push_back(
+        i % 7 == 3 ? mrpt::math::TPoint3D(nan, nan, nan)
+                   : mrpt::math::TPoint3D(0.001 * i, -0.002 * i, 1.0 + 1e-3 * seed));
   lm.hasPositionCamera = true;
   lm.positionWorld = {1.0, 2.0 * seed, 3.0};
   lm.hasPositionWorld = seed % 2 == 0;
@@ -72,6 +78,12 @@ void expectSame(const CLandmark& a, const CLandmark& b)
     EXPECT_EQ(p.class_id, q.class_id);
   }
   EXPECT_TRUE(sameMat(a.features.descriptors, b.features.descriptors));
+  ASSERT_EQ(a.featurePoints.size(), b.featurePoints.size());
+  EXPECT_EQ(
+      std::memcmp(
+          a.featurePoints.data(), b.featurePoints.data(),
+          a.featurePoints.size() * sizeof(mrpt::math::TPoint3D)),
+      0);  // bit-exact, NaNs included
   EXPECT_TRUE(sameMat(a.patch, b.patch));
   EXPECT_EQ(a.box, b.box);
   EXPECT_EQ(a.imageSize, b.imageSize);

@@ -58,28 +58,21 @@ const TDescriptorWeights& descriptorWeights()
   return s;
 }
 
-/** Integral-image corner nearest to a continuous pixel position (pixel
- *  centres at integers): a wavelet centred on that corner is centred within
- *  half a pixel of the position, with no systematic bias. */
-inline int corner(float v)
-{
-  return static_cast<int>(std::floor(v + 1.0f));
-}
 }  // namespace
 
 float dominantOrientation(const TIntegral& in, const cv::KeyPoint& kp)
 {
   const float s = keypointScale(kp);
-  const int half = std::max(1, static_cast<int>(std::lround(2.0f * s)));  // side 4s
   const TOrientationSamples& S = orientationSamples();
-  // Responses binned by angle (5 degree bins); a window of 12 bins = pi/3
+  // Responses binned by angle (1 degree bins); a window of 60 bins = pi/3
   // slides over them one bin at a time.
-  constexpr int kBins = 72, kWindow = 12;
+  constexpr int kBins = 360, kWindow = 60;
   std::array<float, kBins> bx{}, by{};
   for (size_t k = 0; k < S.w.size(); ++k)
   {
     float dx, dy;
-    in.haar(corner(kp.pt.x + S.dj[k] * s), corner(kp.pt.y + S.di[k] * s), half, dx, dy);
+    // Wavelet side 4s.
+    in.haarAt(kp.pt.x + S.dj[k] * s, kp.pt.y + S.di[k] * s, 2.0f * s, dx, dy);
     dx *= S.w[k];
     dy *= S.w[k];
     if (dx == 0 && dy == 0)
@@ -126,7 +119,6 @@ float dominantOrientation(const TIntegral& in, const cv::KeyPoint& kp)
 void describe(const TIntegral& in, const cv::KeyPoint& kp, bool upright, bool extended, float* out)
 {
   const float s = keypointScale(kp);
-  const int half = std::max(1, static_cast<int>(std::lround(s)));  // wavelet side 2s
   const TDescriptorWeights& W = descriptorWeights();
   float co = 1, si = 0;
   if (!upright && kp.angle >= 0)
@@ -147,7 +139,7 @@ void describe(const TIntegral& in, const cv::KeyPoint& kp, bool upright, bool ex
       const float px = kp.pt.x + cu * co - cv_ * si;
       const float py = kp.pt.y + cu * si + cv_ * co;
       float dx, dy;
-      in.haar(corner(px), corner(py), half, dx, dy);
+      in.haarAt(px, py, s, dx, dy);  // wavelet side 2s
       const float w = W.w[v * 20 + u];
       // Responses relative to the keypoint orientation.
       const float rx = w * (dx * co + dy * si);

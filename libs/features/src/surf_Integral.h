@@ -38,31 +38,38 @@ class TIntegral
            data[y0 * stride + x0];
   }
 
-  /** Haar wavelet responses (right minus left, bottom minus top) of side 2*half
-   *  whose centre is the corner between pixels (x-1, y-1) and (x, y). */
-  void haar(int x, int y, int half, float& dx, float& dy) const
+  /** Integral at a fractional corner (x, y): bilinear interpolation of the
+   *  four neighbouring corners is exact for a piecewise-constant image, so box
+   *  sums with fractional corners are true area sums. Clamped to the image. */
+  float at(float x, float y) const
   {
-    if (x - half >= 0 && y - half >= 0 && x + half <= cols && y + half <= rows)
-    {
-      // Fast path: 9 lookups on a 3x3 lattice of corners, no clamping.
-      const int32_t* p = data + (y - half) * stride + (x - half);
-      const int s2 = half * stride;
-      const int a = p[0], b = p[half], c = p[2 * half];
-      const int d = p[s2], f = p[s2 + 2 * half];
-      const int g = p[2 * s2], h = p[2 * s2 + half], i = p[2 * s2 + 2 * half];
-      // left = [x-half,x) x [y-half,y+half): a,b,g,h ; right: b,c,h,i
-      const int left = h - b - g + a;
-      const int right = i - c - h + b;
-      const int top = f - c - d + a;
-      const int bottom = i - f - g + d;
-      dx = static_cast<float>(right - left);
-      dy = static_cast<float>(bottom - top);
-      return;
-    }
-    dx = static_cast<float>(
-        boxClamped(x, y - half, x + half, y + half) - boxClamped(x - half, y - half, x, y + half));
-    dy = static_cast<float>(
-        boxClamped(x - half, y, x + half, y + half) - boxClamped(x - half, y - half, x + half, y));
+    x = std::clamp(x, 0.0f, static_cast<float>(cols) - 1e-3f);
+    y = std::clamp(y, 0.0f, static_cast<float>(rows) - 1e-3f);
+    const int x0 = static_cast<int>(x), y0 = static_cast<int>(y);
+    const float fx = x - x0, fy = y - y0;
+    const int32_t* p = data + y0 * stride + x0;
+    const float top = p[0] + fx * static_cast<float>(p[1] - p[0]);
+    const float bot = p[stride] + fx * static_cast<float>(p[stride + 1] - p[stride]);
+    return top + fy * (bot - top);
+  }
+
+  /** Haar wavelets of side 2*half centred exactly at the continuous pixel
+   *  position (x, y) (pixel centres at integers), with fractional corners. */
+  void haarAt(float x, float y, float half, float& dx, float& dy) const
+  {
+    // Corner coordinates: pixel (x, y) spans [x, x+1), its centre is x + 0.5.
+    const float cx = x + 0.5f, cy = y + 0.5f;
+    const float xs[3] = {cx - half, cx, cx + half}, ys[3] = {cy - half, cy, cy + half};
+    float v[3][3];
+    for (int r = 0; r < 3; ++r)
+      for (int c = 0; c < 3; ++c)
+        v[r][c] = at(xs[c], ys[r]);
+    const float left = v[2][1] - v[0][1] - v[2][0] + v[0][0];
+    const float right = v[2][2] - v[0][2] - v[2][1] + v[0][1];
+    const float top = v[1][2] - v[0][2] - v[1][0] + v[0][0];
+    const float bottom = v[2][2] - v[1][2] - v[2][0] + v[1][0];
+    dx = right - left;
+    dy = bottom - top;
   }
 
   int rows = 0, cols = 0, stride = 0;

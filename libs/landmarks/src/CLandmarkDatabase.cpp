@@ -32,6 +32,10 @@ matching::CFeatureMatcher::TOptions voteOptions(matching::CFeatureMatcher::TOpti
   // Plain nearest neighbour: a ratio test would discard exactly the features
   // shared by similar landmarks, which are the ones that should vote.
   o.ratio = 1.0;
+  // The vote searches all stored descriptors (grows with the database):
+  // approximate search pays off there even when brute force is faster for
+  // ROI-sized sets.
+  o.matcher = matching::EMatcherType::FLANN;
   o.cross_check = false;
   return o;
 }

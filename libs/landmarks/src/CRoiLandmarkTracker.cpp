@@ -1,6 +1,7 @@
 #include "roislam/landmarks/CRoiLandmarkTracker.h"
 
 #include <chrono>
+#include <ctime>
 #include <limits>
 
 #include "roislam/landmarks/FeatureGeometry.h"
@@ -36,10 +37,28 @@ void CRoiLandmarkTracker::resetSequence()
   m_previous.reset();
 }
 
+namespace
+{
+double threadCpuSeconds()
+{
+  timespec ts{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return ts.tv_sec + 1e-9 * ts.tv_nsec;
+}
+}  // namespace
+
 TFrameResult CRoiLandmarkTracker::process(
     const io::TRGBDFrame& frame, const std::optional<mrpt::poses::CPose3D>& cameraPose)
 {
   const auto t0 = std::chrono::steady_clock::now();
+  const double cpu0 = threadCpuSeconds();
+  auto lap = [last = t0]() mutable
+  {
+    const auto now = std::chrono::steady_clock::now();
+    const double dt = std::chrono::duration<double>(now - last).count();
+    last = now;
+    return dt;
+  };
   TFrameResult r;
   r.frame = frame.index;
   r.timestamp = frame.timestamp;
@@ -48,13 +67,18 @@ TFrameResult CRoiLandmarkTracker::process(
   const cv::Mat grey = frame.grey();
   const cv::Size size = grey.size();
   const auto roi = m_detector.detect(grey);
+  r.secondsRoi = lap();
   features::TFeatureSet all = m_extractor.extract(grey);
+  r.secondsFeatures = lap();
   r.features = static_cast<int>(all.size());
+  double* stage = &r.secondsConfirm;  // the stage running now
 
   auto finish = [&]()
   {
+    *stage += lap();
     m_previous = std::move(all);
     r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    r.cpuSeconds = threadCpuSeconds() - cpu0;
     return r;
   };
 
@@ -91,6 +115,8 @@ TFrameResult CRoiLandmarkTracker::process(
   }
   if (roiFeatures.empty())
     return finish();
+  r.secondsConfirm += lap();
+  stage = &r.secondsQuery;
 
   std::optional<mrpt::math::TPoint3D> world;
   if (cameraPose && depth.position)

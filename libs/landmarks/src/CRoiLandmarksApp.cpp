@@ -260,7 +260,7 @@ CRoiLandmarksApp::TSummary CRoiLandmarksApp::run()
 
   CObservationProcessor processor(m_options);
   std::vector<TFrameResult> results;
-  std::vector<CLandmarkScorer::TEvent> events, regionEvents;
+  std::vector<CLandmarkScorer::TEvent> events, pointEvents;
   std::vector<std::size_t> eventRow;
   TSummary sum;
   {
@@ -270,6 +270,7 @@ CRoiLandmarksApp::TSummary CRoiLandmarksApp::run()
       auto out = processor.process(*frame);
       const TFrameResult& r = out.result;
       sum.durationS += r.seconds;
+      sum.cpuS += r.cpuSeconds;
       if (r.newLandmark)
       {
         const std::string png = (patchesTmp / (frameName(r.frame) + ".png")).string();
@@ -279,7 +280,7 @@ CRoiLandmarksApp::TSummary CRoiLandmarksApp::run()
       if (r.status == ERoiStatus::Landmark)
       {
         events.push_back({r.frame, r.timestamp, r.landmarkId, r.newLandmark, r.roiPosition});
-        regionEvents.push_back(
+        pointEvents.push_back(
             {r.frame, r.timestamp, r.landmarkId, r.newLandmark, r.landmarkPosition});
         eventRow.push_back(results.size());
       }
@@ -298,18 +299,18 @@ CRoiLandmarksApp::TSummary CRoiLandmarksApp::run()
   }
 
   // Scores and counts.
-  std::optional<CLandmarkScorer::TScore> score, regionScore;
+  std::optional<CLandmarkScorer::TScore> score, pointScore;
   if (scorer)
   {
     score = scorer->score(events);
-    regionScore = scorer->score(regionEvents);
+    pointScore = scorer->score(pointEvents);
   }
-  std::vector<std::string> outcome(results.size()), regionOutcome(results.size());
+  std::vector<std::string> outcome(results.size()), pointOutcome(results.size());
   if (score)
     for (std::size_t i = 0; i < events.size(); ++i)
     {
       outcome[eventRow[i]] = toString(score->outcomes[i]);
-      regionOutcome[eventRow[i]] = toString(regionScore->outcomes[i]);
+      pointOutcome[eventRow[i]] = toString(pointScore->outcomes[i]);
     }
 
   long matches = 0, falseMatches = 0;
@@ -342,6 +343,9 @@ CRoiLandmarksApp::TSummary CRoiLandmarksApp::run()
     sum.unscored = score->unscored;
     sum.precision = score->precision;
     sum.recall = score->recall;
+    sum.pointFalsePositives = pointScore->falsePositives;
+    sum.pointPrecision = pointScore->precision;
+    sum.pointRecall = pointScore->recall;
   }
 
   // frames.csv
@@ -349,7 +353,8 @@ CRoiLandmarksApp::TSummary CRoiLandmarksApp::run()
   csv << "frame,timestamp,status,landmark,new,matches,false_matches,seconds,features,"
          "roi_features,depth_valid,depth_mean_m,depth_median_m,roi_x,roi_y,roi_w,roi_h,"
          "recall_inliers,candidates,roi_pos_x,roi_pos_y,roi_pos_z,lm_x,lm_y,lm_w,lm_h,lm_pos_x,"
-         "lm_pos_y,lm_pos_z,rigid_pairs,rigid_rms_m,score,region_score\n";
+         "lm_pos_y,lm_pos_z,rigid_pairs,rigid_rms_m,cpu_seconds,s_roi,s_features,s_confirm,s_query,"
+         "score,point_score\n";
   for (std::size_t i = 0; i < results.size(); ++i)
   {
     const auto& r = results[i];
@@ -378,8 +383,10 @@ CRoiLandmarksApp::TSummary CRoiLandmarksApp::run()
       csv << ",,,";
     csv << ',';
     point(r.landmarkPosition);
-    csv << ',' << r.rigidInliers << ',' << fmt(r.rigidRms) << ',' << outcome[i] << ','
-        << regionOutcome[i] << '\n';
+    csv << ',' << r.rigidInliers << ',' << fmt(r.rigidRms) << ',' << fmt(r.cpuSeconds, 5) << ','
+        << fmt(r.secondsRoi, 5) << ',' << fmt(r.secondsFeatures, 5) << ','
+        << fmt(r.secondsConfirm, 5) << ',' << fmt(r.secondsQuery, 5) << ',' << outcome[i] << ','
+        << pointOutcome[i] << '\n';
   }
   writeTextAtomically((outDir / "frames.csv").string(), csv.str());
 
@@ -420,21 +427,23 @@ CRoiLandmarksApp::TSummary CRoiLandmarksApp::run()
   j["unscored"] = orNull(sum.unscored);
   j["precision"] = orNull(sum.precision);
   j["recall"] = orNull(sum.recall);
-  if (regionScore)
+  if (pointScore)
   {
-    j["landmark_region"] = {
-        {"true_positives", regionScore->truePositives},
-        {"false_positives", regionScore->falsePositives},
-        {"false_negatives", regionScore->falseNegatives},
-        {"precision", orNull(regionScore->precision)},
-        {"recall", orNull(regionScore->recall)}};
+    j["landmark_point"] = {
+        {"true_positives", pointScore->truePositives},
+        {"false_positives", pointScore->falsePositives},
+        {"false_negatives", pointScore->falseNegatives},
+        {"precision", orNull(pointScore->precision)},
+        {"recall", orNull(pointScore->recall)}};
   }
   else
-    j["landmark_region"] = nullptr;
+    j["landmark_point"] = nullptr;
   j["matches_per_frame"] = sum.matchesPerFrame;
   j["false_matches_per_frame"] = sum.falseMatchesPerFrame;
   j["duration_s"] = sum.durationS;
   j["fps"] = sum.fps;
+  // Calling thread only: OpenCV's worker threads (SIFT) are not included.
+  j["cpu_s_main_thread"] = sum.cpuS;
   j["wall_s"] = sum.wallS;
   j["fps_wall"] = sum.wallS > 0 ? sum.frames / sum.wallS : 0;
   writeTextAtomically((outDir / "summary.json").string(), j.dump(2) + "\n");
@@ -445,9 +454,9 @@ CRoiLandmarksApp::TSummary CRoiLandmarksApp::run()
   if (score)
     done << ", TP " << score->truePositives << " FP " << score->falsePositives << " FN "
          << score->falseNegatives << ", precision " << fmt(sum.precision.value_or(NAN), 3)
-         << " recall " << fmt(sum.recall.value_or(NAN), 3) << " (landmark region: TP "
-         << regionScore->truePositives << " FP " << regionScore->falsePositives << " FN "
-         << regionScore->falseNegatives << ")";
+         << " recall " << fmt(sum.recall.value_or(NAN), 3) << " (landmark point: TP "
+         << pointScore->truePositives << " FP " << pointScore->falsePositives << " FN "
+         << pointScore->falseNegatives << ")";
   done << ", " << fmt(sum.fps, 1) << " fps (pipeline), " << fmt(sum.wallS, 1) << " s wall";
   progress(done.str());
   return sum;

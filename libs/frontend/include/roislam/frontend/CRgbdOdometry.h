@@ -142,8 +142,8 @@ class CRgbdOdometry : public mrpt::system::COutputLogger
   struct TStats
   {
     std::size_t frames = 0;
-    std::size_t initial = 0, features = 0, roiFeatures = 0, fullImageFallback = 0,
-                depthIcp = 0, constantVelocity = 0, lost = 0;
+    std::size_t initial = 0, features = 0, roiFeatures = 0, fullImageFallback = 0, depthIcp = 0,
+                constantVelocity = 0, lost = 0;
     std::size_t keyframes = 0;
     /** Frames of a ROI mode in which no ROI was detected at all. */
     std::size_t noRoi = 0;

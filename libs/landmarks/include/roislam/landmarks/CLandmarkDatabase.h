@@ -8,7 +8,8 @@
  * To keep a query cheap as the database grows, at most max_candidates
  * landmarks are verified: when there are more, every ROI feature votes for the
  * landmark that owns its nearest descriptor among all stored descriptors (one
- * matcher call) and the most voted landmarks are verified. When world
+ * FLANN call, whatever the configured matcher) and the most voted landmarks
+ * are verified. When world
  * positions are known (a pose was given), only landmarks within
  * prefilter_radius of the query are considered at all.
  *

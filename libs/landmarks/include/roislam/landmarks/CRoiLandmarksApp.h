@@ -4,8 +4,11 @@
  *  - frames.csv     one record per frame (the dissertation's log + ROI box)
  *  - landmarks/     each new landmark's ROI patch, named by frame (000123.png)
  *  - landmarks.db   the database (gzip MRPT archive, CLandmarkDatabase)
- *  - summary.json   counts, ground-truth scores (null without ground truth),
- *                   matches per frame, duration and speed
+ *  - summary.json   counts, ground-truth scores (null without ground truth;
+ *                   "landmark_point": the scores with the landmark-point
+ *                   position, see TSummary), matches per frame, duration and
+ *                   speed (duration_s/fps: pipeline wall time without I/O;
+ *                   wall_s/fps_wall: whole run)
  *  - optionally an annotated rawlog: per frame the CObservation3DRangeScan
  *    followed by its CObservationBearingRange (observation-only format).
  * Every file is written under a temporary name and renamed when complete.
@@ -53,12 +56,23 @@ class CRoiLandmarksApp
     std::size_t landmarks = 0;
     std::size_t recalls = 0;
     std::optional<int> truePositives, falsePositives, falseNegatives, unscored;
+    /** Ground-truth scores, as the issue defines them: a ROI's position is
+     *  the median 3-D point of its features. */
     std::optional<double> precision, recall;
+    /** The same with a recall's position taken as the recalled landmark's
+     *  stored point mapped into the frame by the 3-D alignment of the match
+     *  inliers (TFrameResult::landmarkPosition): whether the same physical
+     *  surface was re-identified, independent of how the ROI box changed. */
+    std::optional<int> pointFalsePositives;
+    std::optional<double> pointPrecision, pointRecall;
     double matchesPerFrame = 0;
     double falseMatchesPerFrame = 0;
     /** Pipeline time (sum of per-frame processing, no I/O) and its fps. */
     double durationS = 0;
     double fps = 0;
+    /** CPU time of the pipeline's calling thread (OpenCV worker threads,
+     *  used by SIFT, not included). */
+    double cpuS = 0;
     /** Wall time of the whole run including reading and writing. */
     double wallS = 0;
   };

@@ -64,8 +64,14 @@ struct TFrameResult
   /** Pairs kept by that alignment and their RMS residual (m; NaN if none). */
   int rigidInliers = 0;
   double rigidRms = 0;
-  /** Processing time of this frame (pipeline only, no I/O), seconds. */
+  /** Processing time of this frame (pipeline only, no I/O), seconds: wall
+   *  clock, and CPU time of the calling thread (OpenCV worker threads not
+   *  included). */
   double seconds = 0;
+  double cpuSeconds = 0;
+  /** Wall time of the stages: ROI detection, feature extraction,
+   *  confirmation, database query. */
+  double secondsRoi = 0, secondsFeatures = 0, secondsConfirm = 0, secondsQuery = 0;
 
   /** "landmark k" / "no new ROI" / "NaN", as in the dissertation's log. */
   std::string statusText() const;

@@ -1,0 +1,105 @@
+#include "roislam/bench/TVariant.h"
+
+#include <cctype>
+#include <sstream>
+#include <stdexcept>
+
+namespace roislam::bench
+{
+namespace
+{
+std::string trim(const std::string& s)
+{
+  const auto b = s.find_first_not_of(" \t\r");
+  if (b == std::string::npos) return {};
+  const auto e = s.find_last_not_of(" \t\r");
+  return s.substr(b, e - b + 1);
+}
+}  // namespace
+
+TVariant TVariant::parse(const std::string& spec)
+{
+  const auto bad = [&](const std::string& why)
+  {
+    return std::invalid_argument(
+        "variant '" + spec + "': " + why + " (expected name:Section.key=value[,...])");
+  };
+  const auto colon = spec.find(':');
+  if (colon == std::string::npos || colon == 0) throw bad("missing name");
+  TVariant v;
+  v.name = spec.substr(0, colon);
+  for (char c : v.name)
+    if (!std::isalnum(static_cast<unsigned char>(c)) && c != '_')
+      throw bad("name may only contain letters, digits and '_'");
+  v.label = spec;
+  std::stringstream ss(spec.substr(colon + 1));
+  std::string item;
+  while (std::getline(ss, item, ','))
+  {
+    const auto dot = item.find('.');
+    const auto eq = item.find('=');
+    if (dot == std::string::npos || eq == std::string::npos || dot > eq || dot == 0 ||
+        eq == dot + 1)
+      throw bad("bad override '" + item + "'");
+    v.overrides.push_back(
+        {trim(item.substr(0, dot)), trim(item.substr(dot + 1, eq - dot - 1)),
+         trim(item.substr(eq + 1))});
+  }
+  if (v.overrides.empty()) throw bad("no override");
+  return v;
+}
+
+std::vector<TVariant> defaultVariants()
+{
+  return {
+      {"strict", "strict ROI, no fallback (dissertation's behaviour)",
+       {{"FrontEnd", "strict_roi", "true"}}},
+      {"fallback", "ROI with fallback (ours)", {{"FrontEnd", "strict_roi", "false"}}}};
+}
+
+std::string applyIniOverrides(const std::string& iniText, const std::vector<TIniOverride>& ov)
+{
+  std::vector<std::string> lines;
+  {
+    std::stringstream ss(iniText);
+    std::string l;
+    while (std::getline(ss, l)) lines.push_back(l);
+  }
+  for (const auto& o : ov)
+  {
+    std::string section;
+    bool done = false;
+    long lastLineOfSection = -1;
+    for (std::size_t i = 0; i < lines.size() && !done; ++i)
+    {
+      const std::string t = trim(lines[i]);
+      if (!t.empty() && t.front() == '[' && t.back() == ']')
+      {
+        section = trim(t.substr(1, t.size() - 2));
+        if (section == o.section) lastLineOfSection = static_cast<long>(i);
+        continue;
+      }
+      if (section != o.section) continue;
+      if (!t.empty() && t[0] != ';' && t[0] != '#') lastLineOfSection = static_cast<long>(i);
+      const auto eq = t.find('=');
+      if (eq != std::string::npos && t[0] != ';' && t[0] != '#' &&
+          trim(t.substr(0, eq)) == o.key)
+      {
+        lines[i] = o.key + " = " + o.value;
+        done = true;
+      }
+    }
+    if (done) continue;
+    if (lastLineOfSection >= 0)
+      lines.insert(lines.begin() + lastLineOfSection + 1, o.key + " = " + o.value);
+    else
+    {
+      lines.push_back("[" + o.section + "]");
+      lines.push_back(o.key + " = " + o.value);
+    }
+  }
+  std::string out;
+  for (const auto& l : lines) out += l + "\n";
+  return out;
+}
+}  // namespace roislam::bench

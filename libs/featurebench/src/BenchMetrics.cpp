@@ -1,0 +1,129 @@
+/* Repeatability and matching score (see BenchMetrics.h). */
+#include <roislam/featurebench/BenchMetrics.h>
+
+#include <algorithm>
+#include <cmath>
+#include <opencv2/features2d.hpp>
+#include <stdexcept>
+#include <tuple>
+
+namespace roislam::featurebench
+{
+namespace
+{
+cv::Point2d apply(const cv::Matx33d& H, cv::Point2d p)
+{
+  const cv::Vec3d q = H * cv::Vec3d(p.x, p.y, 1.0);
+  return {q[0] / q[2], q[1] / q[2]};
+}
+
+bool inside(cv::Point2d p, const cv::Size& s, double margin)
+{
+  return p.x >= margin && p.y >= margin && p.x <= s.width - 1 - margin &&
+         p.y <= s.height - 1 - margin;
+}
+
+/** Local linear scale of H at p: sqrt of the Jacobian determinant. */
+double localScale(const cv::Matx33d& H, cv::Point2d p)
+{
+  const cv::Point2d o = apply(H, p), ex = apply(H, p + cv::Point2d(1, 0)),
+                    ey = apply(H, p + cv::Point2d(0, 1));
+  const cv::Point2d a = ex - o, b = ey - o;
+  return std::sqrt(std::abs(a.x * b.y - a.y * b.x));
+}
+}  // namespace
+
+TPairMetrics evaluatePair(
+    const std::vector<cv::KeyPoint>& kpsA, const cv::Mat& descA,
+    const std::vector<cv::KeyPoint>& kpsB, const cv::Mat& descB, const cv::Matx33d& H,
+    const cv::Size& sizeA, const cv::Size& sizeB, int normType,
+    const TCorrespondenceCriterion& crit)
+{
+  const bool withDesc = !descA.empty() && !descB.empty();
+  if (withDesc &&
+      (descA.rows != static_cast<int>(kpsA.size()) || descB.rows != static_cast<int>(kpsB.size()) ||
+       descA.cols != descB.cols || descA.type() != descB.type()))
+    throw std::invalid_argument("evaluatePair: descriptors do not match the keypoints");
+  const cv::Matx33d Hinv = H.inv();
+
+  TPairMetrics m;
+  std::vector<int> inA, inB;
+  std::vector<cv::Point2d> mappedA;
+  std::vector<double> scaleA;
+  for (size_t i = 0; i < kpsA.size(); ++i)
+  {
+    const cv::Point2d p(kpsA[i].pt);
+    const cv::Point2d q = apply(H, p);
+    if (!inside(p, sizeA, crit.borderMargin) || !inside(q, sizeB, crit.borderMargin))
+      continue;
+    inA.push_back(static_cast<int>(i));
+    mappedA.push_back(q);
+    scaleA.push_back(localScale(H, p));
+  }
+  for (size_t j = 0; j < kpsB.size(); ++j)
+  {
+    const cv::Point2d p(kpsB[j].pt);
+    if (inside(p, sizeB, crit.borderMargin) && inside(apply(Hinv, p), sizeA, crit.borderMargin))
+      inB.push_back(static_cast<int>(j));
+  }
+  m.commonA = inA.size();
+  m.commonB = inB.size();
+  const std::size_t denom = std::min(m.commonA, m.commonB);
+  if (denom == 0)
+    return m;
+
+  const double tol2 = crit.pixelTolerance * crit.pixelTolerance;
+  const double logR = std::log(crit.maxScaleRatio);
+  const auto consistent = [&](size_t ia, int j, double& d2)
+  {
+    const cv::Point2d d = mappedA[ia] - cv::Point2d(kpsB[j].pt);
+    d2 = d.dot(d);
+    if (d2 > tol2)
+      return false;
+    const double sa = kpsA[inA[ia]].size * scaleA[ia], sb = kpsB[j].size;
+    if (!(sa > 0) || !(sb > 0))
+      return true;  // no scale information: position only
+    return std::abs(std::log(sb / sa)) <= logR;
+  };
+
+  // Geometric correspondences, one-to-one, closest pairs first.
+  std::vector<std::tuple<double, int, int>> cand;
+  for (size_t ia = 0; ia < inA.size(); ++ia)
+    for (size_t ib = 0; ib < inB.size(); ++ib)
+    {
+      double d2;
+      if (consistent(ia, inB[ib], d2))
+        cand.emplace_back(d2, static_cast<int>(ia), static_cast<int>(ib));
+    }
+  std::sort(cand.begin(), cand.end());
+  std::vector<char> usedA(inA.size(), 0), usedB(inB.size(), 0);
+  for (const auto& [d2, ia, ib] : cand)
+  {
+    if (usedA[ia] || usedB[ib])
+      continue;
+    usedA[ia] = usedB[ib] = 1;
+    ++m.correspondences;
+  }
+  m.repeatability = static_cast<double>(m.correspondences) / static_cast<double>(denom);
+
+  if (withDesc)
+  {
+    cv::Mat qa(static_cast<int>(inA.size()), descA.cols, descA.type());
+    cv::Mat tb(static_cast<int>(inB.size()), descB.cols, descB.type());
+    for (size_t k = 0; k < inA.size(); ++k)
+      descA.row(inA[k]).copyTo(qa.row(static_cast<int>(k)));
+    for (size_t k = 0; k < inB.size(); ++k)
+      descB.row(inB[k]).copyTo(tb.row(static_cast<int>(k)));
+    std::vector<cv::DMatch> matches;
+    cv::BFMatcher(normType).match(qa, tb, matches);
+    for (const auto& mt : matches)
+    {
+      double d2;
+      if (consistent(static_cast<size_t>(mt.queryIdx), inB[mt.trainIdx], d2))
+        ++m.correctMatches;
+    }
+    m.matchingScore = static_cast<double>(m.correctMatches) / static_cast<double>(denom);
+  }
+  return m;
+}
+}  // namespace roislam::featurebench

@@ -1,0 +1,411 @@
+/* feature-bench engine (see CFeatureBench.h). */
+#include <mrpt/config/CConfigFileBase.h>
+#include <roislam/featurebench/CFeatureBench.h>
+#include <roislam/features/CSurf.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <fstream>
+#include <iomanip>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <opencv2/features2d.hpp>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+#include <sstream>
+#include <stdexcept>
+
+namespace roislam::featurebench
+{
+namespace
+{
+std::vector<std::string> splitList(const std::string& s)
+{
+  std::vector<std::string> out;
+  std::stringstream ss(s);
+  std::string item;
+  while (std::getline(ss, item, ','))
+  {
+    item.erase(0, item.find_first_not_of(" \t"));
+    item.erase(item.find_last_not_of(" \t") + 1);
+    if (!item.empty())
+      out.push_back(item);
+  }
+  return out;
+}
+
+std::string joinList(const std::vector<std::string>& v)
+{
+  std::string s;
+  for (const auto& x : v)
+    s += (s.empty() ? "" : ",") + x;
+  return s;
+}
+
+const std::vector<std::string> kExtractors{"sift", "surf", "orb", "akaze"};
+const std::vector<std::string> kTransforms{"none",     "rot15",    "rot30", "rot45",     "scale1.2",
+                                           "scale1.5", "scale2.0", "blur",  "brightness"};
+
+/** One extractor with the common cap applied the same way for all: through
+ *  the extractor's own parameter where it has one (strongest kept), else by
+ *  keeping the strongest responses before description (AKAZE). */
+struct TExtractor
+{
+  std::string name;
+  cv::Ptr<cv::Feature2D> feature;
+  int cap = 0;
+  bool capAfterDetect = false;
+
+  void run(const cv::Mat& img, std::vector<cv::KeyPoint>& kps, cv::Mat& desc) const
+  {
+    if (!capAfterDetect)
+    {
+      feature->detectAndCompute(img, cv::noArray(), kps, desc);
+      return;
+    }
+    feature->detect(img, kps);
+    if (cap > 0)
+      cv::KeyPointsFilter::retainBest(kps, cap);
+    feature->compute(img, kps, desc);
+  }
+};
+
+TExtractor makeExtractor(const std::string& name, int cap)
+{
+  TExtractor e;
+  e.name = name;
+  e.cap = cap;
+  if (name == "sift")
+    e.feature = cv::SIFT::create(cap);
+  else if (name == "surf")
+  {
+    features::CSurf::TParams p;
+    p.maxFeatures = cap;
+    e.feature = features::CSurf::create(p);
+  }
+  else if (name == "orb")
+    e.feature = cv::ORB::create(cap > 0 ? cap : 100000);
+  else if (name == "akaze")
+  {
+    e.feature = cv::AKAZE::create();
+    e.capAfterDetect = true;
+  }
+  else
+    throw std::invalid_argument("feature-bench: unknown extractor '" + name + "'");
+  return e;
+}
+
+cv::Mat applyTransform(
+    const cv::Mat& img, const std::string& t, const cv::Matx33d& H,
+    const CFeatureBench::TOptions& o)
+{
+  cv::Mat out;
+  if (t == "blur")
+    cv::GaussianBlur(img, out, cv::Size(0, 0), o.blur_sigma);
+  else if (t == "brightness")
+    img.convertTo(out, -1, 1.0, o.brightness_offset);
+  else if (t == "none")
+    out = img;
+  else
+    cv::warpPerspective(
+        img, out, cv::Mat(H), img.size(), cv::INTER_LINEAR, cv::BORDER_CONSTANT, cv::Scalar(0));
+  return out;
+}
+
+double nowMs()
+{
+  return std::chrono::duration<double, std::milli>(
+             std::chrono::steady_clock::now().time_since_epoch())
+      .count();
+}
+}  // namespace
+
+void CFeatureBench::TOptions::loadFromConfigFile(
+    const mrpt::config::CConfigFileBase& c, const std::string& s)
+{
+  input = c.read_string(s, "input", input);
+  frames = c.read_int(s, "frames", frames);
+  max_features = c.read_int(s, "max_features", max_features);
+  extractors = splitList(c.read_string(s, "extractors", joinList(extractors)));
+  transforms = splitList(c.read_string(s, "transforms", joinList(transforms)));
+  blur_sigma = c.read_double(s, "blur_sigma", blur_sigma);
+  brightness_offset = c.read_int(s, "brightness_offset", brightness_offset);
+  pixel_tolerance = c.read_double(s, "pixel_tolerance", pixel_tolerance);
+  border_margin = c.read_double(s, "border_margin", border_margin);
+  validate(s);
+}
+
+void CFeatureBench::TOptions::saveToConfigFile(
+    mrpt::config::CConfigFileBase& c, const std::string& s) const
+{
+  c.write(s, "input", input);
+  c.write(s, "frames", frames);
+  c.write(s, "max_features", max_features);
+  c.write(s, "extractors", joinList(extractors));
+  c.write(s, "transforms", joinList(transforms));
+  c.write(s, "blur_sigma", blur_sigma);
+  c.write(s, "brightness_offset", brightness_offset);
+  c.write(s, "pixel_tolerance", pixel_tolerance);
+  c.write(s, "border_margin", border_margin);
+}
+
+void CFeatureBench::TOptions::validate(const std::string& s) const
+{
+  const auto bad = [&](const std::string& key, const std::string& why)
+  { throw std::invalid_argument("[" + s + "] " + key + ": " + why); };
+  if (input.empty())
+    bad("input", "required (a TUM folder with rgb.txt)");
+  if (frames < 1)
+    bad("frames", "must be >= 1");
+  if (max_features < 0)
+    bad("max_features", "must be >= 0 (0 = uncapped)");
+  if (extractors.empty())
+    bad("extractors", "empty list");
+  for (const auto& e : extractors)
+    if (std::find(kExtractors.begin(), kExtractors.end(), e) == kExtractors.end())
+      bad("extractors", "unknown '" + e + "' (sift, surf, orb, akaze)");
+  if (transforms.empty())
+    bad("transforms", "empty list");
+  for (const auto& t : transforms)
+    if (std::find(kTransforms.begin(), kTransforms.end(), t) == kTransforms.end())
+      bad("transforms", "unknown '" + t + "'");
+  if (!(blur_sigma > 0))
+    bad("blur_sigma", "must be > 0");
+  if (!(pixel_tolerance > 0))
+    bad("pixel_tolerance", "must be > 0");
+  if (!(border_margin >= 0))
+    bad("border_margin", "must be >= 0");
+}
+
+std::vector<std::string> CFeatureBench::parseList(const std::string& commaList)
+{
+  return splitList(commaList);
+}
+
+const CFeatureBench::TRow* CFeatureBench::TResult::find(
+    const std::string& extractor, const std::string& transform) const
+{
+  for (const auto& r : rows)
+    if (r.extractor == extractor && r.transform == transform)
+      return &r;
+  return nullptr;
+}
+
+CFeatureBench::CFeatureBench(const TOptions& options) : m_options(options)
+{
+  m_options.validate();
+}
+
+cv::Matx33d CFeatureBench::homography(const std::string& t, const cv::Size& size)
+{
+  const cv::Point2f c(0.5f * (size.width - 1), 0.5f * (size.height - 1));
+  cv::Mat A;
+  if (t == "none" || t == "blur" || t == "brightness")
+    return cv::Matx33d::eye();
+  else if (t.rfind("rot", 0) == 0)
+    A = cv::getRotationMatrix2D(c, std::stod(t.substr(3)), 1.0);
+  else if (t.rfind("scale", 0) == 0)
+    A = cv::getRotationMatrix2D(c, 0.0, std::stod(t.substr(5)));
+  else
+    throw std::invalid_argument("feature-bench: unknown transform '" + t + "'");
+  cv::Matx33d H = cv::Matx33d::eye();
+  for (int r = 0; r < 2; ++r)
+    for (int k = 0; k < 3; ++k)
+      H(r, k) = A.at<double>(r, k);
+  return H;
+}
+
+std::vector<std::string> CFeatureBench::selectFrames(const std::string& dir, int n)
+{
+  const std::string list = dir + "/rgb.txt";
+  std::ifstream in(list);
+  if (!in)
+    throw std::runtime_error("feature-bench: cannot open " + list);
+  std::vector<std::string> files;
+  std::string line;
+  for (int lineNo = 1; std::getline(in, line); ++lineNo)
+  {
+    if (line.empty() || line[0] == '#' || line.find_first_not_of(" \t\r") == std::string::npos)
+      continue;
+    std::istringstream ss(line);
+    double stamp;
+    std::string file;
+    if (!(ss >> stamp >> file))
+      throw std::runtime_error(
+          "feature-bench: " + list + ":" + std::to_string(lineNo) +
+          ": expected 'timestamp filename'");
+    files.push_back(dir + "/" + file);
+  }
+  if (files.empty())
+    throw std::runtime_error("feature-bench: no images listed in " + list);
+  if (n >= static_cast<int>(files.size()))
+    return files;
+  std::vector<std::string> out;
+  for (int k = 0; k < n; ++k)
+  {
+    const size_t idx =
+        n == 1 ? 0
+               : static_cast<size_t>(std::lround(
+                     static_cast<double>(k) * static_cast<double>(files.size() - 1) / (n - 1)));
+    out.push_back(files[idx]);
+  }
+  return out;
+}
+
+CFeatureBench::TResult CFeatureBench::run() const
+{
+  const TOptions& o = m_options;
+  TResult res;
+  res.input = o.input;
+  res.maxFeatures = o.max_features;
+  const auto files = selectFrames(o.input, o.frames);
+  std::vector<cv::Mat> images;
+  for (const auto& f : files)
+  {
+    cv::Mat img = cv::imread(f, cv::IMREAD_GRAYSCALE);
+    if (img.empty())
+      throw std::runtime_error("feature-bench: cannot read image " + f);
+    if (!images.empty() && img.size() != images.front().size())
+      throw std::runtime_error("feature-bench: image size differs from the first frame: " + f);
+    images.push_back(img);
+  }
+  res.frames = images.size();
+  res.imageSize = images.front().size();
+
+  std::vector<std::string> transforms{"none"};
+  for (const auto& t : o.transforms)
+    if (t != "none")
+      transforms.push_back(t);
+  std::map<std::string, cv::Matx33d> H;
+  for (const auto& t : transforms)
+    H[t] = homography(t, res.imageSize);
+
+  TCorrespondenceCriterion crit;
+  crit.pixelTolerance = o.pixel_tolerance;
+  crit.borderMargin = o.border_margin;
+
+  for (const auto& name : o.extractors)
+  {
+    const TExtractor ex = makeExtractor(name, o.max_features);
+    const int norm = ex.feature->defaultNorm();
+    std::map<std::string, TRow> acc;
+    for (const auto& t : transforms)
+    {
+      acc[t].extractor = name;
+      acc[t].transform = t;
+    }
+    // One untimed warm-up: first-call allocations are not per-frame cost.
+    {
+      std::vector<cv::KeyPoint> k;
+      cv::Mat d;
+      ex.run(images.front(), k, d);
+    }
+    for (const auto& img : images)
+    {
+      std::vector<cv::KeyPoint> kpA;
+      cv::Mat descA;
+      double t0 = nowMs();
+      ex.run(img, kpA, descA);
+      const double msA = nowMs() - t0;
+      for (const auto& t : transforms)
+      {
+        TRow& row = acc[t];
+        std::vector<cv::KeyPoint> kpB;
+        cv::Mat descB;
+        double msB = msA;
+        if (t == "none")
+        {
+          kpB = kpA;
+          descB = descA;
+        }
+        else
+        {
+          const cv::Mat warped = applyTransform(img, t, H[t], o);
+          t0 = nowMs();
+          ex.run(warped, kpB, descB);
+          msB = nowMs() - t0;
+        }
+        const TPairMetrics m =
+            evaluatePair(kpA, descA, kpB, descB, H[t], img.size(), img.size(), norm, crit);
+        row.frames++;
+        row.keypointsPerFrame += static_cast<double>(kpB.size());
+        row.msPerFrame += msB;
+        row.repeatability += m.repeatability;
+        row.matchingScore += m.matchingScore;
+        row.correspondencesPerFrame += static_cast<double>(m.correspondences);
+        row.commonPerFrame += static_cast<double>(std::min(m.commonA, m.commonB));
+      }
+    }
+    for (const auto& t : transforms)
+    {
+      TRow r = acc[t];
+      const double n = static_cast<double>(std::max<std::size_t>(1, r.frames));
+      r.keypointsPerFrame /= n;
+      r.msPerFrame /= n;
+      r.repeatability /= n;
+      r.matchingScore /= n;
+      r.correspondencesPerFrame /= n;
+      r.commonPerFrame /= n;
+      res.rows.push_back(r);
+    }
+  }
+  return res;
+}
+
+std::string CFeatureBench::toTable(const TResult& r)
+{
+  std::ostringstream os;
+  os << "feature-bench: " << r.input << ", " << r.frames << " frames " << r.imageSize.width << "x"
+     << r.imageSize.height << ", cap "
+     << (r.maxFeatures > 0 ? std::to_string(r.maxFeatures) : std::string("none")) << "\n";
+  os << std::left << std::setw(8) << "extr" << std::setw(12) << "transform" << std::right
+     << std::setw(9) << "kp/frame" << std::setw(10) << "ms/frame" << std::setw(9) << "repeat%"
+     << std::setw(8) << "match%" << std::setw(11) << "corr/frame"
+     << "\n";
+  os << std::fixed;
+  for (const auto& row : r.rows)
+    os << std::left << std::setw(8) << row.extractor << std::setw(12) << row.transform << std::right
+       << std::setprecision(0) << std::setw(9) << row.keypointsPerFrame << std::setprecision(1)
+       << std::setw(10) << row.msPerFrame << std::setw(9) << 100 * row.repeatability << std::setw(8)
+       << 100 * row.matchingScore << std::setprecision(0) << std::setw(11)
+       << row.correspondencesPerFrame << "\n";
+  // Mean time over all images of each extractor, and SURF's speed-up on SIFT.
+  std::map<std::string, std::pair<double, double>> time;  // sum, count
+  for (const auto& row : r.rows)
+  {
+    time[row.extractor].first += row.msPerFrame;
+    time[row.extractor].second += 1;
+  }
+  for (const auto& [name, tc] : time)
+    os << "mean ms/frame " << name << ": " << std::setprecision(1) << tc.first / tc.second << "\n";
+  if (time.count("sift") && time.count("surf"))
+    os << "SURF speed-up over SIFT: " << std::setprecision(2)
+       << (time["sift"].first / time["sift"].second) / (time["surf"].first / time["surf"].second)
+       << "x\n";
+  return os.str();
+}
+
+std::string CFeatureBench::toJson(const TResult& r)
+{
+  nlohmann::json j;
+  j["input"] = r.input;
+  j["max_features"] = r.maxFeatures;
+  j["frames"] = r.frames;
+  j["width"] = r.imageSize.width;
+  j["height"] = r.imageSize.height;
+  j["results"] = nlohmann::json::array();
+  for (const auto& row : r.rows)
+    j["results"].push_back(
+        {{"extractor", row.extractor},
+         {"transform", row.transform},
+         {"frames", row.frames},
+         {"keypoints_per_frame", row.keypointsPerFrame},
+         {"ms_per_frame", row.msPerFrame},
+         {"repeatability", row.repeatability},
+         {"matching_score", row.matchingScore},
+         {"correspondences_per_frame", row.correspondencesPerFrame},
+         {"common_per_frame", row.commonPerFrame}});
+  return j.dump(2);
+}
+}  // namespace roislam::featurebench

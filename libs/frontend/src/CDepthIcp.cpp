@@ -1,0 +1,184 @@
+#include "CDepthIcp.h"
+
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+namespace roislam::frontend::detail
+{
+namespace
+{
+const float kNaN = std::numeric_limits<float>::quiet_NaN();
+}
+
+CDepthIcp::CDepthIcp(const TParams& params, const mrpt::img::TCamera& cam) : m_params(params)
+{
+  if (m_params.decimation < 1)
+    throw std::invalid_argument("CDepthIcp: decimation must be >= 1");
+  const int d = m_params.decimation;
+  const int W = static_cast<int>(cam.ncols), Hh = static_cast<int>(cam.nrows);
+  m_cols = W / d;
+  m_rows = Hh / d;
+  m_fx = cam.fx() / d;
+  m_fy = cam.fy() / d;
+  m_cx = cam.cx() / d;
+  m_cy = cam.cy() / d;
+  const double k1 = cam.dist[0], k2 = cam.dist[1], p1 = cam.dist[2], p2 = cam.dist[3],
+               k3 = cam.dist[4];
+  m_srcIndex.assign(static_cast<std::size_t>(m_cols * m_rows), -1);
+  m_rays.resize(m_srcIndex.size());
+  // Cell (r, c) is the undistorted full-resolution pixel (c*d, r*d); its depth
+  // is sampled where the lens put it (plumb-bob model, nearest pixel).
+  for (int r = 0; r < m_rows; ++r)
+    for (int c = 0; c < m_cols; ++c)
+    {
+      const double x = (c * d - cam.cx()) / cam.fx(), y = (r * d - cam.cy()) / cam.fy();
+      const double r2 = x * x + y * y;
+      const double radial = 1 + k1 * r2 + k2 * r2 * r2 + k3 * r2 * r2 * r2;
+      const double xd = x * radial + 2 * p1 * x * y + p2 * (r2 + 2 * x * x);
+      const double yd = y * radial + p1 * (r2 + 2 * y * y) + 2 * p2 * x * y;
+      const int u = static_cast<int>(std::lround(xd * cam.fx() + cam.cx()));
+      const int v = static_cast<int>(std::lround(yd * cam.fy() + cam.cy()));
+      const std::size_t k = static_cast<std::size_t>(r * m_cols + c);
+      m_rays[k] = Eigen::Vector3f(static_cast<float>(x), static_cast<float>(y), 1.f);
+      if (u >= 0 && v >= 0 && u < W && v < Hh)
+        m_srcIndex[k] = v * W + u;
+    }
+}
+
+CDepthIcp::TMap CDepthIcp::buildMap(const cv::Mat& depth) const
+{
+  if (depth.type() != CV_32FC1 || !depth.isContinuous())
+    throw std::invalid_argument("CDepthIcp::buildMap: expected continuous CV_32FC1 depth");
+  TMap m;
+  m.cols = m_cols;
+  m.rows = m_rows;
+  const std::size_t n = m_srcIndex.size();
+  m.points.assign(n, Eigen::Vector3f(kNaN, kNaN, kNaN));
+  m.normals.assign(n, Eigen::Vector3f(kNaN, kNaN, kNaN));
+  const float* D = depth.ptr<float>();
+  const float zmin = static_cast<float>(m_params.minDepth),
+              zmax = static_cast<float>(m_params.maxDepth);
+  for (std::size_t k = 0; k < n; ++k)
+  {
+    if (m_srcIndex[k] < 0)
+      continue;
+    const float z = D[m_srcIndex[k]];
+    if (z >= zmin && z <= zmax)
+      m.points[k] = m_rays[k] * z;
+  }
+  // Normals from central differences; skip depth discontinuities.
+  for (int r = 1; r + 1 < m_rows; ++r)
+    for (int c = 1; c + 1 < m_cols; ++c)
+    {
+      const std::size_t k = static_cast<std::size_t>(r * m_cols + c);
+      const Eigen::Vector3f& p = m.points[k];
+      if (!std::isfinite(p.z()))
+        continue;
+      const Eigen::Vector3f& l = m.points[k - 1];
+      const Eigen::Vector3f& rr = m.points[k + 1];
+      const Eigen::Vector3f& u = m.points[k - static_cast<std::size_t>(m_cols)];
+      const Eigen::Vector3f& dn = m.points[k + static_cast<std::size_t>(m_cols)];
+      if (!std::isfinite(l.z()) || !std::isfinite(rr.z()) || !std::isfinite(u.z()) ||
+          !std::isfinite(dn.z()))
+        continue;
+      const float jump = 0.05f * p.z() * static_cast<float>(m_params.decimation);
+      if (std::abs(l.z() - rr.z()) > jump || std::abs(u.z() - dn.z()) > jump)
+        continue;
+      Eigen::Vector3f nrm = (rr - l).cross(dn - u);
+      const float len = nrm.norm();
+      if (!(len > 0))
+        continue;
+      nrm /= len;
+      if (nrm.dot(p) > 0)
+        nrm = -nrm;
+      m.normals[k] = nrm;
+    }
+  return m;
+}
+
+std::optional<CDepthIcp::TResult> CDepthIcp::align(
+    const TMap& ref, const TMap& cur, const TRigid& guess) const
+{
+  if (ref.cols != m_cols || cur.cols != m_cols || ref.rows != m_rows || cur.rows != m_rows)
+    throw std::invalid_argument("CDepthIcp::align: maps of a different camera");
+  TRigid T = guess;
+  const double huber = 0.01;
+  Matrix6d H;
+  Vector6d g;
+  std::size_t pairs = 0;
+  double sumSq = 0;
+  auto build = [&](double gate)
+  {
+    H.setZero();
+    g.setZero();
+    pairs = 0;
+    sumSq = 0;
+    const Eigen::Matrix3f R = T.R.cast<float>();
+    const Eigen::Vector3f t = T.t.cast<float>();
+    const float gate2 = static_cast<float>(gate * gate);
+    for (std::size_t k = 0; k < cur.points.size(); ++k)
+    {
+      const Eigen::Vector3f& p = cur.points[k];
+      if (!std::isfinite(p.z()))
+        continue;
+      const Eigen::Vector3f q = R * p + t;
+      if (q.z() < 1e-3f)
+        continue;
+      const int c = static_cast<int>(std::lround(m_fx * q.x() / q.z() + m_cx));
+      const int r = static_cast<int>(std::lround(m_fy * q.y() / q.z() + m_cy));
+      if (c < 0 || r < 0 || c >= m_cols || r >= m_rows)
+        continue;
+      const std::size_t j = static_cast<std::size_t>(r * m_cols + c);
+      const Eigen::Vector3f& nv = ref.normals[j];
+      if (!std::isfinite(nv.z()))
+        continue;
+      const Eigen::Vector3f diff = q - ref.points[j];
+      if (diff.squaredNorm() > gate2)
+        continue;
+      const double res = nv.dot(diff);
+      const double w = std::abs(res) <= huber ? 1.0 : huber / std::abs(res);
+      Vector6d J;
+      const Eigen::Vector3f qxn = q.cross(nv);
+      J << nv.x(), nv.y(), nv.z(), qxn.x(), qxn.y(), qxn.z();
+      H.noalias() += w * J * J.transpose();
+      g.noalias() += w * J * res;
+      sumSq += res * res;
+      ++pairs;
+    }
+  };
+  for (int it = 0; it < m_params.maxIterations; ++it)
+  {
+    // Shrinking gate: wide at first to capture, tight later to reject outliers.
+    const double gate = it < 3 ? m_params.maxDistance : 0.5 * m_params.maxDistance;
+    build(gate);
+    if (pairs < static_cast<std::size_t>(m_params.minPairs))
+      return std::nullopt;
+    // Damping keeps unobservable directions at the guess.
+    const double lambda = 1e-4 * H.trace() / 6.0 + 1e-9;
+    const Vector6d d = -(H + lambda * Matrix6d::Identity()).ldlt().solve(g);
+    if (!d.allFinite())
+      return std::nullopt;
+    T = applyLeft(d, T);
+    if (d.head<3>().norm() < 1e-5 && d.tail<3>().norm() < 1e-5)
+      break;
+  }
+  build(0.5 * m_params.maxDistance);
+  if (pairs < static_cast<std::size_t>(m_params.minPairs))
+    return std::nullopt;
+  // Plausibility: ICP should only correct the prediction, not jump.
+  const TRigid dT = {T.R * guess.R.transpose(), T.t - T.R * guess.R.transpose() * guess.t};
+  const double ang = Eigen::AngleAxisd(dT.R).angle();
+  if ((T.t - guess.t).norm() > 0.3 || ang > 0.5)
+    return std::nullopt;
+  TResult out;
+  out.T = T;
+  out.pairs = pairs;
+  out.rmse = std::sqrt(sumSq / static_cast<double>(pairs));
+  // Dense ICP pairs are strongly correlated; treat them as ~100x fewer
+  // independent measurements so the graph does not over-trust ICP edges.
+  const double sigma = std::max(out.rmse, 0.003);
+  out.information = H / (sigma * sigma) * 0.01;
+  return out;
+}
+}  // namespace roislam::frontend::detail

@@ -1,0 +1,785 @@
+#include "roislam/frontend/CRgbdOdometry.h"
+
+#include <mrpt/config/CConfigFileBase.h>
+#include <roislam/matching/CRigidTransformRansac.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdlib>
+#include <map>
+#include <opencv2/calib3d.hpp>
+#include <opencv2/imgproc.hpp>
+#include <stdexcept>
+
+#include "CDepthIcp.h"
+#include "ReprojectionRefinement.h"
+#include "RigidMath.h"
+
+namespace roislam::frontend
+{
+using detail::Matrix6d;
+using detail::TRigid;
+
+namespace
+{
+[[noreturn]] void badKey(const std::string& section, const std::string& key, const std::string& why)
+{
+  throw std::invalid_argument("[" + section + "] " + key + ": " + why);
+}
+
+using Clock = std::chrono::steady_clock;
+double msSince(Clock::time_point t0)
+{
+  return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+}
+
+TInformation66 toMrpt(const Matrix6d& m)
+{
+  TInformation66 o;
+  for (int r = 0; r < 6; ++r)
+    for (int c = 0; c < 6; ++c)
+      o(r, c) = m(r, c);
+  return o;
+}
+
+TInformation66 scaledIdentity(double s)
+{
+  TInformation66 o;
+  o.setZero();
+  for (int i = 0; i < 6; ++i)
+    o(i, i) = s;
+  return o;
+}
+
+double rotationAngle(const mrpt::poses::CPose3D& p)
+{
+  const Eigen::Matrix3d R = p.getRotationMatrix().asEigen();
+  return Eigen::AngleAxisd(R).angle();
+}
+
+ETrackingMethod featureMethod(EFrontEndMode mode, bool fallback)
+{
+  if (!isRoiMode(mode))
+    return ETrackingMethod::Features;
+  return fallback ? ETrackingMethod::FullImageFallback : ETrackingMethod::RoiFeatures;
+}
+
+bool isFeatureMethod(ETrackingMethod m)
+{
+  return m == ETrackingMethod::Features || m == ETrackingMethod::RoiFeatures ||
+         m == ETrackingMethod::FullImageFallback;
+}
+}  // namespace
+
+std::string toString(ETrackingMethod m)
+{
+  switch (m)
+  {
+    case ETrackingMethod::Initial:
+      return "initial";
+    case ETrackingMethod::Features:
+      return "features";
+    case ETrackingMethod::RoiFeatures:
+      return "roi";
+    case ETrackingMethod::FullImageFallback:
+      return "full_image_fallback";
+    case ETrackingMethod::DepthIcp:
+      return "depth_icp";
+    case ETrackingMethod::ConstantVelocity:
+      return "constant_velocity";
+    case ETrackingMethod::Lost:
+      return "lost";
+  }
+  return "unknown";
+}
+
+EFrontEndMode frontEndModeFromString(const std::string& s)
+{
+  if (s == "traditional")
+    return EFrontEndMode::Traditional;
+  if (s == "roi_small")
+    return EFrontEndMode::RoiSmall;
+  if (s == "roi_big")
+    return EFrontEndMode::RoiBig;
+  if (s == "roi")
+    return EFrontEndMode::Roi;
+  throw std::invalid_argument(
+      "unknown front-end mode '" + s + "' (expected traditional, roi_small, roi_big or roi)");
+}
+
+std::string toString(EFrontEndMode m)
+{
+  switch (m)
+  {
+    case EFrontEndMode::Traditional:
+      return "traditional";
+    case EFrontEndMode::RoiSmall:
+      return "roi_small";
+    case EFrontEndMode::RoiBig:
+      return "roi_big";
+    case EFrontEndMode::Roi:
+      return "roi";
+  }
+  return "unknown";
+}
+
+// ---------------------------------------------------------------- options
+void CRgbdOdometry::TOptions::loadFromConfigFile(
+    const mrpt::config::CConfigFileBase& c, const std::string& s)
+{
+  const std::string m = c.read_string(s, "mode", toString(mode));
+  try
+  {
+    mode = frontEndModeFromString(m);
+  }
+  catch (const std::invalid_argument& e)
+  {
+    badKey(s, "mode", e.what());
+  }
+  strict_roi = c.read_bool(s, "strict_roi", strict_roi);
+  min_roi_features = c.read_int(s, "min_roi_features", min_roi_features);
+  min_inliers = c.read_int(s, "min_inliers", min_inliers);
+  keyframe_translation_m = c.read_double(s, "keyframe_translation_m", keyframe_translation_m);
+  keyframe_rotation_deg = c.read_double(s, "keyframe_rotation_deg", keyframe_rotation_deg);
+  keyframe_min_inliers = c.read_int(s, "keyframe_min_inliers", keyframe_min_inliers);
+  recent_keyframes = c.read_int(s, "recent_keyframes", recent_keyframes);
+  ransac_threshold_m = c.read_double(s, "ransac_threshold_m", ransac_threshold_m);
+  ransac_max_iterations = c.read_int(s, "ransac_max_iterations", ransac_max_iterations);
+  refine_iterations = c.read_int(s, "refine_iterations", refine_iterations);
+  reprojection_threshold_px =
+      c.read_double(s, "reprojection_threshold_px", reprojection_threshold_px);
+  pixel_sigma_px = c.read_double(s, "pixel_sigma_px", pixel_sigma_px);
+  min_depth_m = c.read_double(s, "min_depth_m", min_depth_m);
+  max_depth_m = c.read_double(s, "max_depth_m", max_depth_m);
+  depth_discontinuity_m = c.read_double(s, "depth_discontinuity_m", depth_discontinuity_m);
+  icp_fallback = c.read_bool(s, "icp_fallback", icp_fallback);
+  icp_decimation = c.read_int(s, "icp_decimation", icp_decimation);
+  icp_max_iterations = c.read_int(s, "icp_max_iterations", icp_max_iterations);
+  icp_max_distance_m = c.read_double(s, "icp_max_distance_m", icp_max_distance_m);
+  icp_min_pairs = c.read_int(s, "icp_min_pairs", icp_min_pairs);
+  constant_velocity_information_scale =
+      c.read_double(s, "constant_velocity_information_scale", constant_velocity_information_scale);
+
+  roi.loadFromConfigFile(c, "RoiDetector");
+  extractor.loadFromConfigFile(c, "FeatureExtractor");
+  matcher.loadFromConfigFile(c, "FeatureMatcher");
+  validate();
+}
+
+void CRgbdOdometry::TOptions::saveToConfigFile(
+    mrpt::config::CConfigFileBase& c, const std::string& s) const
+{
+  c.write(s, "mode", toString(mode));
+  c.write(s, "strict_roi", strict_roi);
+  c.write(s, "min_roi_features", min_roi_features);
+  c.write(s, "min_inliers", min_inliers);
+  c.write(s, "keyframe_translation_m", keyframe_translation_m);
+  c.write(s, "keyframe_rotation_deg", keyframe_rotation_deg);
+  c.write(s, "keyframe_min_inliers", keyframe_min_inliers);
+  c.write(s, "recent_keyframes", recent_keyframes);
+  c.write(s, "ransac_threshold_m", ransac_threshold_m);
+  c.write(s, "ransac_max_iterations", ransac_max_iterations);
+  c.write(s, "refine_iterations", refine_iterations);
+  c.write(s, "reprojection_threshold_px", reprojection_threshold_px);
+  c.write(s, "pixel_sigma_px", pixel_sigma_px);
+  c.write(s, "min_depth_m", min_depth_m);
+  c.write(s, "max_depth_m", max_depth_m);
+  c.write(s, "depth_discontinuity_m", depth_discontinuity_m);
+  c.write(s, "icp_fallback", icp_fallback);
+  c.write(s, "icp_decimation", icp_decimation);
+  c.write(s, "icp_max_iterations", icp_max_iterations);
+  c.write(s, "icp_max_distance_m", icp_max_distance_m);
+  c.write(s, "icp_min_pairs", icp_min_pairs);
+  c.write(s, "constant_velocity_information_scale", constant_velocity_information_scale);
+  roi.saveToConfigFile(c, "RoiDetector");
+  extractor.saveToConfigFile(c, "FeatureExtractor");
+  matcher.saveToConfigFile(c, "FeatureMatcher");
+}
+
+void CRgbdOdometry::TOptions::validate() const
+{
+  const std::string s = "FrontEnd";
+  if (min_roi_features < 3)
+    badKey(s, "min_roi_features", "must be >= 3");
+  if (min_inliers < 3)
+    badKey(s, "min_inliers", "must be >= 3");
+  if (!(keyframe_translation_m > 0))
+    badKey(s, "keyframe_translation_m", "must be > 0");
+  if (!(keyframe_rotation_deg > 0))
+    badKey(s, "keyframe_rotation_deg", "must be > 0");
+  if (keyframe_min_inliers < 0)
+    badKey(s, "keyframe_min_inliers", "must be >= 0");
+  if (recent_keyframes < 0)
+    badKey(s, "recent_keyframes", "must be >= 0");
+  if (!(ransac_threshold_m > 0))
+    badKey(s, "ransac_threshold_m", "must be > 0");
+  if (ransac_max_iterations < 1)
+    badKey(s, "ransac_max_iterations", "must be >= 1");
+  if (refine_iterations < 0)
+    badKey(s, "refine_iterations", "must be >= 0");
+  if (!(reprojection_threshold_px > 0))
+    badKey(s, "reprojection_threshold_px", "must be > 0");
+  if (!(pixel_sigma_px > 0))
+    badKey(s, "pixel_sigma_px", "must be > 0");
+  if (!(min_depth_m >= 0))
+    badKey(s, "min_depth_m", "must be >= 0");
+  if (!(max_depth_m > min_depth_m))
+    badKey(s, "max_depth_m", "must be > min_depth_m");
+  if (!(depth_discontinuity_m >= 0))
+    badKey(s, "depth_discontinuity_m", "must be >= 0");
+  if (icp_decimation < 1)
+    badKey(s, "icp_decimation", "must be >= 1");
+  if (icp_max_iterations < 1)
+    badKey(s, "icp_max_iterations", "must be >= 1");
+  if (!(icp_max_distance_m > 0))
+    badKey(s, "icp_max_distance_m", "must be > 0");
+  if (icp_min_pairs < 6)
+    badKey(s, "icp_min_pairs", "must be >= 6");
+  if (!(constant_velocity_information_scale > 0))
+    badKey(s, "constant_velocity_information_scale", "must be > 0");
+}
+
+// ---------------------------------------------------------------- implementation
+struct CRgbdOdometry::TImpl
+{
+  roi::CRoiDetector roiDetector;
+  features::CFeatureExtractor extractor;
+  matching::CFeatureMatcher matcher;
+  matching::CRigidTransformRansac ransac;
+
+  // Camera-dependent state, rebuilt when the intrinsics change.
+  bool haveCamera = false;
+  mrpt::img::TCamera camera;
+  cv::Mat K, dist;
+  detail::TPinhole pinhole;
+  std::unique_ptr<detail::CDepthIcp> icp;
+  /** ICP maps of the most recent keyframes only (memory). */
+  std::map<std::size_t, detail::CDepthIcp::TMap> icpMaps;
+
+  // Tracking state: the last tracked (non-lost) frame relative to a keyframe.
+  bool haveLast = false;
+  std::size_t lastRef = 0;
+  mrpt::poses::CPose3D lastRel;
+  /** Motion between the last two tracked frames: P_k = P_{k-1} (+) velocity. */
+  mrpt::poses::CPose3D velocity;
+
+  TImpl(const TOptions& o)
+      : roiDetector(o.roi), extractor(o.extractor), matcher(o.matcher), ransac(ransacOptions(o))
+  {
+  }
+
+  static matching::CRigidTransformRansac::TOptions ransacOptions(const TOptions& o)
+  {
+    matching::CRigidTransformRansac::TOptions r;
+    r.threshold_m = o.ransac_threshold_m;
+    r.max_iterations = o.ransac_max_iterations;
+    r.min_inliers = o.min_inliers;
+    return r;
+  }
+};
+
+namespace
+{
+roi::CRoiDetector::TOptions roiOptionsFor(const CRgbdOdometry::TOptions& o)
+{
+  roi::CRoiDetector::TOptions r = o.roi;
+  if (o.mode == EFrontEndMode::RoiSmall)
+    r.setPreset("small");
+  else if (o.mode == EFrontEndMode::RoiBig)
+    r.setPreset("big");
+  return r;
+}
+
+bool sameCamera(const mrpt::img::TCamera& a, const mrpt::img::TCamera& b)
+{
+  return a.ncols == b.ncols && a.nrows == b.nrows && a.fx() == b.fx() && a.fy() == b.fy() &&
+         a.cx() == b.cx() && a.cy() == b.cy() && a.dist == b.dist;
+}
+}  // namespace
+
+CRgbdOdometry::CRgbdOdometry() : CRgbdOdometry(TOptions()) {}
+
+CRgbdOdometry::CRgbdOdometry(const TOptions& options)
+    : mrpt::system::COutputLogger("CRgbdOdometry"), m_options(options)
+{
+  m_options.validate();
+  m_options.roi = roiOptionsFor(m_options);
+  m_impl = std::make_unique<TImpl>(m_options);
+}
+
+CRgbdOdometry::~CRgbdOdometry() = default;
+
+const TKeyframe& CRgbdOdometry::keyframe(std::size_t id) const
+{
+  if (id >= m_keyframes.size())
+    throw std::out_of_range("CRgbdOdometry: no keyframe " + std::to_string(id));
+  return m_keyframes[id];
+}
+
+void CRgbdOdometry::setKeyframePose(std::size_t id, const mrpt::poses::CPose3D& pose)
+{
+  if (id >= m_keyframes.size())
+    throw std::out_of_range("CRgbdOdometry::setKeyframePose: no keyframe " + std::to_string(id));
+  m_keyframes[id].pose = pose;
+}
+
+void CRgbdOdometry::reset()
+{
+  m_keyframes.clear();
+  m_stats = TStats();
+  m_impl->icpMaps.clear();
+  m_impl->haveLast = false;
+  m_impl->velocity = mrpt::poses::CPose3D();
+}
+
+namespace
+{
+// Matched pairs between a reference set (train: `ref`) and another (query: `cur`),
+// registered with 3-D RANSAC and refined on reprojection. T maps cur -> ref.
+struct TRegistration
+{
+  TRigid T;
+  Matrix6d information;
+  std::size_t matches = 0, inliers = 0;
+  double rmse3d = 0, rmsePx = 0;
+};
+
+std::optional<TRegistration> registerSets(
+    const TKeyframe& ref, const TKeyframe& cur, const matching::CFeatureMatcher& matcher,
+    const matching::CRigidTransformRansac& ransac, const detail::TPinhole& cam,
+    const CRgbdOdometry::TOptions& o, std::size_t* matchesOut, double* matchMs, double* ransacMs)
+{
+  const std::size_t minInl = static_cast<std::size_t>(o.min_inliers);
+  if (ref.features.size() < minInl || cur.features.size() < minInl)
+    return std::nullopt;
+  auto t0 = Clock::now();
+  const auto matches = matcher.match(cur.features, ref.features);
+  if (matchMs)
+    *matchMs += msSince(t0);
+  if (matchesOut)
+    *matchesOut = matches.size();
+  if (matches.size() < minInl)
+    return std::nullopt;
+  t0 = Clock::now();
+  std::vector<mrpt::math::TPoint3D> a, b;
+  detail::TCorrespondences c;
+  a.reserve(matches.size());
+  b.reserve(matches.size());
+  for (const auto& m : matches)
+  {
+    const auto& pa = ref.points[static_cast<std::size_t>(m.trainIdx)];
+    const auto& pb = cur.points[static_cast<std::size_t>(m.queryIdx)];
+    const auto& ua = ref.pixels[static_cast<std::size_t>(m.trainIdx)];
+    const auto& ub = cur.pixels[static_cast<std::size_t>(m.queryIdx)];
+    a.push_back(pa);
+    b.push_back(pb);
+    c.a.emplace_back(pa.x, pa.y, pa.z);
+    c.b.emplace_back(pb.x, pb.y, pb.z);
+    c.ua.emplace_back(ua.x, ua.y);
+    c.ub.emplace_back(ub.x, ub.y);
+    // Keypoint precision degrades with the detection scale (pyramid level).
+    const double sa = ref.features.keypoints[static_cast<std::size_t>(m.trainIdx)].size;
+    const double sb = cur.features.keypoints[static_cast<std::size_t>(m.queryIdx)].size;
+    c.sigma.push_back(0.5 * (sa + sb));
+  }
+  {
+    // Normalise: the smallest detection size of the type has pixel_sigma_px.
+    double s0 = features::isBinary(ref.features.type) ? 31.0 : 1e9;
+    if (!features::isBinary(ref.features.type))
+      for (double v : c.sigma)
+        s0 = std::min(s0, v);
+    s0 = std::max(s0, 1e-3);
+    if (std::getenv("FE_NOSIG")) c.sigma.clear();
+    for (double& v : c.sigma)
+      v = o.pixel_sigma_px * std::max(1.0, v / s0);
+  }
+  const auto rs = ransac.estimate(a, b);
+  if (!rs)
+  {
+    if (ransacMs)
+      *ransacMs += msSince(t0);
+    return std::nullopt;
+  }
+  detail::TRefineParams rp;
+  rp.iterations = o.refine_iterations;
+  rp.inlierThresholdPx = o.reprojection_threshold_px;
+  rp.inlierThreshold3d = 2 * o.ransac_threshold_m;
+  rp.pixelSigma = o.pixel_sigma_px;
+  const auto rr =
+      detail::refineReprojection(cam, c, detail::fromPose(rs->transform), rs->inliers, rp);
+  if (ransacMs)
+    *ransacMs += msSince(t0);
+  if (rr.inliers.size() < minInl)
+    return std::nullopt;
+  TRegistration out;
+  out.T = rr.T;
+  out.information = rr.information;
+  out.matches = matches.size();
+  out.inliers = rr.inliers.size();
+  out.rmse3d = rr.rmse3d;
+  out.rmsePx = rr.rmsePx;
+  return out;
+}
+}  // namespace
+
+std::optional<TRelativePoseEstimate> CRgbdOdometry::registerKeyframes(
+    std::size_t idA, std::size_t idB) const
+{
+  const TKeyframe& A = keyframe(idA);
+  const TKeyframe& B = keyframe(idB);
+  if (!m_impl->haveCamera)
+    return std::nullopt;
+  const auto r = registerSets(
+      A, B, m_impl->matcher, m_impl->ransac, m_impl->pinhole, m_options, nullptr, nullptr, nullptr);
+  if (!r)
+    return std::nullopt;
+  TRelativePoseEstimate e;
+  e.pose = detail::toPose(r->T);
+  e.information = toMrpt(detail::tangentInfoToYpr(r->information, e.pose));
+  e.matches = r->matches;
+  e.inliers = r->inliers;
+  e.rmse_m = r->rmse3d;
+  e.rmse_px = r->rmsePx;
+  return e;
+}
+
+TFrameResult CRgbdOdometry::process(const io::TRGBDFrame& frame)
+{
+  const auto tStart = Clock::now();
+  TImpl& I = *m_impl;
+  const TOptions& o = m_options;
+  if (frame.rgb.empty() || frame.rgb.type() != CV_8UC3)
+    throw std::invalid_argument("CRgbdOdometry::process: rgb must be a CV_8UC3 image");
+  if (frame.depth.type() != CV_32FC1 || frame.depth.size() != frame.rgb.size())
+    throw std::invalid_argument(
+        "CRgbdOdometry::process: depth must be CV_32FC1 of the colour image's size");
+  if (!I.haveCamera || !sameCamera(I.camera, frame.camera))
+  {
+    if (static_cast<int>(frame.camera.ncols) != frame.rgb.cols ||
+        static_cast<int>(frame.camera.nrows) != frame.rgb.rows)
+      throw std::invalid_argument("CRgbdOdometry::process: camera size differs from the images");
+    I.camera = frame.camera;
+    I.K =
+        (cv::Mat_<double>(3, 3) << frame.camera.fx(), 0, frame.camera.cx(), 0, frame.camera.fy(),
+         frame.camera.cy(), 0, 0, 1);
+    I.dist = cv::Mat(1, 5, CV_64F);
+    for (int i = 0; i < 5; ++i)
+      I.dist.at<double>(0, i) = frame.camera.dist[static_cast<std::size_t>(i)];
+    I.pinhole = {frame.camera.fx(), frame.camera.fy(), frame.camera.cx(), frame.camera.cy()};
+    detail::CDepthIcp::TParams ip;
+    ip.decimation = o.icp_decimation;
+    ip.maxIterations = o.icp_max_iterations;
+    ip.maxDistance = o.icp_max_distance_m;
+    ip.minPairs = o.icp_min_pairs;
+    ip.minDepth = o.min_depth_m;
+    ip.maxDepth = o.max_depth_m;
+    I.icp = std::make_unique<detail::CDepthIcp>(ip, frame.camera);
+    I.icpMaps.clear();
+    I.haveCamera = true;
+  }
+  const cv::Mat depth = frame.depth.isContinuous() ? frame.depth : frame.depth.clone();
+
+  TFrameResult res;
+  res.frameIndex = frame.index;
+  res.timestamp = frame.timestamp;
+  ++m_stats.frames;
+
+  cv::Mat grey;
+  cv::cvtColor(frame.rgb, grey, cv::COLOR_BGR2GRAY);
+
+  // Stage 1: ROI.
+  auto t0 = Clock::now();
+  if (isRoiMode(o.mode))
+  {
+    if (const auto roi = I.roiDetector.detect(grey))
+      res.roi = roi->box;
+    else
+      ++m_stats.noRoi;
+  }
+  res.times.roi_ms = msSince(t0);
+
+  // Stage 2: features, once on the whole image.
+  t0 = Clock::now();
+  const features::TFeatureSet all = I.extractor.extract(grey);
+  res.times.extract_ms = msSince(t0);
+  res.features = all.size();
+
+  // Lift to 3-D: undistorted pixel + depth at the (distorted) keypoint.
+  t0 = Clock::now();
+  TKeyframe cur;  // the frame's tracking set; becomes the keyframe if selected
+  cur.frameIndex = frame.index;
+  cur.timestamp = frame.timestamp;
+  cur.roi = res.roi;
+  std::vector<int> valid;
+  std::vector<cv::Point2f> undist;
+  if (!all.empty())
+  {
+    std::vector<cv::Point2f> pts;
+    pts.reserve(all.size());
+    for (const auto& k : all.keypoints)
+      pts.push_back(k.pt);
+    cv::undistortPoints(pts, undist, I.K, I.dist, cv::noArray(), I.K);
+    for (std::size_t i = 0; i < pts.size(); ++i)
+    {
+      const int u = static_cast<int>(std::lround(pts[i].x));
+      const int v = static_cast<int>(std::lround(pts[i].y));
+      if (u < 1 || v < 1 || u >= depth.cols - 1 || v >= depth.rows - 1)
+        continue;
+      const float z = depth.at<float>(v, u);
+      if (!(z >= o.min_depth_m && z <= o.max_depth_m))
+        continue;
+      if (o.depth_discontinuity_m > 0)
+      {
+        float lo = z, hi = z;
+        for (int dv = -1; dv <= 1; ++dv)
+          for (int du = -1; du <= 1; ++du)
+          {
+            const float zz = depth.at<float>(v + dv, u + du);
+            lo = std::min(lo, zz);
+            hi = std::max(hi, zz);
+          }
+        if (lo <= 0 || hi - lo > o.depth_discontinuity_m * z)
+          continue;
+      }
+      valid.push_back(static_cast<int>(i));
+    }
+  }
+  res.featuresWithDepth = valid.size();
+  // Tracking set: ROI subset or the whole image.
+  std::vector<int> chosen = valid;
+  bool fallback = false;
+  if (isRoiMode(o.mode))
+  {
+    std::vector<int> inRoi;
+    if (res.roi)
+    {
+      const cv::Rect2f box(*res.roi);
+      for (int i : valid)
+        if (box.contains(all.keypoints[static_cast<std::size_t>(i)].pt))
+          inRoi.push_back(i);
+    }
+    res.roiFeatures = inRoi.size();
+    if (static_cast<int>(inRoi.size()) >= o.min_roi_features)
+      chosen = std::move(inRoi);
+    else if (o.strict_roi)
+      chosen = std::move(inRoi);  // too few: the frame will be Lost
+    else
+      fallback = true;
+  }
+  cur.features = all.select(chosen);
+  cur.fullImageFallback = fallback;
+  cur.points.reserve(chosen.size());
+  cur.pixels.reserve(chosen.size());
+  for (int i : chosen)
+  {
+    const auto& u = undist[static_cast<std::size_t>(i)];
+    const cv::Point2f& p = all.keypoints[static_cast<std::size_t>(i)].pt;
+    const double z =
+        depth.at<float>(static_cast<int>(std::lround(p.y)), static_cast<int>(std::lround(p.x)));
+    cur.points.emplace_back(
+        (u.x - I.pinhole.cx) / I.pinhole.fx * z, (u.y - I.pinhole.cy) / I.pinhole.fy * z, z);
+    cur.pixels.push_back(u);
+  }
+  res.trackingFeatures = cur.features.size();
+  res.times.lift_ms = msSince(t0);
+
+  const bool strictLost =
+      isRoiMode(o.mode) && o.strict_roi && static_cast<int>(res.roiFeatures) < o.min_roi_features;
+
+  auto finish = [&]()
+  {
+    res.times.total_ms = msSince(tStart);
+    switch (res.method)
+    {
+      case ETrackingMethod::Initial:
+        ++m_stats.initial;
+        break;
+      case ETrackingMethod::Features:
+        ++m_stats.features;
+        break;
+      case ETrackingMethod::RoiFeatures:
+        ++m_stats.roiFeatures;
+        break;
+      case ETrackingMethod::FullImageFallback:
+        ++m_stats.fullImageFallback;
+        break;
+      case ETrackingMethod::DepthIcp:
+        ++m_stats.depthIcp;
+        break;
+      case ETrackingMethod::ConstantVelocity:
+        ++m_stats.constantVelocity;
+        break;
+      case ETrackingMethod::Lost:
+        ++m_stats.lost;
+        break;
+    }
+    return res;
+  };
+
+  auto addKeyframe = [&](const mrpt::poses::CPose3D& pose)
+  {
+    const auto tk = Clock::now();
+    cur.id = m_keyframes.size();
+    cur.pose = pose;
+    m_keyframes.push_back(std::move(cur));
+    ++m_stats.keyframes;
+    res.isNewKeyframe = true;
+    res.newKeyframeId = m_keyframes.back().id;
+    I.icpMaps[res.newKeyframeId] = I.icp->buildMap(depth);
+    const std::size_t keep = static_cast<std::size_t>(o.recent_keyframes) + 1;
+    while (I.icpMaps.size() > keep)
+      I.icpMaps.erase(I.icpMaps.begin());
+    I.haveLast = true;
+    I.lastRef = res.newKeyframeId;
+    I.lastRel = mrpt::poses::CPose3D();
+    res.times.icp_ms += msSince(tk);
+  };
+
+  // First frame: the map's origin.
+  if (m_keyframes.empty())
+  {
+    if (strictLost)
+    {
+      res.method = ETrackingMethod::Lost;
+      return finish();
+    }
+    res.method = ETrackingMethod::Initial;
+    res.pose = m_initialPose;
+    res.relativeInformation = scaledIdentity(1e6);
+    addKeyframe(m_initialPose);
+    return finish();
+  }
+  if (strictLost)
+  {
+    res.method = ETrackingMethod::Lost;
+    return finish();
+  }
+
+  const std::size_t lastKf = m_keyframes.size() - 1;
+  // Prediction (constant velocity) relative to the last keyframe.
+  mrpt::poses::CPose3D lastWorld = m_keyframes[lastKf].pose;
+  if (I.haveLast)
+    lastWorld = m_keyframes[I.lastRef].pose + I.lastRel;
+  const mrpt::poses::CPose3D predictedWorld = lastWorld + I.velocity;
+  const mrpt::poses::CPose3D predictedRel = predictedWorld - m_keyframes[lastKf].pose;
+
+  // Features against the last keyframe, then the recent older ones.
+  std::optional<TRegistration> reg;
+  std::size_t ref = lastKf;
+  {
+    const std::size_t nTry = 1 + static_cast<std::size_t>(o.recent_keyframes);
+    for (std::size_t k = 0; k < nTry && k <= lastKf; ++k)
+    {
+      const std::size_t id = lastKf - k;
+      std::size_t nm = 0;
+      reg = registerSets(
+          m_keyframes[id], cur, I.matcher, I.ransac, I.pinhole, o, &nm, &res.times.match_ms,
+          &res.times.ransac_ms);
+      if (k == 0 || reg)
+        res.matches = nm;
+      if (reg)
+      {
+        ref = id;
+        break;
+      }
+    }
+  }
+
+  if (reg)
+  {
+    res.method = featureMethod(o.mode, fallback);
+    res.relativePose = detail::toPose(reg->T);
+    res.relativeInformation = toMrpt(detail::tangentInfoToYpr(reg->information, res.relativePose));
+    res.inliers = reg->inliers;
+  }
+  else if (o.strict_roi && isRoiMode(o.mode))
+  {
+    res.method = ETrackingMethod::Lost;
+    return finish();
+  }
+  else
+  {
+    bool done = false;
+    if (o.icp_fallback && I.icpMaps.count(lastKf))
+    {
+      const auto ti = Clock::now();
+      const auto curMap = I.icp->buildMap(depth);
+      const auto ir = I.icp->align(I.icpMaps[lastKf], curMap, detail::fromPose(predictedRel));
+      res.times.icp_ms += msSince(ti);
+      if (ir)
+      {
+        res.method = ETrackingMethod::DepthIcp;
+        res.relativePose = detail::toPose(ir->T);
+        res.relativeInformation =
+            toMrpt(detail::tangentInfoToYpr(ir->information, res.relativePose));
+        res.inliers = ir->pairs;
+        done = true;
+      }
+    }
+    if (!done)
+    {
+      res.method = ETrackingMethod::ConstantVelocity;
+      res.relativePose = predictedRel;
+      res.relativeInformation = scaledIdentity(o.constant_velocity_information_scale);
+      res.inliers = 0;
+    }
+    ref = lastKf;
+  }
+  res.referenceKeyframe = ref;
+  const mrpt::poses::CPose3D world = m_keyframes[ref].pose + res.relativePose;
+  res.pose = world;
+  I.velocity = world - lastWorld;
+
+  // Keyframe decision, on the motion since the last keyframe.
+  const mrpt::poses::CPose3D sinceLast = world - m_keyframes[lastKf].pose;
+  const double dist = sinceLast.translation().norm();
+  const double angDeg = rotationAngle(sinceLast) * 180.0 / M_PI;
+  bool makeKf =
+      dist > o.keyframe_translation_m || angDeg > o.keyframe_rotation_deg || ref != lastKf;
+  if (isFeatureMethod(res.method) && static_cast<int>(res.inliers) < o.keyframe_min_inliers)
+    makeKf = true;
+
+  if (!makeKf)
+  {
+    I.haveLast = true;
+    I.lastRef = ref;
+    I.lastRel = res.relativePose;
+    return finish();
+  }
+
+  // New keyframe: odometry edge from the reference, plus recent keyframes.
+  const auto tk = Clock::now();
+  TKeyframeConstraint first;
+  first.fromKeyframe = ref;
+  first.toKeyframe = m_keyframes.size();
+  first.relativePose = res.relativePose;
+  first.information = res.relativeInformation;
+  first.method = res.method;
+  first.inliers = res.inliers;
+  res.constraints.push_back(first);
+  int extra = 0;
+  for (std::size_t k = 0; k <= lastKf && extra < o.recent_keyframes; ++k)
+  {
+    const std::size_t id = lastKf - k;
+    if (id == ref)
+      continue;
+    ++extra;
+    const auto r = registerSets(
+        m_keyframes[id], cur, I.matcher, I.ransac, I.pinhole, o, nullptr, nullptr, nullptr);
+    if (!r)
+      continue;
+    TKeyframeConstraint c;
+    c.fromKeyframe = id;
+    c.toKeyframe = first.toKeyframe;
+    c.relativePose = detail::toPose(r->T);
+    c.information = toMrpt(detail::tangentInfoToYpr(r->information, c.relativePose));
+    c.method = featureMethod(o.mode, fallback);
+    c.inliers = r->inliers;
+    res.constraints.push_back(c);
+  }
+  res.times.keyframe_ms = msSince(tk);
+  addKeyframe(world);
+  return finish();
+}
+}  // namespace roislam::frontend

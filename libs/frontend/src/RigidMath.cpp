@@ -1,0 +1,70 @@
+#include "RigidMath.h"
+
+namespace roislam::frontend::detail
+{
+TRigid fromPose(const mrpt::poses::CPose3D& p)
+{
+  TRigid T;
+  T.R = p.getRotationMatrix().asEigen();
+  T.t = Eigen::Vector3d(p.x(), p.y(), p.z());
+  return T;
+}
+
+mrpt::poses::CPose3D toPose(const TRigid& T)
+{
+  // Re-orthonormalise: repeated small updates accumulate rounding.
+  Eigen::JacobiSVD<Eigen::Matrix3d> svd(T.R, Eigen::ComputeFullU | Eigen::ComputeFullV);
+  Eigen::Matrix3d R = svd.matrixU() * svd.matrixV().transpose();
+  if (R.determinant() < 0)
+    R = -R;
+  return mrpt::poses::CPose3D::FromRotationAndTranslation(R, T.t);
+}
+
+TRigid applyLeft(const Vector6d& delta, const TRigid& T)
+{
+  const Eigen::Vector3d w = delta.tail<3>();
+  const double angle = w.norm();
+  Eigen::Matrix3d dR = Eigen::Matrix3d::Identity();
+  if (angle > 1e-12)
+    dR = Eigen::AngleAxisd(angle, w / angle).toRotationMatrix();
+  TRigid o;
+  o.R = dR * T.R;
+  o.t = dR * T.t + delta.head<3>();
+  return o;
+}
+
+Matrix6d tangentInfoToYpr(const Matrix6d& H, const mrpt::poses::CPose3D& T)
+{
+  // A = d delta / d p, numerically (central differences): T(p + dp) = exp(delta) T(p).
+  const double p[6] = {T.x(), T.y(), T.z(), T.yaw(), T.pitch(), T.roll()};
+  const TRigid T0 = fromPose(T);
+  const TRigid T0inv = T0.inverse();
+  Matrix6d A;
+  const double eps = 1e-6;
+  for (int i = 0; i < 6; ++i)
+  {
+    Vector6d col;
+    for (int sgn = -1; sgn <= 1; sgn += 2)
+    {
+      double q[6];
+      for (int k = 0; k < 6; ++k)
+        q[k] = p[k] + (k == i ? sgn * eps : 0.0);
+      const TRigid Tq = fromPose(mrpt::poses::CPose3D(q[0], q[1], q[2], q[3], q[4], q[5]));
+      // exp(delta) = Tq * T0^-1; for tiny delta: v ~ translation, w ~ rotation vector.
+      const Eigen::Matrix3d dR = Tq.R * T0inv.R;
+      const Eigen::Vector3d dt = Tq.R * T0inv.t + Tq.t;
+      const Eigen::AngleAxisd aa(dR);
+      Vector6d d;
+      d.head<3>() = dt;
+      d.tail<3>() = aa.axis() * aa.angle();
+      if (sgn < 0)
+        col = -d;
+      else
+        col += d;
+    }
+    A.col(i) = col / (2 * eps);
+  }
+  Matrix6d I = A.transpose() * H * A;
+  return 0.5 * (I + I.transpose());
+}
+}  // namespace roislam::frontend::detail

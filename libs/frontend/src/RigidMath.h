@@ -1,0 +1,43 @@
+/* Private helpers of the front end: rigid transforms as Eigen (R, t), the
+ * left-perturbation update used by every Gauss-Newton solver here, and the
+ * conversion of an information matrix from that tangent space to MRPT's
+ * CPose3DPDFGaussianInf convention (x, y, z, yaw, pitch, roll).
+ */
+#pragma once
+
+#include <mrpt/poses/CPose3D.h>
+
+#include <Eigen/Dense>
+
+namespace roislam::frontend::detail
+{
+using Matrix6d = Eigen::Matrix<double, 6, 6>;
+using Vector6d = Eigen::Matrix<double, 6, 1>;
+
+/** x_a = R x_b + t. */
+struct TRigid
+{
+  Eigen::Matrix3d R = Eigen::Matrix3d::Identity();
+  Eigen::Vector3d t = Eigen::Vector3d::Zero();
+
+  Eigen::Vector3d operator*(const Eigen::Vector3d& p) const { return R * p + t; }
+  TRigid inverse() const
+  {
+    TRigid o;
+    o.R = R.transpose();
+    o.t = -(o.R * t);
+    return o;
+  }
+};
+
+TRigid fromPose(const mrpt::poses::CPose3D& p);
+mrpt::poses::CPose3D toPose(const TRigid& T);
+
+/** exp(delta) * T with delta = (v, w): x' = Exp(w) (R x + t) + v, whose
+ *  derivative at delta = 0 is [I, -[x']_x]. */
+TRigid applyLeft(const Vector6d& delta, const TRigid& T);
+
+/** Information H of delta (left perturbation of T, as in applyLeft) ->
+ *  information of (x, y, z, yaw, pitch, roll) of T (CPose3DPDFGaussianInf). */
+Matrix6d tangentInfoToYpr(const Matrix6d& H, const mrpt::poses::CPose3D& T);
+}  // namespace roislam::frontend::detail

@@ -1,0 +1,169 @@
+/* State shared by our node and edge registration deciders (CKeyframeNRD,
+ * CKeyframeERD) and the optimiser (CKeyframeGSO): the front end
+ * (CRgbdOdometry: one graph node per keyframe, node id == keyframe id), the
+ * ROI landmark database used for loop-closure candidates, per-keyframe map
+ * clouds, and the loop-closure bookkeeping. MRPT's engine gives each decider
+ * only the graph, so the deciders hold a shared_ptr to one context. Created by
+ * CRoiGraphSlamApp (or a test) and handed to the deciders with setContext().
+ *
+ * ini section [GraphSlam] (TOptions), units in brackets:
+ *  - loop_min_keyframe_gap     int >= 1 (10): loop candidates are at least this
+ *                              many keyframes older than the current one
+ *  - landmark_loops            bool (true): candidates from ROI landmark recall
+ *  - proximity_loops           bool (true): candidates near the current
+ *                              keyframe in the current estimate
+ *  - proximity_radius_m        [m] > 0 (0.4)
+ *  - proximity_max_angle_deg   [deg] > 0 (35): viewing-direction difference
+ *  - max_loop_candidates       int >= 1 (3): verified per keyframe and source
+ *  - loop_min_inliers          int >= 3 (25): 3-D RANSAC inliers to accept
+ *  - loop_max_discrepancy_m    [m] > 0 (0.5): reject a verified closure whose
+ *                              relative pose disagrees with the estimate by more
+ *  - optimizer_max_iterations  int >= 1 (50): Levenberg-Marquardt (SPA) limit
+ *  - map_decimation            int >= 1 (8): every n-th pixel/row of a
+ *                              keyframe's depth goes into the map cloud
+ *  - map_max_depth_m           [m] > 0 (4.0): farther readings are not mapped
+ * A bad value throws std::invalid_argument "[GraphSlam] key: why".
+ */
+#pragma once
+
+#include <mrpt/config/CLoadableOptions.h>
+#include <mrpt/graphs/CNetworkOfPoses.h>
+#include <mrpt/maps/CColouredPointsMap.h>
+#include <roislam/frontend/CRgbdOdometry.h>
+#include <roislam/io/TRGBDFrame.h>
+#include <roislam/landmarks/CLandmarkDatabase.h>
+#include <roislam/roi/CRoiDetector.h>
+
+#include <cstddef>
+#include <map>
+#include <memory>
+#include <optional>
+#include <vector>
+
+namespace roislam::graphslam
+{
+using TGraph = mrpt::graphs::CNetworkOfPoses3DInf;
+
+/** Where a loop-closure candidate came from. */
+enum class ELoopSource
+{
+  Landmark,
+  Proximity
+};
+
+/** One accepted loop-closure edge. */
+struct TLoopClosure
+{
+  std::size_t fromKeyframe = 0, toKeyframe = 0;
+  ELoopSource source = ELoopSource::Proximity;
+  std::size_t inliers = 0;
+};
+
+/** Summary of one graph optimisation. */
+struct TOptimizationReport
+{
+  std::size_t iterations = 0;
+  double chi2Before = 0, chi2After = 0;
+  double seconds = 0;
+};
+
+class CSlamContext
+{
+ public:
+  struct TOptions : public mrpt::config::CLoadableOptions
+  {
+    int loop_min_keyframe_gap = 10;
+    bool landmark_loops = true;
+    bool proximity_loops = true;
+    double proximity_radius_m = 0.4;
+    double proximity_max_angle_deg = 35;
+    int max_loop_candidates = 3;
+    int loop_min_inliers = 25;
+    double loop_max_discrepancy_m = 0.5;
+    int optimizer_max_iterations = 50;
+    int map_decimation = 8;
+    double map_max_depth_m = 4.0;
+
+    void loadFromConfigFile(
+        const mrpt::config::CConfigFileBase& source, const std::string& section) override;
+    void saveToConfigFile(
+        mrpt::config::CConfigFileBase& target, const std::string& section) const override;
+    /** Throws std::invalid_argument "[GraphSlam] key: why". */
+    void validate() const;
+  };
+
+  /** Everything the context is built from. */
+  struct TConfig
+  {
+    TOptions backEnd;                                 // [GraphSlam]
+    frontend::CRgbdOdometry::TOptions frontEnd;       // [FrontEnd] + sub-sections
+    landmarks::CLandmarkDatabase::TOptions database;  // [LandmarkDatabase]
+    matching::CHomographyLocator::TOptions locator;   // [HomographyLocator]
+  };
+
+  CSlamContext();
+  explicit CSlamContext(const TConfig& config);
+
+  /** Reads every section of `cfg` (absent sections keep defaults) after
+   *  checking that [GraphSlam], [FrontEnd], [RoiDetector], [FeatureExtractor],
+   *  [FeatureMatcher], [LandmarkDatabase] and [HomographyLocator] hold only
+   *  known keys: "ini <fileLabel>: [Section] unknown key 'x'". */
+  static TConfig loadConfig(const mrpt::config::CConfigFileBase& cfg, const std::string& fileLabel);
+
+  /** The context shared by the deciders of one graph when they were created
+   *  by name (TUserOptionsChecker factories have no arguments): created with
+   *  default options on first use; setForGraph() replaces it (e.g. from the
+   *  ini given to loadParams()). */
+  static std::shared_ptr<CSlamContext> forGraph(const void* graph);
+  static void setForGraph(const void* graph, std::shared_ptr<CSlamContext> context);
+
+  frontend::CRgbdOdometry& odometry() { return m_odometry; }
+  const frontend::CRgbdOdometry& odometry() const { return m_odometry; }
+  const landmarks::CLandmarkDatabase& database() const { return m_database; }
+  const TConfig& config() const { return m_config; }
+
+  /** Tracks one frame with the front end and remembers the result; a new
+   *  keyframe also gets its map cloud and ROI. Called by CKeyframeNRD. */
+  const frontend::TFrameResult& trackFrame(const io::TRGBDFrame& frame);
+  /** The result of the last trackFrame() (nullopt before the first). */
+  const std::optional<frontend::TFrameResult>& lastResult() const { return m_last; }
+
+  /** Loop-closure candidates for keyframe `id` (older than the gap), from
+   *  landmark recall (the keyframe's ROI is queried in the database, and
+   *  stored as a new landmark when not recalled) and from proximity in
+   *  `graph`. Each keyframe is queried at most once. Called by CKeyframeERD. */
+  std::vector<std::pair<std::size_t, ELoopSource>> loopCandidates(
+      std::size_t id, const TGraph& graph);
+
+  /** Records an accepted closure (counted in loopClosures()). */
+  void addLoopClosure(const TLoopClosure& lc) { m_loops.push_back(lc); }
+  const std::vector<TLoopClosure>& loopClosures() const { return m_loops; }
+
+  /** Optimises `graph` (SPA Levenberg-Marquardt, root fixed) and pushes every
+   *  optimised node pose into the front end as its keyframe pose. */
+  TOptimizationReport optimize(TGraph& graph);
+
+  /** Keyframe map clouds in each keyframe's optical camera frame. */
+  const std::vector<mrpt::maps::CColouredPointsMap>& keyframeClouds() const { return m_clouds; }
+
+ private:
+  TConfig m_config;
+  frontend::CRgbdOdometry m_odometry;
+  landmarks::CLandmarkDatabase m_database;
+  roi::CRoiDetector m_roiDetector;
+  std::optional<frontend::TFrameResult> m_last;
+  std::vector<mrpt::maps::CColouredPointsMap> m_clouds;
+  /** ROI box of each keyframe (detected on the keyframe image when the front
+   *  end ran in traditional mode). */
+  std::vector<std::optional<cv::Rect>> m_rois;
+  cv::Size m_imageSize;
+  /** Keyframes already queried in the landmark database. */
+  std::size_t m_landmarkQueried = 0;
+  /** Landmark id -> keyframes that sighted it. */
+  std::map<int32_t, std::vector<std::size_t>> m_sightings;
+  std::vector<TLoopClosure> m_loops;
+};
+
+/** "landmark" | "proximity". */
+std::string toString(ELoopSource s);
+}  // namespace roislam::graphslam

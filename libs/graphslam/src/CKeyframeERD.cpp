@@ -1,0 +1,121 @@
+#include <roislam/graphslam/CKeyframeERD.h>
+
+#include <sstream>
+#include <stdexcept>
+
+namespace roislam::graphslam
+{
+CKeyframeERD::CKeyframeERD(std::shared_ptr<CSlamContext> context) : m_context(std::move(context)) {}
+
+void CKeyframeERD::setContext(std::shared_ptr<CSlamContext> context)
+{
+  m_context = std::move(context);
+}
+
+std::shared_ptr<CSlamContext> CKeyframeERD::context() const
+{
+  if (m_context)
+    return m_context;
+  return this->m_graph ? CSlamContext::forGraph(this->m_graph) : nullptr;
+}
+
+CSlamContext& CKeyframeERD::ctx()
+{
+  auto c = context();
+  if (!c)
+    throw std::logic_error("CKeyframeERD: no graph and no context set");
+  // The per-graph context lives in the registry; keep our own reference.
+  return *c;
+}
+
+void CKeyframeERD::setGraphPtr(TGraph* graph)
+{
+  CEdgeRegistrationDecider<TGraph>::setGraphPtr(graph);
+}
+
+bool CKeyframeERD::updateState(
+    mrpt::obs::CActionCollection::Ptr, mrpt::obs::CSensoryFrame::Ptr, mrpt::obs::CObservation::Ptr)
+{
+  this->m_just_inserted_lc = false;
+  auto& c = ctx();
+  const auto& last = c.lastResult();
+  if (!last || !last->isNewKeyframe || last->newKeyframeId == 0)
+    return true;
+  if (!this->m_graph->nodes.count(last->newKeyframeId))
+    return true;
+  processNewKeyframe(last->newKeyframeId);
+  return true;
+}
+
+CKeyframeERD::TEdgeReport CKeyframeERD::processNewKeyframe(std::size_t id)
+{
+  this->m_just_inserted_lc = false;
+  auto& c = ctx();
+  auto& g = *this->m_graph;
+  TEdgeReport rep;
+  const auto& last = c.lastResult();
+
+  // Recent-keyframe constraints measured by the front end (the first one is
+  // the odometry edge the NRD added).
+  if (last && last->isNewKeyframe && last->newKeyframeId == id)
+  {
+    for (std::size_t i = 1; i < last->constraints.size(); ++i)
+    {
+      const auto& k = last->constraints[i];
+      g.insertEdgeAtEnd(
+          static_cast<mrpt::graphs::TNodeID>(k.fromKeyframe),
+          static_cast<mrpt::graphs::TNodeID>(k.toKeyframe),
+          mrpt::poses::CPose3DPDFGaussianInf(k.relativePose, k.information));
+      ++rep.recentEdges;
+      ++m_stats["recent"];
+    }
+  }
+
+  // Loop closures.
+  const auto& opt = c.config().backEnd;
+  const auto candidates = c.loopCandidates(id, g);
+  rep.loopCandidates = candidates.size();
+  for (const auto& [cand, source] : candidates)
+  {
+    const auto est = c.odometry().registerKeyframes(cand, id);
+    if (!est || est->inliers < static_cast<std::size_t>(opt.loop_min_inliers))
+      continue;
+    // Sanity against the current estimate: drift over a loop is bounded, a
+    // wrong association usually is not.
+    const auto itA = g.nodes.find(cand), itB = g.nodes.find(id);
+    if (itA == g.nodes.end() || itB == g.nodes.end())
+      continue;
+    const mrpt::poses::CPose3D predicted = itB->second - itA->second;
+    if ((predicted.translation() - est->pose.translation()).norm() > opt.loop_max_discrepancy_m)
+      continue;
+    g.insertEdgeAtEnd(
+        static_cast<mrpt::graphs::TNodeID>(cand), static_cast<mrpt::graphs::TNodeID>(id),
+        mrpt::poses::CPose3DPDFGaussianInf(est->pose, est->information));
+    TLoopClosure lc;
+    lc.fromKeyframe = cand;
+    lc.toKeyframe = id;
+    lc.source = source;
+    lc.inliers = est->inliers;
+    c.addLoopClosure(lc);
+    ++rep.loopClosures;
+    ++m_stats[source == ELoopSource::Landmark ? "loop_landmark" : "loop_proximity"];
+    this->m_just_inserted_lc = true;
+  }
+  return rep;
+}
+
+void CKeyframeERD::getEdgesStats(std::map<std::string, int>* edgeTypeToNum) const
+{
+  if (edgeTypeToNum)
+    *edgeTypeToNum = m_stats;
+}
+
+void CKeyframeERD::getDescriptiveReport(std::string* report) const
+{
+  std::ostringstream ss;
+  ss << kName << ": " << kDescription << "\n";
+  for (const auto& [k, n] : m_stats)
+    ss << k << ": " << n << "\n";
+  *report = ss.str();
+}
+}  // namespace roislam::graphslam

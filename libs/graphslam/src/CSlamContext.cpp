@@ -1,0 +1,326 @@
+#include <mrpt/config/CConfigFileMemory.h>
+#include <mrpt/containers/yaml.h>
+#include <mrpt/graphslam/levmarq.h>
+#include <mrpt/system/CTicTac.h>
+#include <roislam/graphslam/CSlamContext.h>
+#include <roislam/landmarks/IniKeyCheck.h>
+
+#include <algorithm>
+#include <cmath>
+#include <mutex>
+#include <stdexcept>
+
+namespace roislam::graphslam
+{
+namespace
+{
+const char* kSection = "GraphSlam";
+
+[[noreturn]] void badKey(const std::string& key, const std::string& why)
+{
+  throw std::invalid_argument(std::string("[") + kSection + "] " + key + ": " + why);
+}
+}  // namespace
+
+std::string toString(ELoopSource s)
+{
+  return s == ELoopSource::Landmark ? "landmark" : "proximity";
+}
+
+void CSlamContext::TOptions::loadFromConfigFile(
+    const mrpt::config::CConfigFileBase& c, const std::string& s)
+{
+  loop_min_keyframe_gap = c.read_int(s, "loop_min_keyframe_gap", loop_min_keyframe_gap);
+  landmark_loops = c.read_bool(s, "landmark_loops", landmark_loops);
+  proximity_loops = c.read_bool(s, "proximity_loops", proximity_loops);
+  proximity_radius_m = c.read_double(s, "proximity_radius_m", proximity_radius_m);
+  proximity_max_angle_deg = c.read_double(s, "proximity_max_angle_deg", proximity_max_angle_deg);
+  max_loop_candidates = c.read_int(s, "max_loop_candidates", max_loop_candidates);
+  loop_min_inliers = c.read_int(s, "loop_min_inliers", loop_min_inliers);
+  loop_max_discrepancy_m = c.read_double(s, "loop_max_discrepancy_m", loop_max_discrepancy_m);
+  optimizer_max_iterations = c.read_int(s, "optimizer_max_iterations", optimizer_max_iterations);
+  map_decimation = c.read_int(s, "map_decimation", map_decimation);
+  map_max_depth_m = c.read_double(s, "map_max_depth_m", map_max_depth_m);
+  validate();
+}
+
+void CSlamContext::TOptions::saveToConfigFile(
+    mrpt::config::CConfigFileBase& c, const std::string& s) const
+{
+  c.write(s, "loop_min_keyframe_gap", loop_min_keyframe_gap);
+  c.write(s, "landmark_loops", landmark_loops);
+  c.write(s, "proximity_loops", proximity_loops);
+  c.write(s, "proximity_radius_m", proximity_radius_m);
+  c.write(s, "proximity_max_angle_deg", proximity_max_angle_deg);
+  c.write(s, "max_loop_candidates", max_loop_candidates);
+  c.write(s, "loop_min_inliers", loop_min_inliers);
+  c.write(s, "loop_max_discrepancy_m", loop_max_discrepancy_m);
+  c.write(s, "optimizer_max_iterations", optimizer_max_iterations);
+  c.write(s, "map_decimation", map_decimation);
+  c.write(s, "map_max_depth_m", map_max_depth_m);
+}
+
+void CSlamContext::TOptions::validate() const
+{
+  if (loop_min_keyframe_gap < 1)
+    badKey("loop_min_keyframe_gap", "must be >= 1");
+  if (!(proximity_radius_m > 0))
+    badKey("proximity_radius_m", "must be > 0");
+  if (!(proximity_max_angle_deg > 0))
+    badKey("proximity_max_angle_deg", "must be > 0");
+  if (max_loop_candidates < 1)
+    badKey("max_loop_candidates", "must be >= 1");
+  if (loop_min_inliers < 3)
+    badKey("loop_min_inliers", "must be >= 3");
+  if (!(loop_max_discrepancy_m > 0))
+    badKey("loop_max_discrepancy_m", "must be > 0");
+  if (optimizer_max_iterations < 1)
+    badKey("optimizer_max_iterations", "must be >= 1");
+  if (map_decimation < 1)
+    badKey("map_decimation", "must be >= 1");
+  if (!(map_max_depth_m > 0))
+    badKey("map_max_depth_m", "must be > 0");
+}
+
+CSlamContext::CSlamContext() : CSlamContext(TConfig()) {}
+
+CSlamContext::CSlamContext(const TConfig& config)
+    : m_config(config),
+      m_odometry(config.frontEnd),
+      m_database(config.database, config.frontEnd.matcher, config.locator),
+      m_roiDetector(config.frontEnd.roi)
+{
+  m_config.backEnd.validate();
+}
+
+const frontend::TFrameResult& CSlamContext::trackFrame(const io::TRGBDFrame& frame)
+{
+  m_last = m_odometry.process(frame);
+  m_imageSize = frame.rgb.size();
+  if (!m_last->isNewKeyframe)
+    return *m_last;
+
+  // Map cloud of the keyframe, in its optical frame (decimated: the OctoMap
+  // insertion cost grows with the number of rays).
+  const auto& cam = frame.camera;
+  const int step = m_config.backEnd.map_decimation;
+  mrpt::maps::CColouredPointsMap cloud;
+  cloud.reserve((frame.depth.rows / step + 1) * (frame.depth.cols / step + 1));
+  for (int v = 0; v < frame.depth.rows; v += step)
+  {
+    const float* d = frame.depth.ptr<float>(v);
+    const cv::Vec3b* c = frame.rgb.ptr<cv::Vec3b>(v);
+    for (int u = 0; u < frame.depth.cols; u += step)
+    {
+      const float z = d[u];
+      if (!(z > 0) || z > m_config.backEnd.map_max_depth_m)
+        continue;
+      const float x = static_cast<float>((u - cam.cx()) * z / cam.fx());
+      const float y = static_cast<float>((v - cam.cy()) * z / cam.fy());
+      cloud.insertPointRGB(x, y, z, c[u][2] / 255.f, c[u][1] / 255.f, c[u][0] / 255.f);
+    }
+  }
+  m_clouds.resize(m_last->newKeyframeId + 1);
+  m_clouds[m_last->newKeyframeId] = std::move(cloud);
+
+  // The ROI used as landmark: the front end's in ROI modes, detected here
+  // (keyframes only) in traditional mode.
+  std::optional<cv::Rect> roi = m_last->roi;
+  if (!roi && m_config.backEnd.landmark_loops)
+  {
+    if (const auto r = m_roiDetector.detect(frame.rgb); r)
+      roi = r->box;
+  }
+  m_rois.resize(m_last->newKeyframeId + 1);
+  m_rois[m_last->newKeyframeId] = roi;
+  return *m_last;
+}
+
+std::vector<std::pair<std::size_t, ELoopSource>> CSlamContext::loopCandidates(
+    std::size_t id, const TGraph& graph)
+{
+  const auto& o = m_config.backEnd;
+  std::vector<std::pair<std::size_t, ELoopSource>> out;
+  auto already = [&](std::size_t k)
+  { return std::any_of(out.begin(), out.end(), [&](const auto& p) { return p.first == k; }); };
+  const std::size_t gap = static_cast<std::size_t>(o.loop_min_keyframe_gap);
+
+  if (o.landmark_loops)
+  {
+    for (std::size_t k = m_landmarkQueried; k <= id && k < m_rois.size(); ++k)
+    {
+      m_landmarkQueried = k + 1;
+      if (!m_rois[k])
+        continue;
+      const auto& kf = m_odometry.keyframe(k);
+      const auto roiFeatures = kf.features.subset(*m_rois[k]);
+      if (roiFeatures.size() < 10)
+        continue;
+      const auto q = m_database.query(roiFeatures, *m_rois[k], m_imageSize);
+      landmarks::TLandmarkSighting s;
+      s.frame = kf.frameIndex;
+      s.timestamp = kf.timestamp;
+      s.box = *m_rois[k];
+      int32_t lm = -1;
+      if (q.landmarkId)
+      {
+        lm = *q.landmarkId;
+        s.inliers = q.inliers;
+        m_database.addSighting(lm, s);
+        if (k == id)
+        {
+          // Most recent earlier sightings first: their relative pose is the
+          // most likely to register.
+          const auto& seen = m_sightings[lm];
+          for (auto it = seen.rbegin(); it != seen.rend(); ++it)
+          {
+            if (*it + gap > id || already(*it))
+              continue;
+            out.emplace_back(*it, ELoopSource::Landmark);
+            if (out.size() >= static_cast<std::size_t>(o.max_loop_candidates))
+              break;
+          }
+        }
+      }
+      else
+      {
+        landmarks::CLandmark l;
+        l.features = roiFeatures;
+        l.box = *m_rois[k];
+        l.imageSize = m_imageSize;
+        l.sightings.push_back(s);
+        lm = m_database.add(std::move(l));
+      }
+      m_sightings[lm].push_back(k);
+    }
+  }
+
+  if (o.proximity_loops && id >= gap && graph.nodes.count(id))
+  {
+    const auto& cur = graph.nodes.at(id);
+    const double cosMax = std::cos(o.proximity_max_angle_deg * M_PI / 180.0);
+    std::vector<std::pair<double, std::size_t>> near;
+    for (std::size_t k = 0; k + gap <= id; ++k)
+    {
+      const auto it = graph.nodes.find(k);
+      if (it == graph.nodes.end())
+        continue;
+      const double d = (it->second.translation() - cur.translation()).norm();
+      if (d > o.proximity_radius_m)
+        continue;
+      // Optical axes (third rotation column) must look roughly the same way.
+      const auto R1 = it->second.getRotationMatrix(), R2 = cur.getRotationMatrix();
+      const double c = R1(0, 2) * R2(0, 2) + R1(1, 2) * R2(1, 2) + R1(2, 2) * R2(2, 2);
+      if (c < cosMax)
+        continue;
+      near.emplace_back(d, k);
+    }
+    std::sort(near.begin(), near.end());
+    std::size_t added = 0;
+    for (const auto& [d, k] : near)
+    {
+      if (added >= static_cast<std::size_t>(o.max_loop_candidates))
+        break;
+      if (already(k))
+        continue;
+      out.emplace_back(k, ELoopSource::Proximity);
+      ++added;
+    }
+  }
+  return out;
+}
+
+TOptimizationReport CSlamContext::optimize(TGraph& graph)
+{
+  TOptimizationReport r;
+  if (graph.nodes.size() < 2 || graph.edges.empty())
+    return r;
+  mrpt::system::CTicTac timer;
+  r.chi2Before = graph.chi2();
+  mrpt::graphslam::TResultInfoSpaLevMarq info;
+  mrpt::containers::yaml params = mrpt::containers::yaml::Map();
+  params["max_iterations"] = static_cast<uint64_t>(m_config.backEnd.optimizer_max_iterations);
+  mrpt::graphslam::optimize_graph_spa_levmarq(graph, info, nullptr, params);
+  r.iterations = info.num_iters;
+  r.chi2After = graph.chi2();
+  for (const auto& [id, pose] : graph.nodes)
+    if (id < m_odometry.keyframes().size())
+      m_odometry.setKeyframePose(id, pose);
+  r.seconds = timer.Tac();
+  return r;
+}
+}  // namespace roislam::graphslam
+
+namespace roislam::graphslam
+{
+namespace
+{
+std::mutex g_registryMutex;
+std::map<const void*, std::shared_ptr<CSlamContext>>& registry()
+{
+  static std::map<const void*, std::shared_ptr<CSlamContext>> r;
+  return r;
+}
+
+/** Keys a TOptions writes into each section (saveToConfigFile is symmetric
+ *  with loadFromConfigFile for all our options). */
+std::vector<std::string> keysOf(
+    const mrpt::config::CLoadableOptions& o, const std::string& saveSection,
+    const std::string& section)
+{
+  mrpt::config::CConfigFileMemory mem;
+  o.saveToConfigFile(mem, saveSection);
+  std::vector<std::string> keys;
+  mem.getAllKeys(section, keys);
+  return keys;
+}
+}  // namespace
+
+std::shared_ptr<CSlamContext> CSlamContext::forGraph(const void* graph)
+{
+  std::lock_guard<std::mutex> lock(g_registryMutex);
+  auto& ctx = registry()[graph];
+  if (!ctx)
+    ctx = std::make_shared<CSlamContext>();
+  return ctx;
+}
+
+void CSlamContext::setForGraph(const void* graph, std::shared_ptr<CSlamContext> context)
+{
+  std::lock_guard<std::mutex> lock(g_registryMutex);
+  if (context)
+    registry()[graph] = std::move(context);
+  else
+    registry().erase(graph);
+}
+
+CSlamContext::TConfig CSlamContext::loadConfig(
+    const mrpt::config::CConfigFileBase& cfg, const std::string& fileLabel)
+{
+  TConfig c;
+  // Front-end options save their sub-component sections under fixed names.
+  for (const std::string s : {"FrontEnd", "RoiDetector", "FeatureExtractor", "FeatureMatcher"})
+    landmarks::checkIniKeys(cfg, s, keysOf(c.frontEnd, "FrontEnd", s), fileLabel);
+  landmarks::checkIniKeys(cfg, "GraphSlam", keysOf(c.backEnd, "GraphSlam", "GraphSlam"), fileLabel);
+  landmarks::checkIniKeys(
+      cfg, "LandmarkDatabase", keysOf(c.database, "LandmarkDatabase", "LandmarkDatabase"),
+      fileLabel);
+  landmarks::checkIniKeys(
+      cfg, "HomographyLocator", keysOf(c.locator, "HomographyLocator", "HomographyLocator"),
+      fileLabel);
+  try
+  {
+    c.frontEnd.loadFromConfigFile(cfg, "FrontEnd");
+    c.backEnd.loadFromConfigFile(cfg, "GraphSlam");
+    c.database.loadFromConfigFile(cfg, "LandmarkDatabase");
+    c.locator.loadFromConfigFile(cfg, "HomographyLocator");
+  }
+  catch (const std::exception& e)
+  {
+    std::string what = e.what();
+    what = what.substr(0, what.find('\n'));
+    throw std::runtime_error("ini " + fileLabel + ": " + what);
+  }
+  return c;
+}
+}  // namespace roislam::graphslam

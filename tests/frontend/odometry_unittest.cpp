@@ -1,0 +1,241 @@
+// CRgbdOdometry on ray-cast RGB-D frames of a box room with known poses:
+// feature tracking accuracy, ROI fallback vs strict ROI, depth-ICP and
+// constant-velocity fallbacks on a featureless room, keyframe registration,
+// back-end pose updates and option handling.
+#include <gtest/gtest.h>
+#include <mrpt/config/CConfigFileMemory.h>
+#include <roislam/frontend/CRgbdOdometry.h>
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+
+#include "SyntheticRoom.h"
+
+using namespace roislam::frontend;
+using mrpt::poses::CPose3D;
+using roislam::frontend::testing::renderRoom;
+using roislam::frontend::testing::trajectoryPose;
+
+namespace
+{
+double transErr(const CPose3D& a, const CPose3D& b)
+{
+  return (a - b).translation().norm();
+}
+double rotErrDeg(const CPose3D& a, const CPose3D& b)
+{
+  const Eigen::Matrix3d R = (a - b).getRotationMatrix().asEigen();
+  return Eigen::AngleAxisd(R).angle() * 180.0 / M_PI;
+}
+
+CRgbdOdometry::TOptions baseOptions()
+{
+  CRgbdOdometry::TOptions o;
+  o.extractor.feature_type = roislam::features::EFeatureType::ORB;
+  o.extractor.max_features = 500;
+  return o;
+}
+
+// Runs n frames; returns the results. Poses start at trajectoryPose(0).
+std::vector<TFrameResult> run(CRgbdOdometry& odo, double contrast, std::size_t n)
+{
+  odo.setInitialPose(trajectoryPose(0));
+  std::vector<TFrameResult> out;
+  for (std::size_t k = 0; k < n; ++k)
+    out.push_back(odo.process(renderRoom(trajectoryPose(k), contrast, k, 0.1 * k)));
+  return out;
+}
+}  // namespace
+
+TEST(RgbdOdometry, TracksTexturedRoomWithFeatures)
+{
+  CRgbdOdometry odo(baseOptions());
+  const auto res = run(odo, 100, 16);
+  EXPECT_EQ(res[0].method, ETrackingMethod::Initial);
+  EXPECT_TRUE(res[0].isNewKeyframe);
+  for (std::size_t k = 1; k < res.size(); ++k)
+  {
+    ASSERT_EQ(res[k].method, ETrackingMethod::Features) << "frame " << k;
+    ASSERT_TRUE(res[k].pose.has_value());
+    EXPECT_LT(transErr(*res[k].pose, trajectoryPose(k)), 0.005) << "frame " << k;
+    EXPECT_LT(rotErrDeg(*res[k].pose, trajectoryPose(k)), 0.2) << "frame " << k;
+    EXPECT_GE(res[k].inliers, 50u);
+  }
+  // 0.016 m/frame and 0.45 deg/frame: keyframes about every 6 frames.
+  EXPECT_GE(odo.keyframes().size(), 2u);
+  EXPECT_EQ(odo.stats().features, res.size() - 1);
+  // A new keyframe's first constraint is the odometry edge from its reference.
+  for (const auto& r : res)
+    if (r.isNewKeyframe && r.newKeyframeId > 0)
+    {
+      ASSERT_FALSE(r.constraints.empty());
+      EXPECT_EQ(r.constraints[0].fromKeyframe, r.referenceKeyframe);
+      EXPECT_EQ(r.constraints[0].toKeyframe, r.newKeyframeId);
+      const auto& kfA = odo.keyframe(r.constraints[0].fromKeyframe);
+      EXPECT_LT(transErr(kfA.pose + r.constraints[0].relativePose, *r.pose), 1e-9);
+      // Information: symmetric positive definite.
+      const Eigen::Matrix<double, 6, 6> I = r.constraints[0].information.asEigen();
+      EXPECT_LT((I - I.transpose()).norm(), 1e-6 * I.norm());
+      EXPECT_GT(I.selfadjointView<Eigen::Lower>().eigenvalues().minCoeff(), 0.0);
+    }
+  // Keyframes store only features with depth, with their 3-D points.
+  const auto& kf0 = odo.keyframe(0);
+  ASSERT_GT(kf0.features.size(), 100u);
+  EXPECT_EQ(kf0.points.size(), kf0.features.size());
+  EXPECT_EQ(kf0.pixels.size(), kf0.features.size());
+  EXPECT_THROW(odo.keyframe(1000), std::out_of_range);
+}
+
+TEST(RgbdOdometry, RegisterKeyframesAndSetKeyframePose)
+{
+  auto o = baseOptions();
+  o.keyframe_translation_m = 0.03;
+  CRgbdOdometry odo(o);
+  run(odo, 100, 8);
+  ASSERT_GE(odo.keyframes().size(), 3u);
+  const auto& a = odo.keyframe(0);
+  const auto& b = odo.keyframe(2);
+  const auto e = odo.registerKeyframes(0, 2);
+  ASSERT_TRUE(e.has_value());
+  const CPose3D truthRel = trajectoryPose(b.frameIndex) - trajectoryPose(a.frameIndex);
+  EXPECT_LT(transErr(e->pose, truthRel), 0.003);
+  EXPECT_LT(rotErrDeg(e->pose, truthRel), 0.1);
+  EXPECT_GT(e->inliers, 50u);
+  EXPECT_LT(e->rmse_px, 1.0);
+
+  // The back end moves the last keyframe: the next frame follows it.
+  const std::size_t last = odo.keyframes().size() - 1;
+  const CPose3D shift(0.5, 0, 0, 0, 0, 0);
+  odo.setKeyframePose(last, shift + odo.keyframe(last).pose);
+  const auto r = odo.process(renderRoom(trajectoryPose(8), 100, 8, 0.8));
+  ASSERT_TRUE(r.pose.has_value());
+  EXPECT_LT(transErr(*r.pose, shift + trajectoryPose(8)), 0.005);
+  EXPECT_THROW(odo.setKeyframePose(999, CPose3D()), std::out_of_range);
+  EXPECT_THROW(odo.registerKeyframes(0, 999), std::out_of_range);
+}
+
+TEST(RgbdOdometry, RoiModeFallsBackToFullImageWithoutRoi)
+{
+  // Low contrast: ORB finds corners but Canny (250/300) finds no edge -> no ROI.
+  auto o = baseOptions();
+  o.mode = EFrontEndMode::RoiBig;
+  CRgbdOdometry odo(o);
+  const auto res = run(odo, 25, 8);
+  for (std::size_t k = 1; k < res.size(); ++k)
+  {
+    EXPECT_FALSE(res[k].roi.has_value());
+    ASSERT_EQ(res[k].method, ETrackingMethod::FullImageFallback) << "frame " << k;
+    ASSERT_TRUE(res[k].pose.has_value());
+    EXPECT_LT(transErr(*res[k].pose, trajectoryPose(k)), 0.01);
+  }
+  EXPECT_EQ(odo.stats().noRoi, res.size());
+  EXPECT_EQ(odo.stats().fullImageFallback, res.size() - 1);
+  EXPECT_EQ(odo.stats().lost, 0u);
+  EXPECT_TRUE(odo.keyframe(0).fullImageFallback);
+}
+
+TEST(RgbdOdometry, RoiModeUsesRoiFeaturesWhenPresent)
+{
+  auto o = baseOptions();
+  o.mode = EFrontEndMode::RoiBig;
+  CRgbdOdometry odo(o);
+  const auto res = run(odo, 110, 6);
+  for (std::size_t k = 1; k < res.size(); ++k)
+  {
+    ASSERT_TRUE(res[k].roi.has_value()) << "frame " << k;
+    ASSERT_EQ(res[k].method, ETrackingMethod::RoiFeatures) << "frame " << k;
+    EXPECT_LE(res[k].trackingFeatures, res[k].featuresWithDepth);
+    EXPECT_EQ(res[k].trackingFeatures, res[k].roiFeatures);
+    EXPECT_LT(transErr(*res[k].pose, trajectoryPose(k)), 0.01);
+  }
+}
+
+TEST(RgbdOdometry, StrictRoiLosesFramesWithoutRoi)
+{
+  auto o = baseOptions();
+  o.mode = EFrontEndMode::RoiBig;
+  o.strict_roi = true;
+  CRgbdOdometry odo(o);
+  const auto res = run(odo, 25, 5);
+  for (const auto& r : res)
+  {
+    EXPECT_EQ(r.method, ETrackingMethod::Lost);
+    EXPECT_FALSE(r.pose.has_value());
+    EXPECT_FALSE(r.isNewKeyframe);
+  }
+  EXPECT_EQ(odo.stats().lost, res.size());
+  EXPECT_TRUE(odo.keyframes().empty());
+}
+
+TEST(RgbdOdometry, FeaturelessRoomTrackedByDepthIcp)
+{
+  auto o = baseOptions();
+  o.mode = EFrontEndMode::RoiBig;  // ROI mode must not fail either
+  CRgbdOdometry odo(o);
+  const auto res = run(odo, 0, 12);
+  for (std::size_t k = 1; k < res.size(); ++k)
+  {
+    ASSERT_EQ(res[k].method, ETrackingMethod::DepthIcp) << "frame " << k;
+    ASSERT_TRUE(res[k].pose.has_value());
+    EXPECT_LT(transErr(*res[k].pose, trajectoryPose(k)), 0.01) << "frame " << k;
+    EXPECT_LT(rotErrDeg(*res[k].pose, trajectoryPose(k)), 0.3) << "frame " << k;
+    EXPECT_LT(res[k].times.icp_ms, 100.0);
+  }
+  EXPECT_EQ(odo.stats().depthIcp, res.size() - 1);
+  EXPECT_GE(odo.keyframes().size(), 2u);
+}
+
+TEST(RgbdOdometry, FeaturelessWithoutIcpUsesConstantVelocity)
+{
+  auto o = baseOptions();
+  o.icp_fallback = false;
+  CRgbdOdometry odo(o);
+  const auto res = run(odo, 0, 5);
+  for (std::size_t k = 1; k < res.size(); ++k)
+  {
+    EXPECT_EQ(res[k].method, ETrackingMethod::ConstantVelocity);
+    EXPECT_TRUE(res[k].pose.has_value());
+  }
+  // No motion was ever measured: the prediction stays at the start.
+  EXPECT_LT(transErr(*res.back().pose, trajectoryPose(0)), 1e-9);
+}
+
+TEST(RgbdOdometry, OptionsIniRoundTripAndErrors)
+{
+  auto o = baseOptions();
+  o.mode = EFrontEndMode::RoiSmall;
+  o.keyframe_translation_m = 0.2;
+  o.recent_keyframes = 1;
+  mrpt::config::CConfigFileMemory cfg;
+  o.saveToConfigFile(cfg, "FrontEnd");
+  CRgbdOdometry::TOptions l;
+  l.loadFromConfigFile(cfg, "FrontEnd");
+  EXPECT_EQ(l.mode, EFrontEndMode::RoiSmall);
+  EXPECT_DOUBLE_EQ(l.keyframe_translation_m, 0.2);
+  EXPECT_EQ(l.recent_keyframes, 1);
+  EXPECT_EQ(l.extractor.max_features, 500);
+
+  mrpt::config::CConfigFileMemory bad;
+  bad.write("FrontEnd", "mode", "roi_huge");
+  try
+  {
+    CRgbdOdometry::TOptions b;
+    b.loadFromConfigFile(bad, "FrontEnd");
+    FAIL() << "expected an exception";
+  }
+  catch (const std::invalid_argument& e)
+  {
+    EXPECT_NE(std::string(e.what()).find("[FrontEnd] mode"), std::string::npos);
+  }
+  mrpt::config::CConfigFileMemory bad2;
+  bad2.write("FrontEnd", "ransac_threshold_m", -1.0);
+  CRgbdOdometry::TOptions b2;
+  EXPECT_THROW(b2.loadFromConfigFile(bad2, "FrontEnd"), std::invalid_argument);
+
+  CRgbdOdometry odo;
+  roislam::io::TRGBDFrame empty;
+  EXPECT_THROW(odo.process(empty), std::invalid_argument);
+  EXPECT_EQ(toString(ETrackingMethod::DepthIcp), "depth_icp");
+  EXPECT_EQ(frontEndModeFromString("roi_big"), EFrontEndMode::RoiBig);
+}
