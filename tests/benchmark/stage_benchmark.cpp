@@ -32,8 +32,13 @@
  * Run (Release build; whole program about a minute on 2 cores):
  *   cmake -S . -B build -DCMAKE_BUILD_TYPE=Release
  *   cmake --build build --target roislam-stage-bench
- *   build/tests/benchmark/roislam-stage-bench --benchmark_min_time=0.2
- * Options of its own (after the --benchmark_* flags):
+ *   build/tests/benchmark/roislam-stage-bench --benchmark_min_time=0.5
+ * Each benchmark runs until --benchmark_min_time seconds (SIFT and the
+ * FrontEnd runs: at least one call / one run of all frames). On a shared
+ * machine wall-clock figures vary by 10-30 % between runs; add
+ * --benchmark_repetitions=3 (the table then averages the repetitions) and
+ * compare the cpu_* columns, or pass --cv-threads 1 for single-thread costs.
+ * Options of its own (in any order with the --benchmark_* flags):
  *   --data <dir>      TUM folder or .rawlog instead of the shared sequence
  *   --synthetic       use the synthetic frames even when real data exist
  *   --frames <n>      frames loaded / run through the front end (default 30)
@@ -303,6 +308,7 @@ void bmRoiDetect(benchmark::State& state, std::string preset)
         CRoiDetector::TOptions o;
         o.setPreset(preset);
         const CRoiDetector detector(o);
+        benchmark::DoNotOptimize(detector.detect(d.grey[0]));  // warm-up, untimed
         std::size_t i = 0, found = 0;
         double areaFraction = 0;
         for (auto _ : state)
@@ -338,6 +344,8 @@ void bmExtract(benchmark::State& state, EFeatureType type, int cap)
       {
         const TBenchData& d = data();
         const CFeatureExtractor extractor = makeExtractor(type, cap);
+        // Untimed warm-up: first-call costs (allocations, OpenCV thread pool).
+        benchmark::DoNotOptimize(extractor.extract(d.grey[0]).size());
         std::size_t i = 0, total = 0;
         for (auto _ : state)
           total += extractor.extract(d.grey[i++ % d.grey.size()]).size();
@@ -374,6 +382,7 @@ void bmMatch(benchmark::State& state, EFeatureType type, EMatcherType matcherTyp
         CFeatureMatcher::TOptions o;
         o.matcher = matcherType;
         const CFeatureMatcher matcher(o);
+        benchmark::DoNotOptimize(matcher.match(sets[0], sets[1]).size());  // warm-up
         const std::size_t pairs = sets.size() - 1;
         std::size_t i = 0, total = 0;
         for (auto _ : state)
@@ -527,10 +536,15 @@ class CCollectingReporter : public benchmark::ConsoleReporter
       const std::string name = r.run_name.function_name;
       const auto fps = r.counters.find("fps");
       const auto cpu = r.counters.find("cpu_ms");
-      if (r.run_type != Run::RT_Iteration || name.rfind("FrontEnd/", 0) != 0 ||
-          fps == r.counters.end() || cpu == r.counters.end())
+      if (name.rfind("FrontEnd/", 0) != 0 || fps == r.counters.end() || cpu == r.counters.end())
         continue;
-      TFigures& acc = frontEnd[name.substr(std::string("FrontEnd/").size())];
+      // Single runs, or the "mean" aggregate when only aggregates are reported
+      // (--benchmark_report_aggregates_only); never both for one benchmark.
+      const bool mean = r.run_type == Run::RT_Aggregate && r.aggregate_name == "mean";
+      if (r.run_type != Run::RT_Iteration && !mean)
+        continue;
+      auto& figures = mean ? m_means : frontEnd;
+      TFigures& acc = figures[name.substr(std::string("FrontEnd/").size())];
       acc.fps += fps->second.value;
       acc.cpuMs += cpu->second.value;
       acc.runs += 1;
@@ -547,6 +561,16 @@ class CCollectingReporter : public benchmark::ConsoleReporter
   /** "mode/feature" -> figures. */
   std::map<std::string, TFigures> frontEnd;
   std::vector<std::string> failed;
+
+  /** Adds the "mean" aggregates of benchmarks that reported no single run. */
+  void useMeansWhereMissing()
+  {
+    for (const auto& [key, figures] : m_means)
+      frontEnd.emplace(key, figures);
+  }
+
+ private:
+  std::map<std::string, TFigures> m_means;
 };
 
 void printFrontEndTable(const CCollectingReporter& rep)
@@ -624,13 +648,23 @@ void registerBenchmarks()
   for (auto* b : all)
     b->UseRealTime()->Unit(benchmark::kMillisecond);
 }
+/** --help (handled by benchmark::Initialize): its flags plus ours. */
+void printUsage()
+{
+  benchmark::PrintDefaultHelp();
+  std::cout << "roislam-stage-bench options:\n"
+               "  [--data <TUM folder or .rawlog>]  (default: the shared TUM sequence)\n"
+               "  [--synthetic]                     synthetic frames even if real data exist\n"
+               "  [--frames <n>]                    frames loaded / run (default 30)\n"
+               "  [--cv-threads <n>]                cv::setNumThreads (default OpenCV's)\n";
+}
 }  // namespace
 
 int main(int argc, char** argv)
 {
   try
   {
-    benchmark::Initialize(&argc, argv);
+    benchmark::Initialize(&argc, argv, &printUsage);
     CLI::App app{"roislam-stage-bench: per-stage micro-benchmarks (plus --benchmark_* flags)"};
     std::string dataPath;
     bool synthetic = false;
@@ -663,6 +697,7 @@ int main(int argc, char** argv)
                               : benchmark::ConsoleReporter::OO_Tabular);
     const std::size_t ran = benchmark::RunSpecifiedBenchmarks(&reporter);
     benchmark::Shutdown();
+    reporter.useMeansWhereMissing();
 
     printFrontEndTable(reporter);
     rusage usage{};

@@ -1,5 +1,6 @@
 #include "roislam/bench/CBenchRunner.h"
 
+#include <roislam/bench/ProcessUtils.h>
 #include <unistd.h>
 
 #include <atomic>
@@ -8,7 +9,6 @@
 #include <filesystem>
 #include <map>
 #include <mutex>
-#include <roislam/bench/ProcessUtils.h>
 #include <stdexcept>
 #include <thread>
 
@@ -31,7 +31,8 @@ std::string utcNow()
 std::string hostName()
 {
   char buf[256] = {0};
-  if (gethostname(buf, sizeof(buf) - 1) != 0) return {};
+  if (gethostname(buf, sizeof(buf) - 1) != 0)
+    return {};
   return buf;
 }
 
@@ -44,8 +45,10 @@ std::string firstLine(const std::string& s)
   {
     const auto e = s.find('\n', pos);
     const std::string l = s.substr(pos, e == std::string::npos ? std::string::npos : e - pos);
-    if (!l.empty()) last = l;
-    if (e == std::string::npos) break;
+    if (!l.empty())
+      last = l;
+    if (e == std::string::npos)
+      break;
     pos = e + 1;
   }
   return last;
@@ -56,13 +59,15 @@ CBenchRunner::CBenchRunner() : CBenchRunner(TOptions()) {}
 
 CBenchRunner::CBenchRunner(const TOptions& options) : m_options(options)
 {
-  if (m_options.jobs < 1) throw std::invalid_argument("jobs: must be >= 1");
+  if (m_options.jobs < 1)
+    throw std::invalid_argument("jobs: must be >= 1");
 }
 
 std::optional<TRunRecord> CBenchRunner::loadCompleted(const std::string& runDir)
 {
   const fs::path file = fs::path(runDir) / "run.json";
-  if (!fs::exists(file)) return std::nullopt;
+  if (!fs::exists(file))
+    return std::nullopt;
   try
   {
     auto rec = TRunRecord::fromJson(nlohmann::json::parse(readFile(file.string())));
@@ -131,9 +136,9 @@ TRunRecord CBenchRunner::runOne(const TBenchRun& run) const
   else if (rec.summary.is_object() && rec.summary.value("failed", false))
   {
     const auto it = rec.summary.find("error");
-    rec.failureReason = "summary says failed" +
-                        (it != rec.summary.end() && it->is_string() ? ": " + it->get<std::string>()
-                                                                    : std::string());
+    rec.failureReason = "summary says failed" + (it != rec.summary.end() && it->is_string()
+                                                     ? ": " + it->get<std::string>()
+                                                     : std::string());
   }
   rec.ok = rec.failureReason.empty();
   writeFileAtomically((dir / "run.json").string(), rec.toJson().dump(2) + "\n");
@@ -155,7 +160,8 @@ std::vector<TRunRecord> CBenchRunner::run(
       records[i] = *done;
       ++prog.done;
       ++prog.skipped;
-      if (!done->ok) ++prog.failed;
+      if (!done->ok)
+        ++prog.failed;
     }
     else
       todo.push_back(i);
@@ -175,7 +181,8 @@ std::vector<TRunRecord> CBenchRunner::run(
   const auto estimate = [&](std::size_t idx) -> std::optional<double>
   {
     const auto it = timeByApp.find(runs[idx].app);
-    if (it != timeByApp.end()) return it->second.first / it->second.second;
+    if (it != timeByApp.end())
+      return it->second.first / it->second.second;
     double sum = 0;
     int n = 0;
     for (const auto& [app, v] : timeByApp)
@@ -183,7 +190,8 @@ std::vector<TRunRecord> CBenchRunner::run(
       sum += v.first;
       n += v.second;
     }
-    if (n == 0) return std::nullopt;
+    if (n == 0)
+      return std::nullopt;
     return sum / n;
   };
 
@@ -192,7 +200,8 @@ std::vector<TRunRecord> CBenchRunner::run(
     for (;;)
     {
       const std::size_t k = next++;
-      if (k >= todo.size()) return;
+      if (k >= todo.size())
+        return;
       const std::size_t i = todo[k];
       TRunRecord rec;
       try
@@ -211,30 +220,35 @@ std::vector<TRunRecord> CBenchRunner::run(
       t.first += rec.wallS;
       t.second += 1;
       ++prog.done;
-      if (!rec.ok) ++prog.failed;
+      if (!rec.ok)
+        ++prog.failed;
       prog.lastId = runs[i].id;
-      prog.elapsedS =
-          std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      prog.elapsedS = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
       double remaining = 0;
       bool known = true;
       for (std::size_t q = next; q < todo.size(); ++q)
       {
         const auto e = estimate(todo[q]);
-        if (!e) known = false;
+        if (!e)
+          known = false;
         remaining += e.value_or(0);
       }
       // Runs in flight are counted as half done.
       const std::size_t inFlight =
           std::min<std::size_t>(todo.size(), next) - (prog.done - prog.skipped);
-      for (std::size_t q = 0; q < inFlight; ++q) remaining += 0.5 * estimate(i).value_or(0);
+      for (std::size_t q = 0; q < inFlight; ++q)
+        remaining += 0.5 * estimate(i).value_or(0);
       prog.etaS = known ? std::optional<double>(remaining / m_options.jobs) : std::nullopt;
-      if (progress) progress(prog);
+      if (progress)
+        progress(prog);
     }
   };
   std::vector<std::thread> threads;
   const int n = std::min<int>(m_options.jobs, static_cast<int>(todo.size()));
-  for (int t = 0; t < n; ++t) threads.emplace_back(worker);
-  for (auto& th : threads) th.join();
+  for (int t = 0; t < n; ++t)
+    threads.emplace_back(worker);
+  for (auto& th : threads)
+    th.join();
   return records;
 }
 }  // namespace roislam::bench

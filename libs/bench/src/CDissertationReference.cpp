@@ -1,6 +1,7 @@
 #include "roislam/bench/CDissertationReference.h"
 
 #include <roislam/bench/ProcessUtils.h>
+
 #include <stdexcept>
 
 namespace roislam::bench
@@ -22,9 +23,11 @@ const nlohmann::json* CDissertationReference::find(std::initializer_list<std::st
   const nlohmann::json* node = &m_data;
   for (const auto& key : path)
   {
-    if (!node->is_object()) return nullptr;
+    if (!node->is_object())
+      return nullptr;
     const auto it = node->find(key);
-    if (it == node->end()) return nullptr;
+    if (it == node->end())
+      return nullptr;
     node = &*it;
   }
   return node;
@@ -33,14 +36,15 @@ const nlohmann::json* CDissertationReference::find(std::initializer_list<std::st
 std::optional<int> CDissertationReference::sequenceId(const std::string& folderName) const
 {
   const auto* seqs = find({"sequences"});
-  if (!seqs || !seqs->is_array()) return std::nullopt;
+  if (!seqs || !seqs->is_array())
+    return std::nullopt;
   const std::string prefix = "rgbd_dataset_";
   for (const auto& s : *seqs)
   {
     const std::string tum = s.value("tum_name", "");
-    if (tum.empty()) continue;
-    if (folderName == tum ||
-        (tum.rfind(prefix, 0) == 0 && folderName == tum.substr(prefix.size())))
+    if (tum.empty())
+      continue;
+    if (folderName == tum || (tum.rfind(prefix, 0) == 0 && folderName == tum.substr(prefix.size())))
       return s.value("id", 0);
   }
   return std::nullopt;
@@ -51,7 +55,8 @@ std::string CDissertationReference::sequenceShortName(int id) const
   const auto* seqs = find({"sequences"});
   if (seqs && seqs->is_array())
     for (const auto& s : *seqs)
-      if (s.value("id", 0) == id) return s.value("short", "");
+      if (s.value("id", 0) == id)
+        return s.value("short", "");
   return {};
 }
 
@@ -59,27 +64,32 @@ std::optional<std::array<double, 3>> CDissertationReference::test1(
     int seqId, const std::string& feature) const
 {
   const auto* v = find({"test1", "landmarks_fp_fn", std::to_string(seqId), feature});
-  if (!v || !v->is_array() || v->size() != 3) return std::nullopt;
-  return std::array<double, 3>{(*v)[0].get<double>(), (*v)[1].get<double>(),
-                               (*v)[2].get<double>()};
+  if (!v || !v->is_array() || v->size() != 3)
+    return std::nullopt;
+  return std::array<double, 3>{(*v)[0].get<double>(), (*v)[1].get<double>(), (*v)[2].get<double>()};
 }
 
 std::optional<std::array<double, 3>> CDissertationReference::test1Average(
     const std::string& feature) const
 {
   const auto* all = find({"test1", "landmarks_fp_fn"});
-  if (!all || !all->is_object()) return std::nullopt;
+  if (!all || !all->is_object())
+    return std::nullopt;
   std::array<double, 3> sum{0, 0, 0};
   int n = 0;
   for (const auto& [id, perFeature] : all->items())
   {
     const auto v = test1(std::stoi(id), feature);
-    if (!v) continue;
-    for (int k = 0; k < 3; ++k) sum[k] += (*v)[k];
+    if (!v)
+      continue;
+    for (int k = 0; k < 3; ++k)
+      sum[k] += (*v)[k];
     ++n;
   }
-  if (n == 0) return std::nullopt;
-  for (auto& s : sum) s /= n;
+  if (n == 0)
+    return std::nullopt;
+  for (auto& s : sum)
+    s /= n;
   return sum;
 }
 
@@ -87,7 +97,8 @@ namespace
 {
 std::optional<double> numberAt(const nlohmann::json* v)
 {
-  if (!v || !v->is_number()) return std::nullopt;
+  if (!v || !v->is_number())
+    return std::nullopt;
   return v->get<double>();
 }
 }  // namespace
@@ -108,24 +119,27 @@ std::optional<double> CDissertationReference::test1Fps(const std::string& f) con
 std::optional<std::pair<double, double>> CDissertationReference::ate(
     int test, const std::string& mode, const std::string& feature) const
 {
-  const nlohmann::json* v = test == 2 ? find({"test2", mode, "ate", feature})
-                                      : find({"test3", mode, "ate"});
+  const nlohmann::json* v =
+      test == 2 ? find({"test2", mode, "ate", feature}) : find({"test3", mode, "ate"});
   if (test == 3)
   {
     const auto* f = find({"test3", "feature"});
-    if (f && f->is_string() && f->get<std::string>() != feature) return std::nullopt;
+    if (f && f->is_string() && f->get<std::string>() != feature)
+      return std::nullopt;
   }
-  if (!v || !v->is_array() || v->size() != 2) return std::nullopt;
+  if (!v || !v->is_array() || v->size() != 2)
+    return std::nullopt;
   return std::make_pair((*v)[0].get<double>(), (*v)[1].get<double>());
 }
 
 std::optional<double> CDissertationReference::scalar(
-    int test, const std::string& mode, const std::string& feature,
-    const std::string& metric) const
+    int test, const std::string& mode, const std::string& feature, const std::string& metric) const
 {
-  if (test == 2) return numberAt(find({"test2", mode, metric, feature}));
+  if (test == 2)
+    return numberAt(find({"test2", mode, metric, feature}));
   const auto* f = find({"test3", "feature"});
-  if (f && f->is_string() && f->get<std::string>() != feature) return std::nullopt;
+  if (f && f->is_string() && f->get<std::string>() != feature)
+    return std::nullopt;
   return numberAt(find({"test3", mode, metric}));
 }
 }  // namespace roislam::bench

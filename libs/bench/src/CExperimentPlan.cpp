@@ -23,7 +23,8 @@ std::vector<std::string> splitList(const std::string& text)
   {
     item.erase(0, item.find_first_not_of(" \t"));
     item.erase(item.find_last_not_of(" \t") + 1);
-    if (!item.empty()) out.push_back(item);
+    if (!item.empty())
+      out.push_back(item);
   }
   return out;
 }
@@ -31,7 +32,8 @@ std::vector<std::string> splitList(const std::string& text)
 std::string joinList(const std::vector<std::string>& v)
 {
   std::string out;
-  for (const auto& s : v) out += (out.empty() ? "" : ",") + s;
+  for (const auto& s : v)
+    out += (out.empty() ? "" : ",") + s;
   return out;
 }
 
@@ -39,11 +41,15 @@ std::string safeName(const std::string& s)
 {
   std::string out = s;
   for (char& c : out)
-    if (!std::isalnum(static_cast<unsigned char>(c)) && c != '_' && c != '.') c = '_';
+    if (!std::isalnum(static_cast<unsigned char>(c)) && c != '_' && c != '.')
+      c = '_';
   return out;
 }
 
-bool isSequence(const fs::path& p) { return fs::is_regular_file(p / "rgb.txt"); }
+bool isSequence(const fs::path& p)
+{
+  return fs::is_regular_file(p / "rgb.txt");
+}
 }  // namespace
 
 std::set<int> CExperimentPlan::parseTests(const std::string& text)
@@ -55,7 +61,8 @@ std::set<int> CExperimentPlan::parseTests(const std::string& text)
       throw std::invalid_argument("tests: '" + t + "' is not one of 1, 2, 3");
     tests.insert(std::stoi(t));
   }
-  if (tests.empty()) throw std::invalid_argument("tests: empty list");
+  if (tests.empty())
+    throw std::invalid_argument("tests: empty list");
   return tests;
 }
 
@@ -64,7 +71,8 @@ void CExperimentPlan::TOptions::validate(const std::string& section) const
   const auto bad = [&](const std::string& key, const std::string& why)
   { return std::invalid_argument("[" + section + "] " + key + ": " + why); };
   for (int t : tests)
-    if (t < 1 || t > 3) throw bad("tests", "values must be 1, 2 or 3");
+    if (t < 1 || t > 3)
+      throw bad("tests", "values must be 1, 2 or 3");
   const std::vector<std::string> knownF{"surf", "sift", "orb"};
   const std::vector<std::string> knownM{"traditional", "roi_small", "roi_big"};
   for (const auto& f : features)
@@ -78,9 +86,12 @@ void CExperimentPlan::TOptions::validate(const std::string& section) const
   for (const auto& m : test3_modes)
     if (std::find(knownM.begin(), knownM.end(), m) == knownM.end())
       throw bad("test3_modes", "unknown mode '" + m + "'");
-  if (test1_max_features < 0) throw bad("test1_max_features", "must be >= 0");
-  if (test2_max_features <= 0) throw bad("test2_max_features", "must be > 0");
-  if (test3_max_features <= 0) throw bad("test3_max_features", "must be > 0");
+  if (test1_max_features < 0)
+    throw bad("test1_max_features", "must be >= 0");
+  if (test2_max_features <= 0)
+    throw bad("test2_max_features", "must be > 0");
+  if (test3_max_features <= 0)
+    throw bad("test3_max_features", "must be > 0");
   std::set<std::string> names;
   for (const auto& v : variants)
     if (v.name.empty() || !names.insert(v.name).second)
@@ -91,7 +102,8 @@ void CExperimentPlan::TOptions::loadFromConfigFile(
     const mrpt::config::CConfigFileBase& cfg, const std::string& section)
 {
   std::vector<std::string> testList;
-  for (int t : tests) testList.push_back(std::to_string(t));
+  for (int t : tests)
+    testList.push_back(std::to_string(t));
   const std::string testsText = cfg.read_string(section, "tests", joinList(testList));
   try
   {
@@ -116,7 +128,8 @@ void CExperimentPlan::TOptions::saveToConfigFile(
     mrpt::config::CConfigFileBase& cfg, const std::string& section) const
 {
   std::vector<std::string> testList;
-  for (int t : tests) testList.push_back(std::to_string(t));
+  for (int t : tests)
+    testList.push_back(std::to_string(t));
   cfg.write(section, "tests", joinList(testList));
   cfg.write(section, "features", joinList(features));
   cfg.write(section, "modes", joinList(modes));
@@ -147,9 +160,11 @@ TBenchRun CExperimentPlan::makeRun(
   r.feature = feature;
   r.maxFeatures = maxFeatures;
   r.id = "t" + std::to_string(test) + "-" + safeName(seq.name);
-  if (!mode.empty()) r.id += "-" + mode;
+  if (!mode.empty())
+    r.id += "-" + mode;
   r.id += "-" + feature;
-  if (maxFeatures > 0) r.id += "-" + std::to_string(maxFeatures);
+  if (maxFeatures > 0)
+    r.id += "-" + std::to_string(maxFeatures);
   const fs::path cfgDir(m_locations.configDir);
   r.baseIni = (cfgDir / (test == 1 ? "roi_landmarks.ini" : mode + ".ini")).string();
   r.iniFile = r.baseIni;
@@ -166,30 +181,35 @@ TBenchRun CExperimentPlan::makeRun(
   r.runDir = (fs::path(m_locations.outputDir) / "runs" / r.id).string();
   r.appOutputDir = (fs::path(r.runDir) / "output").string();
   const auto exe = m_locations.executables.find(r.app);
-  r.argv = {exe != m_locations.executables.end() ? exe->second : r.app,
-            "--ini",
-            r.iniFile,
-            "--input",
-            r.sequencePath,
-            "--output-dir",
-            r.appOutputDir};
-  if (test != 1) r.argv.insert(r.argv.end(), {"--mode", mode});
+  r.argv = {
+      exe != m_locations.executables.end() ? exe->second : r.app,
+      "--ini",
+      r.iniFile,
+      "--input",
+      r.sequencePath,
+      "--output-dir",
+      r.appOutputDir};
+  if (test != 1)
+    r.argv.insert(r.argv.end(), {"--mode", mode});
   r.argv.insert(r.argv.end(), {"--feature", feature});
-  if (maxFeatures > 0) r.argv.insert(r.argv.end(), {"--max-features", std::to_string(maxFeatures)});
-  if (test != 1 && !m_options.snapshots) r.argv.push_back("--no-snapshot");
+  if (maxFeatures > 0)
+    r.argv.insert(r.argv.end(), {"--max-features", std::to_string(maxFeatures)});
+  if (test != 1 && !m_options.snapshots)
+    r.argv.push_back("--no-snapshot");
   return r;
 }
 
 std::vector<TBenchRun> CExperimentPlan::build(const std::vector<TSequence>& sequences) const
 {
   std::vector<TBenchRun> runs;
-  const auto addSlam = [&](int test, const TSequence& s, const std::string& mode,
-                           const std::string& f, int cap)
+  const auto addSlam =
+      [&](int test, const TSequence& s, const std::string& mode, const std::string& f, int cap)
   {
     if (mode == "traditional" || m_options.variants.empty())
       runs.push_back(makeRun(test, s, mode, f, cap, nullptr));
     else
-      for (const auto& v : m_options.variants) runs.push_back(makeRun(test, s, mode, f, cap, &v));
+      for (const auto& v : m_options.variants)
+        runs.push_back(makeRun(test, s, mode, f, cap, &v));
   };
   if (m_options.tests.count(1))
     for (const auto& s : sequences)
@@ -198,7 +218,8 @@ std::vector<TBenchRun> CExperimentPlan::build(const std::vector<TSequence>& sequ
   if (m_options.tests.count(2))
     for (const auto& s : sequences)
       for (const auto& m : m_options.modes)
-        for (const auto& f : m_options.features) addSlam(2, s, m, f, m_options.test2_max_features);
+        for (const auto& f : m_options.features)
+          addSlam(2, s, m, f, m_options.test2_max_features);
   if (m_options.tests.count(3))
     for (const auto& s : sequences)
       for (const auto& m : m_options.test3_modes)
@@ -216,8 +237,8 @@ void CExperimentPlan::writeVariantConfigs(const std::vector<TBenchRun>& runs)
     const std::string base = readFile(r.baseIni);
     fs::create_directories(fs::path(r.iniFile).parent_path());
     writeFileAtomically(
-        r.iniFile, "; written by roi-bench from " + r.baseIni + " (variant " + r.variant +
-                       ")\n" + applyIniOverrides(base, r.iniOverrides));
+        r.iniFile, "; written by roi-bench from " + r.baseIni + " (variant " + r.variant + ")\n" +
+                       applyIniOverrides(base, r.iniOverrides));
   }
 }
 
@@ -229,10 +250,12 @@ std::vector<TSequence> CExperimentPlan::discoverSequences(const std::vector<std:
   {
     TSequence s;
     s.path = fs::absolute(p).lexically_normal().string();
-    if (!s.path.empty() && s.path.back() == '/') s.path.pop_back();
+    if (!s.path.empty() && s.path.back() == '/')
+      s.path.pop_back();
     std::string base = fs::path(s.path).filename().string();
     s.name = base;
-    for (int k = 2; names.count(s.name); ++k) s.name = base + "_" + std::to_string(k);
+    for (int k = 2; names.count(s.name); ++k)
+      s.name = base + "_" + std::to_string(k);
     names.insert(s.name);
     s.hasGroundTruth = fs::is_regular_file(p / "groundtruth.txt");
     out.push_back(s);
@@ -248,11 +271,13 @@ std::vector<TSequence> CExperimentPlan::discoverSequences(const std::vector<std:
     std::vector<fs::path> subs;
     if (fs::is_directory(p))
       for (const auto& e : fs::directory_iterator(p))
-        if (e.is_directory() && isSequence(e.path())) subs.push_back(e.path());
+        if (e.is_directory() && isSequence(e.path()))
+          subs.push_back(e.path());
     if (subs.empty())
       throw std::runtime_error(d + ": no sequence (a folder with rgb.txt) found there");
     std::sort(subs.begin(), subs.end());
-    for (const auto& s : subs) add(s);
+    for (const auto& s : subs)
+      add(s);
   }
   return out;
 }

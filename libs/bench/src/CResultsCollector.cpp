@@ -1,10 +1,11 @@
 #include "roislam/bench/CResultsCollector.h"
 
+#include <roislam/bench/CBenchRunner.h>
+#include <roislam/bench/ProcessUtils.h>
+
 #include <algorithm>
 #include <filesystem>
 #include <map>
-#include <roislam/bench/CBenchRunner.h>
-#include <roislam/bench/ProcessUtils.h>
 #include <set>
 #include <sstream>
 #include <stdexcept>
@@ -17,11 +18,13 @@ namespace
 {
 std::string csvField(const std::string& s)
 {
-  if (s.find_first_of(",\"\n\r") == std::string::npos) return s;
+  if (s.find_first_of(",\"\n\r") == std::string::npos)
+    return s;
   std::string out = "\"";
   for (char c : s)
   {
-    if (c == '"') out += '"';
+    if (c == '"')
+      out += '"';
     out += c;
   }
   return out + "\"";
@@ -29,10 +32,14 @@ std::string csvField(const std::string& s)
 
 std::string jsonScalar(const nlohmann::json& v)
 {
-  if (v.is_null()) return "";
-  if (v.is_string()) return v.get<std::string>();
-  if (v.is_boolean()) return v.get<bool>() ? "true" : "false";
-  if (v.is_number_integer()) return std::to_string(v.get<long long>());
+  if (v.is_null())
+    return "";
+  if (v.is_string())
+    return v.get<std::string>();
+  if (v.is_boolean())
+    return v.get<bool>() ? "true" : "false";
+  if (v.is_number_integer())
+    return std::to_string(v.get<long long>());
   if (v.is_number())
   {
     std::ostringstream ss;
@@ -56,13 +63,16 @@ std::vector<TRunRecord> CResultsCollector::loadFolder(const std::string& outputD
 {
   std::vector<TRunRecord> out;
   const fs::path runs = fs::path(outputDir) / "runs";
-  if (!fs::is_directory(runs)) return out;
+  if (!fs::is_directory(runs))
+    return out;
   std::vector<fs::path> dirs;
   for (const auto& e : fs::directory_iterator(runs))
-    if (e.is_directory()) dirs.push_back(e.path());
+    if (e.is_directory())
+      dirs.push_back(e.path());
   std::sort(dirs.begin(), dirs.end());
   for (const auto& d : dirs)
-    if (auto rec = CBenchRunner::loadCompleted(d.string())) out.push_back(*rec);
+    if (auto rec = CBenchRunner::loadCompleted(d.string()))
+      out.push_back(*rec);
   return out;
 }
 
@@ -75,12 +85,14 @@ std::vector<TRunRecord> CResultsCollector::merge(
   {
     if (!fs::is_directory(fs::path(src) / "runs"))
       throw std::runtime_error(src + ": not a roi-bench output folder (no runs/ inside)");
-    if (fs::equivalent(fs::path(src), fs::path(dest))) continue;
+    if (fs::equivalent(fs::path(src), fs::path(dest)))
+      continue;
     for (const auto& rec : loadFolder(src))
     {
       const fs::path target = destRuns / rec.run.id;
       const auto existing = CBenchRunner::loadCompleted(target.string());
-      if (existing && (existing->ok || !rec.ok)) continue;
+      if (existing && (existing->ok || !rec.ok))
+        continue;
       // Copy to a temporary name first so an interrupted merge leaves no half folder.
       const fs::path tmp = destRuns / (".merge-" + rec.run.id);
       fs::remove_all(tmp);
@@ -96,68 +108,74 @@ std::vector<TRunRecord> CResultsCollector::orderByPlan(
     const std::vector<TRunRecord>& records, const std::vector<TBenchRun>& plan)
 {
   std::map<std::string, const TRunRecord*> byId;
-  for (const auto& r : records) byId[r.run.id] = &r;
+  for (const auto& r : records)
+    byId[r.run.id] = &r;
   std::vector<TRunRecord> out;
   std::set<std::string> used;
   for (const auto& p : plan)
   {
     const auto it = byId.find(p.id);
-    if (it == byId.end()) continue;
+    if (it == byId.end())
+      continue;
     out.push_back(*it->second);
     used.insert(p.id);
   }
   for (const auto& r : records)
-    if (!used.count(r.run.id)) out.push_back(r);
+    if (!used.count(r.run.id))
+      out.push_back(r);
   return out;
 }
 
 std::string CResultsCollector::toCsv(const std::vector<TRunRecord>& records)
 {
   // Known summary fields first (both apps' contracts), then anything else seen.
-  std::vector<std::string> keys{"frames",
-                                "frames_with_roi",
-                                "landmarks",
-                                "recalls",
-                                "false_positives",
-                                "false_negatives",
-                                "precision",
-                                "recall",
-                                "matches_per_frame",
-                                "false_matches_per_frame",
-                                "duration_s",
-                                "keyframes",
-                                "loop_closures",
-                                "tracked_frames",
-                                "fallback_frames",
-                                "lost_frames",
-                                "wall_s",
-                                "fps",
-                                "peak_rss_mb",
-                                "ate_rmse",
-                                "rpe_trans_rmse",
-                                "rpe_rot_rmse_deg",
-                                "failed"};
+  std::vector<std::string> keys{
+      "frames",
+      "frames_with_roi",
+      "landmarks",
+      "recalls",
+      "false_positives",
+      "false_negatives",
+      "precision",
+      "recall",
+      "matches_per_frame",
+      "false_matches_per_frame",
+      "duration_s",
+      "keyframes",
+      "loop_closures",
+      "tracked_frames",
+      "fallback_frames",
+      "lost_frames",
+      "wall_s",
+      "fps",
+      "peak_rss_mb",
+      "ate_rmse",
+      "rpe_trans_rmse",
+      "rpe_rot_rmse_deg",
+      "failed"};
   std::set<std::string> known(keys.begin(), keys.end());
   std::set<std::string> extra;
   for (const auto& r : records)
     if (r.summary.is_object())
       for (const auto& [k, v] : r.summary.items())
-        if (!known.count(k) && !v.is_object() && !v.is_array()) extra.insert(k);
+        if (!known.count(k) && !v.is_object() && !v.is_array())
+          extra.insert(k);
   keys.insert(keys.end(), extra.begin(), extra.end());
 
   std::ostringstream out;
   out << "run_id,test,sequence,app,mode,feature,max_features,variant,status,failure_reason,"
          "exit_code,signal,bench_wall_s,bench_cpu_s,bench_max_rss_mb,started_utc,host";
-  for (const auto& k : keys) out << "," << k;
+  for (const auto& k : keys)
+    out << "," << k;
   out << ",command\n";
   for (const auto& r : records)
   {
     out << csvField(r.run.id) << "," << r.run.test << "," << csvField(r.run.sequence) << ","
-        << r.run.app << "," << r.run.mode << "," << r.run.feature << "," << r.run.maxFeatures
-        << "," << csvField(r.run.variant) << "," << (r.ok ? "ok" : "failed") << ","
-        << csvField(r.failureReason) << "," << r.exitCode << "," << r.signal << ","
-        << fmt(r.wallS) << "," << fmt(r.cpuS) << "," << fmt(r.maxRssMb) << "," << r.startedUtc
-        << "," << csvField(r.host);
+        << r.run.app << "," << r.run.mode << "," << r.run.feature << "," << r.run.maxFeatures << ","
+        << csvField(r.run.variant) << "," << (r.ok ? "ok" : "failed") << ","
+        << csvField(r.failureReason) << "," << r.exitCode << "," << r.signal << "," << fmt(r.wallS)
+        << "," << fmt(r.cpuS) << "," << fmt(r.maxRssMb) << "," << r.startedUtc << ","
+        << csvField(r.host);
     for (const auto& k : keys)
     {
       out << ",";

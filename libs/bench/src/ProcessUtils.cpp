@@ -29,14 +29,18 @@ namespace roislam::bench
 {
 namespace
 {
-double toSeconds(const timeval& tv) { return tv.tv_sec + tv.tv_usec * 1e-6; }
+double toSeconds(const timeval& tv)
+{
+  return tv.tv_sec + tv.tv_usec * 1e-6;
+}
 }  // namespace
 
 TProcessResult runProcess(
     const std::vector<std::string>& argv, const std::string& stdoutFile,
     const std::string& stderrFile, double timeoutS)
 {
-  if (argv.empty()) throw std::invalid_argument("runProcess: empty command");
+  if (argv.empty())
+    throw std::invalid_argument("runProcess: empty command");
   TProcessResult result;
 
   posix_spawn_file_actions_t actions;
@@ -49,7 +53,8 @@ TProcessResult runProcess(
       &actions, 2, stderrFile.empty() ? "/dev/null" : stderrFile.c_str(), outFlags, 0644);
 
   std::vector<char*> cargv;
-  for (const auto& a : argv) cargv.push_back(const_cast<char*>(a.c_str()));
+  for (const auto& a : argv)
+    cargv.push_back(const_cast<char*>(a.c_str()));
   cargv.push_back(nullptr);
 
   const auto t0 = std::chrono::steady_clock::now();
@@ -68,7 +73,8 @@ TProcessResult runProcess(
   for (;;)
   {
     const pid_t r = wait4(pid, &status, timeoutS > 0 ? WNOHANG : 0, &usage);
-    if (r == pid) break;
+    if (r == pid)
+      break;
     if (r < 0 && errno != EINTR)
     {
       result.error = std::string("wait4: ") + std::strerror(errno);
@@ -89,26 +95,30 @@ TProcessResult runProcess(
   result.wallS = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   result.cpuS = toSeconds(usage.ru_utime) + toSeconds(usage.ru_stime);
   result.maxRssMb = usage.ru_maxrss / 1024.0;  // ru_maxrss is in KiB on Linux
-  if (WIFEXITED(status)) result.exitCode = WEXITSTATUS(status);
-  if (WIFSIGNALED(status)) result.signal = WTERMSIG(status);
+  if (WIFEXITED(status))
+    result.exitCode = WEXITSTATUS(status);
+  if (WIFSIGNALED(status))
+    result.signal = WTERMSIG(status);
   return result;
 }
 
 std::string shellQuote(const std::string& word)
 {
-  if (word.empty()) return "''";
+  if (word.empty())
+    return "''";
   bool safe = true;
   for (char c : word)
   {
-    const bool ok = std::isalnum(static_cast<unsigned char>(c)) ||
-                    std::strchr("@%+=:,./_-", c) != nullptr;
+    const bool ok =
+        std::isalnum(static_cast<unsigned char>(c)) || std::strchr("@%+=:,./_-", c) != nullptr;
     if (!ok)
     {
       safe = false;
       break;
     }
   }
-  if (safe) return word;
+  if (safe)
+    return word;
   std::string out = "'";
   for (char c : word)
   {
@@ -125,7 +135,8 @@ std::string shellJoin(const std::vector<std::string>& argv)
   std::string out;
   for (const auto& a : argv)
   {
-    if (!out.empty()) out += ' ';
+    if (!out.empty())
+      out += ' ';
     out += shellQuote(a);
   }
   return out;
@@ -134,14 +145,17 @@ std::string shellJoin(const std::vector<std::string>& argv)
 std::optional<std::string> findOnPath(const std::string& name)
 {
   const char* path = std::getenv("PATH");
-  if (!path || name.empty()) return std::nullopt;
+  if (!path || name.empty())
+    return std::nullopt;
   std::stringstream ss(path);
   std::string dir;
   while (std::getline(ss, dir, ':'))
   {
-    if (dir.empty()) continue;
+    if (dir.empty())
+      continue;
     const fs::path p = fs::path(dir) / name;
-    if (fs::is_regular_file(p) && access(p.c_str(), X_OK) == 0) return p.string();
+    if (fs::is_regular_file(p) && access(p.c_str(), X_OK) == 0)
+      return p.string();
   }
   return std::nullopt;
 }
@@ -156,16 +170,19 @@ std::string selfExecutablePath()
 std::string fileTail(const std::string& file, std::size_t lines)
 {
   std::ifstream in(file);
-  if (!in) return {};
+  if (!in)
+    return {};
   std::deque<std::string> tail;
   std::string line;
   while (std::getline(in, line))
   {
     tail.push_back(line);
-    if (tail.size() > lines) tail.pop_front();
+    if (tail.size() > lines)
+      tail.pop_front();
   }
   std::string out;
-  for (const auto& l : tail) out += l + "\n";
+  for (const auto& l : tail)
+    out += l + "\n";
   return out;
 }
 
@@ -175,10 +192,12 @@ void writeFileAtomically(const std::string& file, const std::string& content)
                           std::to_string(std::hash<std::thread::id>()(std::this_thread::get_id()));
   {
     std::ofstream out(tmp, std::ios::binary);
-    if (!out) throw std::runtime_error(file + ": cannot write");
+    if (!out)
+      throw std::runtime_error(file + ": cannot write");
     out << content;
     out.flush();
-    if (!out) throw std::runtime_error(file + ": write failed");
+    if (!out)
+      throw std::runtime_error(file + ": write failed");
   }
   std::error_code ec;
   fs::rename(tmp, file, ec);
@@ -192,7 +211,8 @@ void writeFileAtomically(const std::string& file, const std::string& content)
 std::string readFile(const std::string& file)
 {
   std::ifstream in(file, std::ios::binary);
-  if (!in) throw std::runtime_error(file + ": cannot open");
+  if (!in)
+    throw std::runtime_error(file + ": cannot open");
   std::stringstream ss;
   ss << in.rdbuf();
   return ss.str();

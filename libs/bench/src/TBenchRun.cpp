@@ -9,13 +9,21 @@ nlohmann::json TBenchRun::toJson() const
   nlohmann::json ov = nlohmann::json::array();
   for (const auto& o : iniOverrides)
     ov.push_back({{"section", o.section}, {"key", o.key}, {"value", o.value}});
-  return {{"id", id},           {"test", test},
-          {"sequence", sequence}, {"sequence_path", sequencePath},
-          {"app", app},         {"mode", mode},
-          {"feature", feature}, {"max_features", maxFeatures},
-          {"variant", variant}, {"variant_label", variantLabel},
-          {"base_ini", baseIni}, {"ini", iniFile},
-          {"ini_overrides", ov}, {"argv", argv}};
+  return {
+      {"id", id},
+      {"test", test},
+      {"sequence", sequence},
+      {"sequence_path", sequencePath},
+      {"app", app},
+      {"mode", mode},
+      {"feature", feature},
+      {"max_features", maxFeatures},
+      {"variant", variant},
+      {"variant_label", variantLabel},
+      {"base_ini", baseIni},
+      {"ini", iniFile},
+      {"ini_overrides", ov},
+      {"argv", argv}};
 }
 
 TBenchRun TBenchRun::fromJson(const nlohmann::json& j)

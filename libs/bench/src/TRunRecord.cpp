@@ -6,20 +6,20 @@ namespace roislam::bench
 {
 std::optional<double> TRunRecord::number(const std::string& key) const
 {
-  if (!summary.is_object()) return std::nullopt;
+  if (!summary.is_object())
+    return std::nullopt;
   const auto it = summary.find(key);
-  if (it == summary.end() || !it->is_number()) return std::nullopt;
+  if (it == summary.end() || !it->is_number())
+    return std::nullopt;
   return it->get<double>();
 }
 
 nlohmann::json TRunRecord::toJson() const
 {
-  return {{"run", run.toJson()},         {"ok", ok},
-          {"failure_reason", failureReason}, {"exit_code", exitCode},
-          {"signal", signal},            {"timed_out", timedOut},
-          {"wall_s", wallS},             {"cpu_s", cpuS},
-          {"max_rss_mb", maxRssMb},      {"started_utc", startedUtc},
-          {"host", host},                {"stderr_tail", stderrTail},
+  return {{"run", run.toJson()},       {"ok", ok},         {"failure_reason", failureReason},
+          {"exit_code", exitCode},     {"signal", signal}, {"timed_out", timedOut},
+          {"wall_s", wallS},           {"cpu_s", cpuS},    {"max_rss_mb", maxRssMb},
+          {"started_utc", startedUtc}, {"host", host},     {"stderr_tail", stderrTail},
           {"summary", summary}};
 }
 

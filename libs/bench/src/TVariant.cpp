@@ -11,7 +11,8 @@ namespace
 std::string trim(const std::string& s)
 {
   const auto b = s.find_first_not_of(" \t\r");
-  if (b == std::string::npos) return {};
+  if (b == std::string::npos)
+    return {};
   const auto e = s.find_last_not_of(" \t\r");
   return s.substr(b, e - b + 1);
 }
@@ -25,7 +26,8 @@ TVariant TVariant::parse(const std::string& spec)
         "variant '" + spec + "': " + why + " (expected name:Section.key=value[,...])");
   };
   const auto colon = spec.find(':');
-  if (colon == std::string::npos || colon == 0) throw bad("missing name");
+  if (colon == std::string::npos || colon == 0)
+    throw bad("missing name");
   TVariant v;
   v.name = spec.substr(0, colon);
   for (char c : v.name)
@@ -45,14 +47,16 @@ TVariant TVariant::parse(const std::string& spec)
         {trim(item.substr(0, dot)), trim(item.substr(dot + 1, eq - dot - 1)),
          trim(item.substr(eq + 1))});
   }
-  if (v.overrides.empty()) throw bad("no override");
+  if (v.overrides.empty())
+    throw bad("no override");
   return v;
 }
 
 std::vector<TVariant> defaultVariants()
 {
   return {
-      {"strict", "strict ROI, no fallback (dissertation's behaviour)",
+      {"strict",
+       "strict ROI, no fallback (dissertation's behaviour)",
        {{"FrontEnd", "strict_roi", "true"}}},
       {"fallback", "ROI with fallback (ours)", {{"FrontEnd", "strict_roi", "false"}}}};
 }
@@ -63,7 +67,8 @@ std::string applyIniOverrides(const std::string& iniText, const std::vector<TIni
   {
     std::stringstream ss(iniText);
     std::string l;
-    while (std::getline(ss, l)) lines.push_back(l);
+    while (std::getline(ss, l))
+      lines.push_back(l);
   }
   for (const auto& o : ov)
   {
@@ -76,20 +81,23 @@ std::string applyIniOverrides(const std::string& iniText, const std::vector<TIni
       if (!t.empty() && t.front() == '[' && t.back() == ']')
       {
         section = trim(t.substr(1, t.size() - 2));
-        if (section == o.section) lastLineOfSection = static_cast<long>(i);
+        if (section == o.section)
+          lastLineOfSection = static_cast<long>(i);
         continue;
       }
-      if (section != o.section) continue;
-      if (!t.empty() && t[0] != ';' && t[0] != '#') lastLineOfSection = static_cast<long>(i);
+      if (section != o.section)
+        continue;
+      if (!t.empty() && t[0] != ';' && t[0] != '#')
+        lastLineOfSection = static_cast<long>(i);
       const auto eq = t.find('=');
-      if (eq != std::string::npos && t[0] != ';' && t[0] != '#' &&
-          trim(t.substr(0, eq)) == o.key)
+      if (eq != std::string::npos && t[0] != ';' && t[0] != '#' && trim(t.substr(0, eq)) == o.key)
       {
         lines[i] = o.key + " = " + o.value;
         done = true;
       }
     }
-    if (done) continue;
+    if (done)
+      continue;
     if (lastLineOfSection >= 0)
       lines.insert(lines.begin() + lastLineOfSection + 1, o.key + " = " + o.value);
     else
@@ -99,7 +107,8 @@ std::string applyIniOverrides(const std::string& iniText, const std::vector<TIni
     }
   }
   std::string out;
-  for (const auto& l : lines) out += l + "\n";
+  for (const auto& l : lines)
+    out += l + "\n";
   return out;
 }
 }  // namespace roislam::bench

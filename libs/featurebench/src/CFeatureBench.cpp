@@ -92,7 +92,7 @@ TExtractor makeExtractor(const std::string& name, int cap)
     e.capAfterDetect = true;
   }
   else
-    throw std::invalid_argument("feature-bench: unknown extractor '" + name + "'");
+    throw std::invalid_argument("unknown extractor '" + name + "'");
   return e;
 }
 
@@ -208,7 +208,7 @@ cv::Matx33d CFeatureBench::homography(const std::string& t, const cv::Size& size
   else if (t.rfind("scale", 0) == 0)
     A = cv::getRotationMatrix2D(c, 0.0, std::stod(t.substr(5)));
   else
-    throw std::invalid_argument("feature-bench: unknown transform '" + t + "'");
+    throw std::invalid_argument("unknown transform '" + t + "'");
   cv::Matx33d H = cv::Matx33d::eye();
   for (int r = 0; r < 2; ++r)
     for (int k = 0; k < 3; ++k)
@@ -221,7 +221,7 @@ std::vector<std::string> CFeatureBench::selectFrames(const std::string& dir, int
   const std::string list = dir + "/rgb.txt";
   std::ifstream in(list);
   if (!in)
-    throw std::runtime_error("feature-bench: cannot open " + list);
+    throw std::runtime_error("cannot open " + list);
   std::vector<std::string> files;
   std::string line;
   for (int lineNo = 1; std::getline(in, line); ++lineNo)
@@ -233,12 +233,11 @@ std::vector<std::string> CFeatureBench::selectFrames(const std::string& dir, int
     std::string file;
     if (!(ss >> stamp >> file))
       throw std::runtime_error(
-          "feature-bench: " + list + ":" + std::to_string(lineNo) +
-          ": expected 'timestamp filename'");
+          "" + list + ":" + std::to_string(lineNo) + ": expected 'timestamp filename'");
     files.push_back(dir + "/" + file);
   }
   if (files.empty())
-    throw std::runtime_error("feature-bench: no images listed in " + list);
+    throw std::runtime_error("no images listed in " + list);
   if (n >= static_cast<int>(files.size()))
     return files;
   std::vector<std::string> out;
@@ -265,9 +264,9 @@ CFeatureBench::TResult CFeatureBench::run() const
   {
     cv::Mat img = cv::imread(f, cv::IMREAD_GRAYSCALE);
     if (img.empty())
-      throw std::runtime_error("feature-bench: cannot read image " + f);
+      throw std::runtime_error("cannot read image " + f);
     if (!images.empty() && img.size() != images.front().size())
-      throw std::runtime_error("feature-bench: image size differs from the first frame: " + f);
+      throw std::runtime_error("image size differs from the first frame: " + f);
     images.push_back(img);
   }
   res.frames = images.size();

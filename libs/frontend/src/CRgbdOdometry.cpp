@@ -6,7 +6,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <cstdlib>
 #include <map>
 #include <opencv2/calib3d.hpp>
 #include <opencv2/imgproc.hpp>
@@ -150,6 +149,7 @@ void CRgbdOdometry::TOptions::loadFromConfigFile(
   reprojection_threshold_px =
       c.read_double(s, "reprojection_threshold_px", reprojection_threshold_px);
   pixel_sigma_px = c.read_double(s, "pixel_sigma_px", pixel_sigma_px);
+  scale_aware_weights = c.read_bool(s, "scale_aware_weights", scale_aware_weights);
   min_depth_m = c.read_double(s, "min_depth_m", min_depth_m);
   max_depth_m = c.read_double(s, "max_depth_m", max_depth_m);
   depth_discontinuity_m = c.read_double(s, "depth_discontinuity_m", depth_discontinuity_m);
@@ -183,6 +183,7 @@ void CRgbdOdometry::TOptions::saveToConfigFile(
   c.write(s, "refine_iterations", refine_iterations);
   c.write(s, "reprojection_threshold_px", reprojection_threshold_px);
   c.write(s, "pixel_sigma_px", pixel_sigma_px);
+  c.write(s, "scale_aware_weights", scale_aware_weights);
   c.write(s, "min_depth_m", min_depth_m);
   c.write(s, "max_depth_m", max_depth_m);
   c.write(s, "depth_discontinuity_m", depth_discontinuity_m);
@@ -191,6 +192,7 @@ void CRgbdOdometry::TOptions::saveToConfigFile(
   c.write(s, "icp_max_iterations", icp_max_iterations);
   c.write(s, "icp_max_distance_m", icp_max_distance_m);
   c.write(s, "icp_min_pairs", icp_min_pairs);
+  c.write(s, "keyframe_full_features", keyframe_full_features);
   c.write(s, "constant_velocity_information_scale", constant_velocity_information_scale);
   roi.saveToConfigFile(c, "RoiDetector");
   extractor.saveToConfigFile(c, "FeatureExtractor");
@@ -383,6 +385,9 @@ std::optional<TRegistration> registerSets(
     const double sb = cur.features.keypoints[static_cast<std::size_t>(m.queryIdx)].size;
     c.sigma.push_back(0.5 * (sa + sb));
   }
+  if (!o.scale_aware_weights)
+    c.sigma.clear();
+  else
   {
     // Normalise: the smallest detection size of the type has pixel_sigma_px.
     double s0 = features::isBinary(ref.features.type) ? 31.0 : 1e9;
@@ -390,7 +395,6 @@ std::optional<TRegistration> registerSets(
       for (double v : c.sigma)
         s0 = std::min(s0, v);
     s0 = std::max(s0, 1e-3);
-    if (std::getenv("FE_NOSIG")) c.sigma.clear();
     for (double& v : c.sigma)
       v = o.pixel_sigma_px * std::max(1.0, v / s0);
   }
@@ -507,10 +511,6 @@ TFrameResult CRgbdOdometry::process(const io::TRGBDFrame& frame)
 
   // Lift to 3-D: undistorted pixel + depth at the (distorted) keypoint.
   t0 = Clock::now();
-  TKeyframe cur;  // the frame's tracking set; becomes the keyframe if selected
-  cur.frameIndex = frame.index;
-  cur.timestamp = frame.timestamp;
-  cur.roi = res.roi;
   std::vector<int> valid;
   std::vector<cv::Point2f> undist;
   if (!all.empty())
@@ -567,20 +567,31 @@ TFrameResult CRgbdOdometry::process(const io::TRGBDFrame& frame)
     else
       fallback = true;
   }
-  cur.features = all.select(chosen);
-  cur.fullImageFallback = fallback;
-  cur.points.reserve(chosen.size());
-  cur.pixels.reserve(chosen.size());
-  for (int i : chosen)
+  auto makeSet = [&](const std::vector<int>& idx)
   {
-    const auto& u = undist[static_cast<std::size_t>(i)];
-    const cv::Point2f& p = all.keypoints[static_cast<std::size_t>(i)].pt;
-    const double z =
-        depth.at<float>(static_cast<int>(std::lround(p.y)), static_cast<int>(std::lround(p.x)));
-    cur.points.emplace_back(
-        (u.x - I.pinhole.cx) / I.pinhole.fx * z, (u.y - I.pinhole.cy) / I.pinhole.fy * z, z);
-    cur.pixels.push_back(u);
-  }
+    TKeyframe k;
+    k.frameIndex = frame.index;
+    k.timestamp = frame.timestamp;
+    k.roi = res.roi;
+    k.features = all.select(idx);
+    k.points.reserve(idx.size());
+    k.pixels.reserve(idx.size());
+    for (int i : idx)
+    {
+      const auto& u = undist[static_cast<std::size_t>(i)];
+      const cv::Point2f& p = all.keypoints[static_cast<std::size_t>(i)].pt;
+      const double z =
+          depth.at<float>(static_cast<int>(std::lround(p.y)), static_cast<int>(std::lround(p.x)));
+      k.points.emplace_back(
+          (u.x - I.pinhole.cx) / I.pinhole.fx * z, (u.y - I.pinhole.cy) / I.pinhole.fy * z, z);
+      k.pixels.push_back(u);
+    }
+    return k;
+  };
+  // Whole-image set (keyframe storage, fallback) and the set tracked with.
+  TKeyframe full = makeSet(valid);
+  TKeyframe cur = chosen.size() == valid.size() ? full : makeSet(chosen);
+  cur.fullImageFallback = fallback;
   res.trackingFeatures = cur.features.size();
   res.times.lift_ms = msSince(t0);
 
@@ -620,9 +631,14 @@ TFrameResult CRgbdOdometry::process(const io::TRGBDFrame& frame)
   auto addKeyframe = [&](const mrpt::poses::CPose3D& pose)
   {
     const auto tk = Clock::now();
-    cur.id = m_keyframes.size();
-    cur.pose = pose;
-    m_keyframes.push_back(std::move(cur));
+    // Stored for later matching: the whole image's features (unless
+    // keyframe_full_features is off), so that the next frames' ROI, which
+    // moves and changes size, still finds its partners.
+    TKeyframe& kf = o.keyframe_full_features ? full : cur;
+    kf.fullImageFallback = fallback;
+    kf.id = m_keyframes.size();
+    kf.pose = pose;
+    m_keyframes.push_back(std::move(kf));
     ++m_stats.keyframes;
     res.isNewKeyframe = true;
     res.newKeyframeId = m_keyframes.back().id;
@@ -667,6 +683,7 @@ TFrameResult CRgbdOdometry::process(const io::TRGBDFrame& frame)
   // Features against the last keyframe, then the recent older ones.
   std::optional<TRegistration> reg;
   std::size_t ref = lastKf;
+  auto track = [&](const TKeyframe& query)
   {
     const std::size_t nTry = 1 + static_cast<std::size_t>(o.recent_keyframes);
     for (std::size_t k = 0; k < nTry && k <= lastKf; ++k)
@@ -674,15 +691,29 @@ TFrameResult CRgbdOdometry::process(const io::TRGBDFrame& frame)
       const std::size_t id = lastKf - k;
       std::size_t nm = 0;
       reg = registerSets(
-          m_keyframes[id], cur, I.matcher, I.ransac, I.pinhole, o, &nm, &res.times.match_ms,
+          m_keyframes[id], query, I.matcher, I.ransac, I.pinhole, o, &nm, &res.times.match_ms,
           &res.times.ransac_ms);
       if (k == 0 || reg)
         res.matches = nm;
       if (reg)
       {
         ref = id;
-        break;
+        return;
       }
+    }
+  };
+  track(cur);
+  if (!reg && isRoiMode(o.mode) && !o.strict_roi && !fallback &&
+      full.features.size() > cur.features.size())
+  {
+    // The ROI's features did not register: the whole image's may.
+    track(full);
+    if (reg)
+    {
+      fallback = true;
+      cur = full;
+      cur.fullImageFallback = true;
+      res.trackingFeatures = cur.features.size();
     }
   }
 

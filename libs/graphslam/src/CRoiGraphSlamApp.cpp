@@ -5,6 +5,7 @@
 #include <roislam/graphslam/CKeyframeERD.h>
 #include <roislam/graphslam/CKeyframeNRD.h>
 #include <roislam/graphslam/CRoiGraphSlamApp.h>
+#include <roislam/graphslam/CRoislamOptionsChecker.h>
 #include <roislam/io/CFrameSource.h>
 #include <roislam/io/TumTrajectory.h>
 #include <roislam/viz/CSlamSceneBuilder.h>
@@ -113,6 +114,11 @@ std::string CRoiGraphSlamApp::TSummary::resultLine() const
   return ss.str();
 }
 
+std::string CRoiGraphSlamApp::listRegistrars(const std::string& type)
+{
+  return CRoislamOptionsChecker().describeRegistrars(type);
+}
+
 CRoiGraphSlamApp::CRoiGraphSlamApp(TArguments arguments) : m_args(std::move(arguments))
 {
   if (!m_args.iniFile.empty())
@@ -217,9 +223,11 @@ CRoiGraphSlamApp::TSummary CRoiGraphSlamApp::run()
     const auto it = graph.nodes.find(id);
     return it != graph.nodes.end() ? it->second : odo.keyframe(id).pose;
   };
-  io::TTrajectory estimate;
+  io::TTrajectory estimate, odometryOnly;
   for (const auto& r : records)
   {
+    if (r.result.pose)
+      odometryOnly.push_back({r.result.timestamp, *r.result.pose});
     const auto& fr = r.result;
     if (!fr.pose)
       continue;
@@ -245,6 +253,7 @@ CRoiGraphSlamApp::TSummary CRoiGraphSlamApp::run()
 
   // Evaluation against ground truth.
   std::optional<evaluation::TEvaluationResult> eval;
+  std::optional<double> odometryAte;
   std::string evalError;
   if (const auto gtFile = source->groundTruthFile(); gtFile && fs::exists(*gtFile))
   {
@@ -255,6 +264,9 @@ CRoiGraphSlamApp::TSummary CRoiGraphSlamApp::run()
       s.ateRmse = eval->ate.rmse;
       s.rpeTransRmse = eval->rpe.trans_rmse;
       s.rpeRotRmseDeg = eval->rpe.rot_rmse_deg;
+      // The causal front-end estimate (poses as tracked, before later
+      // optimisations), to show what the back end adds.
+      odometryAte = evaluation::CTrajectoryEvaluator().evaluate(gt, odometryOnly).ate.rmse;
     }
     catch (const std::exception& e)
     {
@@ -408,6 +420,7 @@ CRoiGraphSlamApp::TSummary CRoiGraphSlamApp::run()
   j["ate_rmse"] = optionalJson(s.ateRmse);
   j["rpe_trans_rmse"] = optionalJson(s.rpeTransRmse);
   j["rpe_rot_rmse_deg"] = optionalJson(s.rpeRotRmseDeg);
+  j["frontend_ate_rmse"] = optionalJson(odometryAte);
   j["evaluation"] = eval ? evaluation::toJson(*eval) : nlohmann::json(nullptr);
   if (!evalError.empty())
     j["evaluation_error"] = evalError;

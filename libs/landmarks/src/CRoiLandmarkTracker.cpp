@@ -134,25 +134,39 @@ TFrameResult CRoiLandmarkTracker::process(
   if (depth.position)
     sighting.position = *depth.position;
 
+  // Where the recalled landmark's stored point is now: the 3-D alignment of
+  // the inliers' first-sight points with their current points maps it here;
+  // without usable depth, the features inside the located box.
+  std::optional<mrpt::math::TPoint3D> recalledAt;
   if (q.landmarkId)
+  {
+    const CLandmark& lm = m_database.landmark(*q.landmarkId);
+    if (q.rigid && lm.hasPositionCamera)
+      recalledAt = q.rigid->pose.composePoint(lm.positionCamera);
+    else
+      recalledAt =
+          featureDepth(
+              all.subset(q.locatedBox & cv::Rect(cv::Point(0, 0), size)).keypoints, frame.depth,
+              frame.camera, m_options.tracker.min_depth, m_options.tracker.max_depth)
+              .position;
+  }
+  // Optional: a ROI whose own position is far from the recalled landmark's
+  // covers a different extent of the scene; treat it as a new region.
+  const double maxJump = m_options.tracker.max_position_jump;
+  const bool jumped = maxJump > 0 && recalledAt && depth.position &&
+                      (*recalledAt - *depth.position).norm() > maxJump;
+
+  if (q.landmarkId && !jumped)
   {
     r.landmarkId = *q.landmarkId;
     r.recallInliers = q.inliers;
     r.landmarkBox = q.locatedBox & cv::Rect(cv::Point(0, 0), size);
-    // Where the stored landmark point is now: the 3-D alignment of the
-    // inliers' first-sight points with their current points maps it here.
-    const CLandmark& lm = m_database.landmark(*q.landmarkId);
-    if (q.rigid && lm.hasPositionCamera)
+    r.landmarkPosition = recalledAt;
+    if (q.rigid)
     {
       r.rigidInliers = q.rigid->inliers;
       r.rigidRms = q.rigid->rms;
-      r.landmarkPosition = q.rigid->pose.composePoint(lm.positionCamera);
     }
-    else  // no usable depth: the features inside the located box
-      r.landmarkPosition = featureDepth(
-                               all.subset(*r.landmarkBox).keypoints, frame.depth, frame.camera,
-                               m_options.tracker.min_depth, m_options.tracker.max_depth)
-                               .position;
     sighting.inliers = q.inliers;
     m_database.addSighting(*q.landmarkId, sighting);
     return finish();

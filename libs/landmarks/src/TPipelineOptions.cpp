@@ -16,6 +16,8 @@ void TTrackerOptions::loadFromConfigFile(
   min_depth = detail::readDouble(c, s, "min_depth", min_depth);
   max_depth = detail::readDouble(c, s, "max_depth", max_depth);
   confirm = detail::readBool(c, s, "confirm", confirm);
+  max_position_jump = detail::readDouble(c, s, "max_position_jump", max_position_jump);
+  detail::require(max_position_jump >= 0, s, "max_position_jump", max_position_jump, ">= 0");
   detail::require(min_depth > 0, s, "min_depth", min_depth, "> 0");
   detail::require(max_depth > min_depth, s, "max_depth", max_depth, "> min_depth");
 }
@@ -25,6 +27,7 @@ void TTrackerOptions::saveToConfigFile(mrpt::config::CConfigFileBase& c, const s
   c.write(s, "min_depth", min_depth);
   c.write(s, "max_depth", max_depth);
   c.write(s, "confirm", confirm);
+  c.write(s, "max_position_jump", max_position_jump);
 }
 
 namespace

@@ -4,8 +4,9 @@
  */
 #pragma once
 
-#include <nlohmann/json.hpp>
 #include <roislam/bench/TVariant.h>
+
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 

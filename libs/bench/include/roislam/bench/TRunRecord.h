@@ -5,9 +5,10 @@
  */
 #pragma once
 
+#include <roislam/bench/TBenchRun.h>
+
 #include <nlohmann/json.hpp>
 #include <optional>
-#include <roislam/bench/TBenchRun.h>
 #include <string>
 
 namespace roislam::bench

@@ -9,8 +9,8 @@ namespace roislam::bench
 {
 struct TSequence
 {
-  std::string name;  //!< folder name, made unique within a plan (used in run ids)
-  std::string path;  //!< absolute folder path
+  std::string name;             //!< folder name, made unique within a plan (used in run ids)
+  std::string path;             //!< absolute folder path
   bool hasGroundTruth = false;  //!< groundtruth.txt present
 };
 }  // namespace roislam::bench

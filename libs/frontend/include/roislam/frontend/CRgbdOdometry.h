@@ -44,6 +44,9 @@
  *  - refine_iterations        int >= 0 (10): Gauss-Newton iterations on inliers
  *  - reprojection_threshold_px [px] > 0 (3.0): inlier gate after refinement
  *  - pixel_sigma_px           [px] > 0 (1.0): keypoint noise for the information
+ *  - scale_aware_weights     bool (false): keypoint noise grows with the
+ *                             detection size (ORB: size/31 x pixel_sigma_px);
+ *                             measured slightly worse on fr1/rpy, so off
  *  - min_depth_m, max_depth_m [m] (0.3, 4.0): depth range used for features
  *  - depth_discontinuity_m    [m] >= 0 (0.05): skip keypoints whose 3x3 depth
  *                             neighbourhood spans more than this * depth (0 = off)
@@ -55,6 +58,13 @@
  *  - constant_velocity_information_scale  double > 0 (1e-2): information of a
  *                             constant-velocity keyframe edge = this * identity
  *                             (0.01 -> sigma 10 m / 10 rad: it only links the graph)
+ *  - keyframe_full_features   bool (true): a keyframe stores the features of
+ *                             the whole image (with depth); a ROI-mode frame's
+ *                             ROI features are matched against them. false
+ *                             stores only the ROI subset (ROI-to-ROI matching,
+ *                             the dissertation's way; measured far less robust)
+ * In non-strict ROI modes, when the ROI features do not register, the
+ * whole-image features are tried before depth ICP (FullImageFallback).
  * Sub-component sections: [RoiDetector] (CRoiDetector::TOptions),
  * [FeatureExtractor] (CFeatureExtractor::TOptions), [FeatureMatcher]
  * (CFeatureMatcher::TOptions). A bad value throws std::invalid_argument
@@ -114,6 +124,7 @@ class CRgbdOdometry : public mrpt::system::COutputLogger
     int refine_iterations = 10;
     double reprojection_threshold_px = 3.0;
     double pixel_sigma_px = 1.0;
+    bool scale_aware_weights = false;
     double min_depth_m = 0.3;
     double max_depth_m = 4.0;
     double depth_discontinuity_m = 0.05;
@@ -123,6 +134,7 @@ class CRgbdOdometry : public mrpt::system::COutputLogger
     double icp_max_distance_m = 0.10;
     int icp_min_pairs = 500;
     double constant_velocity_information_scale = 1e-2;
+    bool keyframe_full_features = true;
 
     roi::CRoiDetector::TOptions roi;
     features::CFeatureExtractor::TOptions extractor;

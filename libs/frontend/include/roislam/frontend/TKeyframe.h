@@ -26,9 +26,10 @@ struct TKeyframe
   /** World pose; replaced by setKeyframePose() when the back end optimises. */
   mrpt::poses::CPose3D pose;
 
-  /** The features the frame was tracked with (ROI subset in ROI modes, full
-   *  image in traditional mode or after a fallback), only those with valid
-   *  depth. Parallel to points and pixels. */
+  /** Features stored for matching, only those with valid depth: the whole
+   *  image's (default, TOptions::keyframe_full_features), else the set the
+   *  frame was tracked with (ROI subset in ROI modes, whole image in
+   *  traditional mode or after a fallback). Parallel to points and pixels. */
   features::TFeatureSet features;
   /** 3-D point of each feature in this keyframe's camera (optical) frame, m. */
   std::vector<mrpt::math::TPoint3D> points;
@@ -36,7 +37,7 @@ struct TKeyframe
   std::vector<cv::Point2f> pixels;
   /** The ROI of the frame (ROI modes), if one was found. */
   std::optional<cv::Rect> roi;
-  /** True when features come from the full image although the mode is ROI. */
+  /** ROI mode only: the frame itself was tracked with whole-image features. */
   bool fullImageFallback = false;
 };
 }  // namespace roislam::frontend

@@ -75,6 +75,10 @@ class CRoiGraphSlamApp
    *  cannot be read or the output folder is not writable. */
   TSummary run();
 
+  /** "name: description" lines of the registered 3-D node ("node") or edge
+   *  ("edge") registration deciders, ours included (CRoislamOptionsChecker). */
+  static std::string listRegistrars(const std::string& type);
+
  private:
   TArguments m_args;
   CSlamContext::TConfig m_config;

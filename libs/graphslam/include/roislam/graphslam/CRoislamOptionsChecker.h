@@ -10,6 +10,9 @@
 #include <mrpt/config/CConfigFile.h>
 #include <mrpt/opengl/CDisk.h>
 #include <mrpt/opengl/CSphere.h>
+// The decider headers rely on the global `using namespace std` that
+// CNodeRegistrationDecider_impl.h introduces, so it must come first.
+#include <mrpt/graphslam/interfaces/CNodeRegistrationDecider.h>
 //
 #include <mrpt/graphslam/apps_related/TUserOptionsChecker.h>
 #include <roislam/graphslam/CSlamContext.h>

@@ -11,9 +11,12 @@
  * pitch = -asin(z / range) about +Y (positive = below the optical axis).
  * sensorLocationOnRobot is the pose of that frame on the robot.
  *
- * At most one landmark per frame: the confirmed ROI's, at the position
- * measured in this frame. Frames without one give an observation with no
- * measurements, so every RGB-D observation has its partner.
+ * At most one landmark per frame: the confirmed ROI's, at
+ * TFrameResult::landmarkPosition (for a recall, the landmark's stored point
+ * mapped into this frame by the 3-D alignment of the match inliers, so
+ * repeated observations measure one fixed point). Frames without one give an
+ * observation with no measurements, so every RGB-D observation has its
+ * partner.
  */
 #pragma once
 

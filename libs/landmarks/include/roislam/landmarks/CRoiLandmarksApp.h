@@ -1,7 +1,15 @@
 /* The roi-landmarks application (the dissertation's Test 1, the pipeline
  * alone): reads an RGB-D sequence (TUM folder or rawlog), runs the ROI
  * landmark pipeline on every frame and writes into the output folder:
- *  - frames.csv     one record per frame (the dissertation's log + ROI box)
+ *  - frames.csv     one record per frame: frame, timestamp, status ("landmark
+ *                   k" / "no new ROI" / "NaN"), landmark, new, matches,
+ *                   false_matches, seconds, features, roi_features,
+ *                   depth_valid, depth_mean_m, depth_median_m, roi_x/y/w/h,
+ *                   recall_inliers, candidates, roi_pos_x/y/z (optical frame,
+ *                   m), lm_x/y/w/h and lm_pos_x/y/z (the landmark located in
+ *                   this frame), rigid_pairs, rigid_rms_m, cpu_seconds,
+ *                   s_roi/s_features/s_confirm/s_query (stage times), score and
+ *                   point_score (TP/FP/FN/TN with ground truth)
  *  - landmarks/     each new landmark's ROI patch, named by frame (000123.png)
  *  - landmarks.db   the database (gzip MRPT archive, CLandmarkDatabase)
  *  - summary.json   counts, ground-truth scores (null without ground truth;

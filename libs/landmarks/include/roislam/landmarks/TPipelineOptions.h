@@ -23,12 +23,18 @@ namespace roislam::landmarks
  *  - confirm     bool: a ROI must be re-found in the previous frame before it
  *                is matched against the database, as in the dissertation
  *                (default true)
+ *  - max_position_jump  metres >= 0: a recall whose ROI position (median
+ *                feature point) is farther than this from the recalled
+ *                landmark's point (as located in the frame) is stored as a new
+ *                landmark instead: the ROI box then covers a different extent
+ *                of the scene. 0 = off (default 0)
  */
 struct TTrackerOptions : public mrpt::config::CLoadableOptions
 {
   double min_depth = 0.1;
   double max_depth = 8.0;
   bool confirm = true;
+  double max_position_jump = 0;
 
   void loadFromConfigFile(
       const mrpt::config::CConfigFileBase& source, const std::string& section) override;

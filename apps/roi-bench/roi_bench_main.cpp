@@ -1,0 +1,52 @@
+// roi-bench: runs the dissertation's Tests 1-3 on the given sequences and
+// writes results.csv, charts and report.md (logic in roislam::bench::CBenchApp).
+#include <roislam/bench/CBenchApp.h>
+
+#include <CLI/CLI.hpp>
+#include <iostream>
+
+int main(int argc, char** argv)
+{
+  roislam::bench::CBenchApp::TOptions o;
+  CLI::App cli{"roi-bench: reproduce the dissertation's Tests 1-3 with tables and charts"};
+  cli.add_option("--datasets", o.datasets, "Sequence folders, or folders of sequences")
+      ->expected(1, -1);
+  cli.add_option("--output-dir", o.outputDir, "Results folder (runs/, results.csv, report.md)")
+      ->required();
+  cli.add_option("--tests", o.tests, "Tests to run, e.g. 1,2,3")->capture_default_str();
+  cli.add_option("--jobs", o.jobs, "Runs in parallel")->capture_default_str();
+  cli.add_flag("--emit-jobs", o.emitJobs, "Print one shell command per run and exit");
+  cli.add_option("--merge", o.mergeDirs, "Combine these result folders into --output-dir")
+      ->expected(0, -1);
+  cli.add_option("--only", o.only, "Execute only these run ids")->expected(1, -1);
+  cli.add_flag("--no-report", o.noReport, "Run only; write no results.csv/report");
+  cli.add_option("--bin-dir", o.binDir, "Folder with roi-landmarks / roi-graphslam");
+  cli.add_option("--config-dir", o.configDir, "Folder with the apps' .ini files");
+  cli.add_option("--reference", o.reference, "The dissertation's numbers (dissertation.json)");
+  cli.add_option("--timeout", o.timeoutS, "Seconds per run before it is killed (0 = none)");
+  cli.add_flag("--retry-failed", o.retryFailed, "Rerun runs recorded as failed");
+  cli.add_option("--variant", o.variantSpecs, "Extra variant name:Section.key=value[,...]");
+  cli.add_flag("--no-default-variants", o.noDefaultVariants, "Drop the strict/fallback variants");
+  bool noCharts = false;
+  cli.add_flag("--no-charts", noCharts, "Do not draw PNG charts");
+  try
+  {
+    cli.parse(argc, argv);
+  }
+  catch (const CLI::ParseError& e)
+  {
+    return cli.exit(e);
+  }
+  o.merge = cli.count("--merge") > 0;
+  o.charts = !noCharts;
+  try
+  {
+    roislam::bench::CBenchApp app(o);
+    return app.run(std::cout, std::cerr);
+  }
+  catch (const std::exception& e)
+  {
+    std::cerr << "roi-bench: error: " << e.what() << "\n";
+    return 1;
+  }
+}

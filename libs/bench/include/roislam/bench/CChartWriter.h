@@ -1,0 +1,48 @@
+/* Draws roi-bench's PNG charts with gnuplot (a subprocess): Test 1 bar charts
+ * per sequence (landmarks, false positives, false negatives), Tests 2-3 bar
+ * charts per version x extractor with std error bars (ATE, RPE translation,
+ * RPE rotation, duration), and a top-view trajectory plot per sequence and
+ * extractor (ground truth vs each version, estimates aligned as for the ATE).
+ * Each chart's data (.dat) and script (.gp) stay next to its PNG. Called by
+ * CBenchApp; a chart whose data are all missing is not drawn.
+ *
+ * Options (code only): gnuplot (executable, default "gnuplot"), width/height (px).
+ */
+#pragma once
+
+#include <roislam/bench/TRunRecord.h>
+
+#include <string>
+#include <vector>
+
+namespace roislam::bench
+{
+class CChartWriter
+{
+ public:
+  struct TOptions
+  {
+    std::string gnuplot = "gnuplot";
+    int width = 1000, height = 600;
+  };
+
+  CChartWriter();
+  explicit CChartWriter(const TOptions& options);
+
+  /** True when the gnuplot executable can be found. */
+  bool available() const;
+
+  /** Writes every chart into `dir` (created); returns the PNG file names
+   *  (relative to dir). Throws std::runtime_error naming the script when
+   *  gnuplot fails. */
+  std::vector<std::string> write(const std::vector<TRunRecord>& records, const std::string& dir);
+
+  /** Problems that did not stop the charts (e.g. a trajectory that could not be aligned). */
+  const std::vector<std::string>& warnings() const { return m_warnings; }
+
+ private:
+  TOptions m_options;
+  std::vector<std::string> m_warnings;
+  void plot(const std::string& dir, const std::string& name, const std::string& script);
+};
+}  // namespace roislam::bench

@@ -1,0 +1,49 @@
+/* Writes report.md: the dissertation's tables (Test 1 per-sequence landmarks,
+ * precision/recall per extractor; Test 2 mean +- std of ATE / RPE per version
+ * x extractor, durations, per-sequence table; Test 3; speed) from run records,
+ * each figure next to the dissertation's. Failed runs appear as failures,
+ * never dropped. Called by CBenchApp after the runs.
+ */
+#pragma once
+
+#include <roislam/bench/CDissertationReference.h>
+#include <roislam/bench/TRunRecord.h>
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace roislam::bench
+{
+/** Mean and sample standard deviation (n - 1; 0 when n == 1) of values. */
+struct TMeanStd
+{
+  double mean = 0, std = 0;
+  std::size_t n = 0;
+};
+std::optional<TMeanStd> meanStd(const std::vector<double>& values);
+
+class CReportWriter
+{
+ public:
+  struct TOptions
+  {
+    int jobs = 1;                     //!< parallel runs used (timings are per run, under that load)
+    std::vector<std::string> charts;  //!< PNG paths relative to the report, embedded
+  };
+
+  CReportWriter(const TOptions& options, const CDissertationReference& reference);
+
+  /** The markdown text for these records (in plan order). */
+  std::string render(const std::vector<TRunRecord>& records) const;
+  /** render() written atomically to `file`. */
+  void write(const std::vector<TRunRecord>& records, const std::string& file) const;
+
+  /** Report label of a version key ("roi_big/strict" -> "big ROI, strict ROI ..."). */
+  static std::string versionLabel(const TRunRecord& rec);
+
+ private:
+  TOptions m_options;
+  CDissertationReference m_ref;
+};
+}  // namespace roislam::bench

@@ -1,0 +1,213 @@
+#include "roislam/bench/CBenchApp.h"
+
+#include <roislam/bench/CChartWriter.h>
+#include <roislam/bench/CDissertationReference.h>
+#include <roislam/bench/CProgressBar.h>
+#include <roislam/bench/CReportWriter.h>
+#include <roislam/bench/CResultsCollector.h>
+#include <roislam/bench/ProcessUtils.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <set>
+#include <stdexcept>
+
+#ifndef ROISLAM_BENCH_SOURCE_DIR
+#define ROISLAM_BENCH_SOURCE_DIR ""
+#endif
+
+namespace fs = std::filesystem;
+
+namespace roislam::bench
+{
+namespace
+{
+bool isExecutable(const fs::path& p)
+{
+  return fs::is_regular_file(p) && access(p.c_str(), X_OK) == 0;
+}
+}  // namespace
+
+CBenchApp::CBenchApp(const TOptions& options) : m_options(options)
+{
+  if (m_options.outputDir.empty())
+    throw std::invalid_argument("--output-dir is required");
+  if (m_options.jobs < 1)
+    throw std::invalid_argument("--jobs must be >= 1");
+  if (m_options.selfExe.empty())
+    m_options.selfExe = selfExecutablePath();
+  m_options.plan.tests = CExperimentPlan::parseTests(m_options.tests);
+  if (m_options.noDefaultVariants)
+    m_options.plan.variants.clear();
+  for (const auto& spec : m_options.variantSpecs)
+    m_options.plan.variants.push_back(TVariant::parse(spec));
+  m_options.plan.validate();
+  if (!m_options.merge && m_options.datasets.empty())
+    throw std::invalid_argument("--datasets is required (unless --merge)");
+}
+
+std::string CBenchApp::executableFor(const std::string& app) const
+{
+  if (!m_options.binDir.empty())
+  {
+    for (const auto& p : {fs::path(m_options.binDir) / app, fs::path(m_options.binDir) / app / app})
+      if (isExecutable(p))
+        return fs::absolute(p).string();
+    throw std::runtime_error("--bin-dir " + m_options.binDir + ": no executable " + app);
+  }
+  if (!m_options.selfExe.empty())
+  {
+    const fs::path self = fs::path(m_options.selfExe).parent_path();
+    for (const auto& p : {self.parent_path() / app / app, self / app})
+      if (isExecutable(p))
+        return p.string();
+  }
+  if (auto p = findOnPath(app))
+    return *p;
+  return app;  // reported as a failed run ("cannot start") if it is really missing
+}
+
+std::string CBenchApp::configDir() const
+{
+  if (!m_options.configDir.empty())
+    return fs::absolute(m_options.configDir).string();
+  const fs::path src = fs::path(ROISLAM_BENCH_SOURCE_DIR) / "config";
+  if (!std::string(ROISLAM_BENCH_SOURCE_DIR).empty() && fs::is_directory(src))
+    return src.string();
+  const fs::path inst =
+      fs::path(m_options.selfExe).parent_path().parent_path() / "share" / "roislam" / "config";
+  if (fs::is_directory(inst))
+    return inst.string();
+  throw std::runtime_error("no config folder found: pass --config-dir");
+}
+
+std::string CBenchApp::referenceFile() const
+{
+  if (!m_options.reference.empty())
+    return m_options.reference;
+  const fs::path src =
+      fs::path(ROISLAM_BENCH_SOURCE_DIR) / "share" / "roi-bench" / "dissertation.json";
+  if (!std::string(ROISLAM_BENCH_SOURCE_DIR).empty() && fs::exists(src))
+    return src.string();
+  const fs::path inst = fs::path(m_options.selfExe).parent_path().parent_path() / "share" /
+                        "roislam" / "roi-bench" / "dissertation.json";
+  return fs::exists(inst) ? inst.string() : std::string();
+}
+
+std::vector<TBenchRun> CBenchApp::plan() const
+{
+  CExperimentPlan::TLocations loc;
+  for (const auto& app : {"roi-landmarks", "roi-graphslam"})
+    loc.executables[app] = executableFor(app);
+  loc.configDir = configDir();
+  loc.outputDir = fs::absolute(m_options.outputDir).lexically_normal().string();
+  auto runs = CExperimentPlan(m_options.plan, loc)
+                  .build(CExperimentPlan::discoverSequences(m_options.datasets));
+  if (m_options.only.empty())
+    return runs;
+  std::set<std::string> wanted(m_options.only.begin(), m_options.only.end());
+  std::vector<TBenchRun> out;
+  for (auto& r : runs)
+    if (wanted.erase(r.id))
+      out.push_back(r);
+  if (!wanted.empty())
+    throw std::invalid_argument("--only: no planned run " + *wanted.begin());
+  return out;
+}
+
+std::vector<std::string> CBenchApp::jobCommands() const
+{
+  std::vector<std::string> base{
+      m_options.selfExe.empty() ? "roi-bench" : m_options.selfExe, "--datasets"};
+  for (const auto& d : m_options.datasets)
+    base.push_back(fs::absolute(d).string());
+  base.insert(
+      base.end(), {"--output-dir", fs::absolute(m_options.outputDir).string(), "--tests",
+                   m_options.tests, "--jobs", "1", "--no-report"});
+  if (!m_options.binDir.empty())
+    base.insert(base.end(), {"--bin-dir", fs::absolute(m_options.binDir).string()});
+  if (!m_options.configDir.empty())
+    base.insert(base.end(), {"--config-dir", fs::absolute(m_options.configDir).string()});
+  if (m_options.timeoutS > 0)
+    base.insert(base.end(), {"--timeout", std::to_string(m_options.timeoutS)});
+  if (m_options.retryFailed)
+    base.push_back("--retry-failed");
+  if (m_options.noDefaultVariants)
+    base.push_back("--no-default-variants");
+  for (const auto& v : m_options.variantSpecs)
+    base.insert(base.end(), {"--variant", v});
+  std::vector<std::string> out;
+  for (const auto& r : plan())
+  {
+    auto argv = base;
+    argv.insert(argv.end(), {"--only", r.id});
+    out.push_back(shellJoin(argv));
+  }
+  return out;
+}
+
+void CBenchApp::writeOutputs(const std::vector<TRunRecord>& records, std::ostream& err) const
+{
+  const fs::path out(m_options.outputDir);
+  fs::create_directories(out);
+  CResultsCollector::writeCsv(records, (out / "results.csv").string());
+  CReportWriter::TOptions ro;
+  ro.jobs = m_options.jobs;
+  if (m_options.charts)
+  {
+    CChartWriter charts;
+    if (!charts.available())
+      err << "roi-bench: warning: gnuplot not found, no charts drawn\n";
+    else
+    {
+      for (const auto& png : charts.write(records, (out / "charts").string()))
+        ro.charts.push_back("charts/" + png);
+      for (const auto& w : charts.warnings())
+        err << "roi-bench: warning: " << w << "\n";
+    }
+  }
+  const std::string refFile = referenceFile();
+  CDissertationReference ref;
+  if (refFile.empty())
+    err << "roi-bench: warning: dissertation.json not found, report without reference values\n";
+  else
+    ref = CDissertationReference::fromFile(refFile);
+  CReportWriter(ro, ref).write(records, (out / "report.md").string());
+}
+
+int CBenchApp::run(std::ostream& out, std::ostream& err)
+{
+  if (m_options.merge)
+  {
+    auto records = CResultsCollector::merge(m_options.mergeDirs, m_options.outputDir);
+    if (!m_options.datasets.empty())
+      records = CResultsCollector::orderByPlan(records, plan());
+    writeOutputs(records, err);
+    out << "merged " << records.size() << " runs into " << m_options.outputDir << "\n";
+    return 0;
+  }
+  if (m_options.emitJobs)
+  {
+    for (const auto& c : jobCommands())
+      out << c << "\n";
+    return 0;
+  }
+  const auto runs = plan();
+  CExperimentPlan::writeVariantConfigs(runs);
+  CBenchRunner::TOptions rOpt;
+  rOpt.jobs = m_options.jobs;
+  rOpt.timeout_s = m_options.timeoutS;
+  rOpt.retry_failed = m_options.retryFailed;
+  CProgressBar bar(err);
+  const auto records =
+      CBenchRunner(rOpt).run(runs, [&](const CBenchRunner::TProgress& p) { bar.update(p); });
+  std::size_t failed = 0;
+  for (const auto& r : records)
+    failed += r.ok ? 0 : 1;
+  if (!m_options.noReport)
+    writeOutputs(records, err);
+  out << records.size() << " runs, " << failed << " failed; results in " << m_options.outputDir
+      << "\n";
+  return 0;
+}
+}  // namespace roislam::bench

@@ -1,0 +1,183 @@
+#include <gtest/gtest.h>
+#include <roislam/bench/CChartWriter.h>
+#include <roislam/bench/CDissertationReference.h>
+#include <roislam/bench/CReportWriter.h>
+#include <roislam/testing/TestData.h>
+
+#include <filesystem>
+
+#include "FakeApps.h"
+
+using namespace roislam::bench;
+namespace fs = std::filesystem;
+
+namespace
+{
+TRunRecord rec(
+    int test, const std::string& seq, const std::string& mode, const std::string& feature,
+    const std::string& variant, nlohmann::json summary, bool ok = true)
+{
+  TRunRecord r;
+  r.run.test = test;
+  r.run.sequence = seq;
+  r.run.mode = mode;
+  r.run.feature = feature;
+  r.run.variant = variant;
+  r.run.maxFeatures = test == 3 ? 50 : 600;
+  r.run.app = test == 1 ? "roi-landmarks" : "roi-graphslam";
+  r.run.id = "t" + std::to_string(test) + "-" + seq + "-" + mode + "-" + feature + "-" + variant;
+  r.ok = ok;
+  if (!ok)
+    r.failureReason = "exit code 1: no ROI";
+  r.summary = std::move(summary);
+  r.wallS = 2;
+  return r;
+}
+
+CDissertationReference reference()
+{
+  return CDissertationReference::fromFile(
+      roislam::testing::sourceDir() + "/share/roi-bench/dissertation.json");
+}
+
+std::vector<TRunRecord> fakeResults()
+{
+  std::vector<TRunRecord> v;
+  v.push_back(
+      rec(1, "rgbd_dataset_freiburg1_xyz", "", "surf", "",
+          {{"landmarks", 30},
+           {"false_positives", 3},
+           {"false_negatives", 5},
+           {"precision", 0.8},
+           {"recall", 0.6},
+           {"fps", 4.0}}));
+  v.push_back(
+      rec(1, "synthetic", "", "surf", "",
+          {{"landmarks", 10},
+           {"false_positives", nullptr},
+           {"false_negatives", nullptr},
+           {"precision", nullptr},
+           {"recall", nullptr},
+           {"fps", 6.0}}));
+  for (const char* seq : {"a", "b"})
+  {
+    const double ate = std::string(seq) == "a" ? 0.1 : 0.2;
+    v.push_back(
+        rec(2, seq, "traditional", "surf", "",
+            {{"ate_rmse", ate},
+             {"rpe_trans_rmse", 0.01},
+             {"rpe_rot_rmse_deg", 1.0},
+             {"wall_s", 10.0},
+             {"fps", 20.0}}));
+    v.push_back(
+        rec(2, seq, "roi_big", "surf", "fallback",
+            {{"ate_rmse", ate / 2},
+             {"rpe_trans_rmse", 0.01},
+             {"rpe_rot_rmse_deg", 1.0},
+             {"wall_s", 15.0},
+             {"fps", 10.0}}));
+  }
+  v.push_back(rec(
+      2, "a", "roi_big", "surf", "strict",
+      {{"ate_rmse", 0.07}, {"rpe_trans_rmse", 0.01}, {"rpe_rot_rmse_deg", 1.0}, {"wall_s", 15.0}}));
+  v.push_back(rec(2, "b", "roi_big", "surf", "strict", nullptr, false));
+  v.push_back(rec(
+      3, "a", "traditional", "surf", "",
+      {{"ate_rmse", 0.3}, {"rpe_trans_rmse", 0.05}, {"rpe_rot_rmse_deg", 4.0}, {"wall_s", 5.0}}));
+  return v;
+}
+}  // namespace
+
+TEST(CReportWriter, meanStd)
+{
+  const auto ms = meanStd({0.1, 0.2});
+  ASSERT_TRUE(ms);
+  EXPECT_NEAR(ms->mean, 0.15, 1e-12);
+  EXPECT_NEAR(ms->std, 0.0707107, 1e-6);  // sample std
+  EXPECT_FALSE(meanStd({}));
+}
+
+TEST(CReportWriter, tablesHaveOurAndDissertationCells)
+{
+  const std::string md = CReportWriter({}, reference()).render(fakeResults());
+  // Test 1: a TUM name maps to the dissertation's sequence 1.
+  EXPECT_NE(md.find("| rgbd_dataset_freiburg1_xyz | 30 / 3 / 5 | 33 / 2 / 10 |"), std::string::npos)
+      << md;
+  EXPECT_NE(md.find("| synthetic | 10 / n/a / n/a | — |"), std::string::npos) << md;
+  EXPECT_NE(md.find("1 (fr1/xyz)"), std::string::npos);
+  // Precision / recall per extractor next to the dissertation's rates and fps.
+  EXPECT_NE(
+      md.find("| SURF | 0.800 (n=1) | 0.600 (n=1) | 80.3 % | 77.7 % | 5.00 ± 1.41 (n=2) | 0.67 |"),
+      std::string::npos)
+      << md;
+  // Test 2 ATE: mean ± std and the dissertation's value; failures counted.
+  EXPECT_NE(md.find("| traditional | 0.1500 ± 0.0707 (n=2) | 0.143 ± 0.123 |"), std::string::npos)
+      << md;
+  EXPECT_NE(
+      md.find("| big ROI — strict (dissertation's behaviour) | 0.0700 (n=1, 1 failed) | 0.078 ± "
+              "0.042 |"),
+      std::string::npos)
+      << md;
+  EXPECT_NE(
+      md.find("| big ROI + fallback (**ours**) | 0.0750 ± 0.0354 (n=2) |"), std::string::npos);
+  // Per-sequence table shows the failure.
+  EXPECT_NE(md.find("FAILED (exit code 1: no ROI)"), std::string::npos);
+  // Test 3 row with the dissertation's 50-feature figures.
+  EXPECT_NE(
+      md.find("| traditional | 0.3000 (n=1) | 0.470 ± 0.363 | 0.0500 (n=1) | 0.074 | 4.000 (n=1) | "
+              "5.91 | 5.0 (n=1) | 3.18 |"),
+      std::string::npos)
+      << md;
+  // Speed: ROI/traditional wall-time ratio over sequences where both succeeded.
+  EXPECT_NE(
+      md.find("| big ROI + fallback (**ours**) | SURF | 10.00 ± 0.00 (n=2) | 1.50 |"),
+      std::string::npos)
+      << md;
+  EXPECT_NE(md.find("- `t2-b-roi_big-surf-strict`: exit code 1: no ROI"), std::string::npos);
+}
+
+TEST(CDissertationReference, lookups)
+{
+  const auto ref = reference();
+  EXPECT_EQ(ref.sequenceId("rgbd_dataset_freiburg3_nostructure_notexture_far"), 8);
+  EXPECT_EQ(ref.sequenceId("freiburg1_360"), 6);
+  EXPECT_FALSE(ref.sequenceId("rgbd_dataset_freiburg1_rpy_first250"));
+  const auto t = ref.test1(7, "orb");
+  ASSERT_TRUE(t);
+  EXPECT_EQ((*t)[0], 236);
+  EXPECT_NEAR(ref.scalar(2, "roi_big", "orb", "duration_min").value(), 40.4, 1e-9);
+  EXPECT_FALSE(ref.scalar(2, "roi_big", "orb", "rpe_trans"));
+  EXPECT_NEAR(ref.ate(3, "roi_big", "surf")->first, 0.402, 1e-9);
+  EXPECT_FALSE(ref.ate(3, "roi_big", "orb"));
+  EXPECT_THROW(CDissertationReference::fromFile("/nonexistent.json"), std::runtime_error);
+}
+
+TEST(CChartWriter, drawsPngs)
+{
+  CChartWriter charts;
+  if (!charts.available())
+    GTEST_SKIP() << "gnuplot not installed";
+  const std::string tmp = roislam::testing::makeTempDir("bench_charts");
+  auto records = fakeResults();
+  // Trajectory plot: ground truth and an estimate equal to it.
+  const std::string seq = fake::makeFakeSequence(tmp, "a");
+  for (auto& r : records)
+    if (r.run.test == 2 && r.run.sequence == "a")
+    {
+      r.run.sequencePath = seq;
+      r.run.appOutputDir = tmp + "/" + r.run.id;
+      fs::create_directories(r.run.appOutputDir);
+      fs::copy_file(seq + "/groundtruth.txt", r.run.appOutputDir + "/trajectory.txt");
+    }
+  const auto pngs = charts.write(records, tmp + "/charts");
+  for (const char* name :
+       {"test1_landmarks.png", "test1_false_positives.png", "test2_ate.png", "test2_rpe_trans.png",
+        "test2_rpe_rot.png", "test2_duration.png", "test3_ate.png", "traj_a_surf.png"})
+  {
+    EXPECT_NE(std::find(pngs.begin(), pngs.end(), name), pngs.end()) << name;
+    const fs::path p = fs::path(tmp) / "charts" / name;
+    ASSERT_TRUE(fs::exists(p)) << p;
+    EXPECT_GT(fs::file_size(p), 1000u) << p;
+  }
+  fs::remove_all(tmp);
+}

@@ -1,0 +1,82 @@
+// Odometry only on the rgbd-simul sequences of the synthetic_data fixture:
+// the textured room is tracked by features in every mode, the featureless
+// room by depth ICP (never lost), and strict ROI mode loses the featureless
+// frames as the dissertation's ROI versions did.
+#include <gtest/gtest.h>
+#include <roislam/testing/TestData.h>
+
+#include <iostream>
+
+#include "OdometryRun.h"
+
+using roislam::frontend::CRgbdOdometry;
+using roislam::frontend::EFrontEndMode;
+using roislam::frontend::ETrackingMethod;
+using roislam::frontend::testing::runOdometry;
+
+namespace
+{
+CRgbdOdometry::TOptions orb(EFrontEndMode mode)
+{
+  CRgbdOdometry::TOptions o;
+  o.mode = mode;
+  o.extractor.feature_type = roislam::features::EFeatureType::ORB;
+  o.extractor.max_features = 600;
+  return o;
+}
+}  // namespace
+
+TEST(OdometrySynthetic, TexturedTraditionalAndRoi)
+{
+  ROISLAM_REQUIRE_SYNTHETIC(dir, "textured");
+  for (auto mode : {EFrontEndMode::Traditional, EFrontEndMode::RoiBig})
+  {
+    const auto s = runOdometry(dir, orb(mode));
+    ASSERT_TRUE(s.ate.has_value());
+    std::cout << toString(mode) << ": ATE " << *s.ate << " m, features " << s.stats.features
+              << " roi " << s.stats.roiFeatures << " fallback " << s.stats.fullImageFallback
+              << " icp " << s.stats.depthIcp << " cv " << s.stats.constantVelocity << "\n";
+    EXPECT_EQ(s.stats.lost, 0u);
+    EXPECT_EQ(s.trajectory.size(), s.results.size());
+    EXPECT_LE(s.stats.constantVelocity, s.results.size() / 20);
+    EXPECT_LT(*s.ate, 0.05) << toString(mode);
+  }
+}
+
+TEST(OdometrySynthetic, FeaturelessTrackedFromDepth)
+{
+  ROISLAM_REQUIRE_SYNTHETIC(dir, "featureless");
+  // ROI mode: no ROI anywhere; the few features on face borders or depth ICP
+  // must carry every frame.
+  const auto s = runOdometry(dir, orb(EFrontEndMode::RoiBig));
+  ASSERT_TRUE(s.ate.has_value());
+  std::cout << "featureless roi_big: ATE " << *s.ate << " m, fallback " << s.stats.fullImageFallback
+            << " icp " << s.stats.depthIcp << " cv " << s.stats.constantVelocity << "\n";
+  EXPECT_EQ(s.stats.lost, 0u);
+  EXPECT_EQ(s.trajectory.size(), s.results.size());  // every frame has a pose
+  EXPECT_EQ(s.stats.roiFeatures, 0u);
+  EXPECT_LE(s.stats.constantVelocity, s.results.size() / 20);
+  EXPECT_LT(*s.ate, 0.06);
+
+  // Depth alone: features disabled by an unreachable inlier count.
+  auto o = orb(EFrontEndMode::RoiBig);
+  o.min_inliers = 100000;
+  const auto d = runOdometry(dir, o);
+  ASSERT_TRUE(d.ate.has_value());
+  std::cout << "featureless depth only: ATE " << *d.ate << " m, icp " << d.stats.depthIcp << " cv "
+            << d.stats.constantVelocity << "\n";
+  EXPECT_EQ(d.stats.depthIcp, d.results.size() - 1);
+  EXPECT_EQ(d.trajectory.size(), d.results.size());
+  EXPECT_LT(*d.ate, 0.05);
+}
+
+TEST(OdometrySynthetic, FeaturelessStrictRoiIsLost)
+{
+  ROISLAM_REQUIRE_SYNTHETIC(dir, "featureless");
+  auto o = orb(EFrontEndMode::RoiBig);
+  o.strict_roi = true;
+  const auto s = runOdometry(dir, o);
+  // No ROI features on uniform faces: (almost) every frame is lost.
+  EXPECT_GE(s.stats.lost, s.results.size() * 9 / 10);
+  EXPECT_EQ(s.stats.depthIcp + s.stats.constantVelocity + s.stats.fullImageFallback, 0u);
+}
