@@ -325,8 +325,9 @@ std::vector<std::string> CChartWriter::write(
         name + ".png", W, H,
         "Top view, " + key.first + ", " + upper(key.second) +
             " (estimates aligned to the ground truth as for the ATE)");
-    gp += "set key below\nset size ratio -1\nset grid\nset xlabel " + gpQuote(std::string(axisName[ax]) + " (m)") +
-          "\nset ylabel " + gpQuote(std::string(axisName[ay]) + " (m)") + "\nplot " + plots + "\n";
+    gp += "set key below\nset size ratio -1\nset grid\nset xlabel " +
+          gpQuote(std::string(axisName[ax]) + " (m)") + "\nset ylabel " +
+          gpQuote(std::string(axisName[ay]) + " (m)") + "\nplot " + plots + "\n";
     plot(dir, name, gp);
     pngs.push_back(name + ".png");
   }

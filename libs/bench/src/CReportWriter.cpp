@@ -447,7 +447,12 @@ std::string CReportWriter::render(const std::vector<TRunRecord>& records) const
           if (rec && !rec->ok)
             cell = "FAILED (" + rec->failureReason + ")";
           else if (rec)
+          {
             cell = optNum(rec->number("ate_rmse"), 4) + " / " + num(durationOf(*rec), 1);
+            // Frames where the ROI front end fell back to the whole image (our improvement).
+            if (const auto fb = rec->number("fallback_frames"); fb && *fb > 0)
+              cell += " (fallback " + num(*fb, 0) + " frames)";
+          }
           for (char& c : cell)
             if (c == '|' || c == '\n')
               c = ' ';
