@@ -27,6 +27,10 @@ int main(int argc, char** argv)
   cli.add_flag("--retry-failed", o.retryFailed, "Rerun runs recorded as failed");
   cli.add_option("--variant", o.variantSpecs, "Extra variant name:Section.key=value[,...]");
   cli.add_flag("--no-default-variants", o.noDefaultVariants, "Drop the strict/fallback variants");
+  cli.footer(
+      "Several machines: roi-bench ... --emit-jobs | parallel --sshlogin m1,m2 (shared output\n"
+      "folder), or give each machine its own --output-dir and combine them with\n"
+      "roi-bench --output-dir ALL --merge DIR1 DIR2 [--datasets ...].");
   bool noCharts = false;
   cli.add_flag("--no-charts", noCharts, "Do not draw PNG charts");
   try

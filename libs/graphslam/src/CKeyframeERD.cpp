@@ -65,7 +65,8 @@ CKeyframeERD::TEdgeReport CKeyframeERD::processNewKeyframe(std::size_t id)
       g.insertEdgeAtEnd(
           static_cast<mrpt::graphs::TNodeID>(k.fromKeyframe),
           static_cast<mrpt::graphs::TNodeID>(k.toKeyframe),
-          mrpt::poses::CPose3DPDFGaussianInf(k.relativePose, k.information));
+          mrpt::poses::CPose3DPDFGaussianInf(
+              k.relativePose, c.edgeInformation(k.information, k.method, k.inliers)));
       ++rep.recentEdges;
       ++m_stats["recent"];
     }
@@ -90,7 +91,9 @@ CKeyframeERD::TEdgeReport CKeyframeERD::processNewKeyframe(std::size_t id)
       continue;
     g.insertEdgeAtEnd(
         static_cast<mrpt::graphs::TNodeID>(cand), static_cast<mrpt::graphs::TNodeID>(id),
-        mrpt::poses::CPose3DPDFGaussianInf(est->pose, est->information));
+        mrpt::poses::CPose3DPDFGaussianInf(
+            est->pose, c.edgeInformation(
+                           est->information, frontend::ETrackingMethod::Features, est->inliers)));
     TLoopClosure lc;
     lc.fromKeyframe = cand;
     lc.toKeyframe = id;

@@ -91,7 +91,8 @@ bool CKeyframeNRD::processFrame(const io::TRGBDFrame& frame)
   const auto& c = r.constraints.front();
   g.insertEdgeAtEnd(
       static_cast<mrpt::graphs::TNodeID>(c.fromKeyframe), id,
-      mrpt::poses::CPose3DPDFGaussianInf(c.relativePose, c.information));
+      mrpt::poses::CPose3DPDFGaussianInf(
+          c.relativePose, ctx->edgeInformation(c.information, c.method, c.inliers)));
   this->m_prev_registered_nodeID = id;
   return true;
 }

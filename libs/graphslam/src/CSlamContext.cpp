@@ -41,6 +41,9 @@ void CSlamContext::TOptions::loadFromConfigFile(
   optimizer_max_iterations = c.read_int(s, "optimizer_max_iterations", optimizer_max_iterations);
   map_decimation = c.read_int(s, "map_decimation", map_decimation);
   map_max_depth_m = c.read_double(s, "map_max_depth_m", map_max_depth_m);
+  edge_information = c.read_string(s, "edge_information", edge_information);
+  edge_sigma_m = c.read_double(s, "edge_sigma_m", edge_sigma_m);
+  edge_sigma_deg = c.read_double(s, "edge_sigma_deg", edge_sigma_deg);
   validate();
 }
 
@@ -58,6 +61,9 @@ void CSlamContext::TOptions::saveToConfigFile(
   c.write(s, "optimizer_max_iterations", optimizer_max_iterations);
   c.write(s, "map_decimation", map_decimation);
   c.write(s, "map_max_depth_m", map_max_depth_m);
+  c.write(s, "edge_information", edge_information);
+  c.write(s, "edge_sigma_m", edge_sigma_m);
+  c.write(s, "edge_sigma_deg", edge_sigma_deg);
 }
 
 void CSlamContext::TOptions::validate() const
@@ -228,6 +234,27 @@ std::vector<std::pair<std::size_t, ELoopSource>> CSlamContext::loopCandidates(
     }
   }
   return out;
+}
+
+frontend::TInformation66 CSlamContext::edgeInformation(
+    const frontend::TInformation66& frontEndInformation, frontend::ETrackingMethod method,
+    std::size_t inliers) const
+{
+  const auto& o = m_config.backEnd;
+  if (o.edge_information == "frontend" || method == frontend::ETrackingMethod::ConstantVelocity)
+    return frontEndInformation;
+  // Isotropic blocks also sidestep the (yaw, pitch, roll) vs rotation-vector
+  // ordering difference between CPose3DPDFGaussianInf and the SE(3) solver.
+  const double n = std::clamp(static_cast<double>(inliers), 10.0, 1000.0);
+  const double scale = n / 100.0;  // information grows with the inliers
+  const double st = o.edge_sigma_m, sr = o.edge_sigma_deg * M_PI / 180.0;
+  frontend::TInformation66 info;
+  info.setZero();
+  for (int k = 0; k < 3; ++k)
+    info(k, k) = scale / (st * st);
+  for (int k = 3; k < 6; ++k)
+    info(k, k) = scale / (sr * sr);
+  return info;
 }
 
 TOptimizationReport CSlamContext::optimize(TGraph& graph)

@@ -35,7 +35,7 @@
  *  - min_inliers              int >= 3 (15): fewer inliers -> features failed
  *  - keyframe_translation_m   [m] > 0 (0.10): new keyframe beyond this distance
  *  - keyframe_rotation_deg    [deg] > 0 (10): ... or beyond this rotation angle
- *  - keyframe_min_inliers     int >= 0 (60): ... or when inliers drop below this
+ *  - keyframe_min_inliers     int >= 0 (20): ... or when inliers drop below this
  *  - recent_keyframes         int >= 0 (3): older keyframes (besides the
  *                             reference) tried for tracking fallback and for
  *                             new-keyframe constraints
@@ -117,7 +117,7 @@ class CRgbdOdometry : public mrpt::system::COutputLogger
     int min_inliers = 15;
     double keyframe_translation_m = 0.10;
     double keyframe_rotation_deg = 10.0;
-    int keyframe_min_inliers = 60;
+    int keyframe_min_inliers = 20;
     int recent_keyframes = 3;
     double ransac_threshold_m = 0.03;
     int ransac_max_iterations = 200;

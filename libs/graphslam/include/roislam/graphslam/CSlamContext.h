@@ -22,6 +22,13 @@
  *  - map_decimation            int >= 1 (8): every n-th pixel/row of a
  *                              keyframe's depth goes into the map cloud
  *  - map_max_depth_m           [m] > 0 (4.0): farther readings are not mapped
+ *  - edge_information          frontend|diagonal (diagonal): edge weights as
+ *                              the front end computes them (reprojection
+ *                              Hessian, very confident: sigma ~0.3 mm), or
+ *                              diagonal from the two sigmas below, scaled by
+ *                              sqrt(100 / inliers) (10..1000 inliers)
+ *  - edge_sigma_m              [m] > 0 (0.01): translation sigma at 100 inliers
+ *  - edge_sigma_deg            [deg] > 0 (0.5): rotation sigma at 100 inliers
  * A bad value throws std::invalid_argument "[GraphSlam] key: why".
  */
 #pragma once
@@ -83,6 +90,9 @@ class CSlamContext
     int optimizer_max_iterations = 50;
     int map_decimation = 8;
     double map_max_depth_m = 4.0;
+    std::string edge_information = "diagonal";
+    double edge_sigma_m = 0.01;
+    double edge_sigma_deg = 0.5;
 
     void loadFromConfigFile(
         const mrpt::config::CConfigFileBase& source, const std::string& section) override;
@@ -134,6 +144,13 @@ class CSlamContext
    *  `graph`. Each keyframe is queried at most once. Called by CKeyframeERD. */
   std::vector<std::pair<std::size_t, ELoopSource>> loopCandidates(
       std::size_t id, const TGraph& graph);
+
+  /** The information matrix to put in the graph for a front-end measurement
+   *  ([GraphSlam] edge_information). Constant-velocity constraints keep the
+   *  front end's (deliberately weak) information. */
+  frontend::TInformation66 edgeInformation(
+      const frontend::TInformation66& frontEndInformation, frontend::ETrackingMethod method,
+      std::size_t inliers) const;
 
   /** Records an accepted closure (counted in loopClosures()). */
   void addLoopClosure(const TLoopClosure& lc) { m_loops.push_back(lc); }
