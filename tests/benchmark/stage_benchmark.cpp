@@ -21,7 +21,10 @@
  *    end's own per-stage wall times per frame.
  * After the benchmarks it prints a table "mode feature fps ms_per_frame
  * ratio_vs_traditional cpu_ms_per_frame cpu_ratio_vs_traditional" of the
- * FrontEnd runs and the peak resident memory (getrusage ru_maxrss).
+ * FrontEnd runs; then, for the same modes and features, a paired comparison
+ * (the three modes' odometries fed each frame in turn, so machine load hits
+ * them alike: the ratio to trust on a shared machine); then the peak resident
+ * memory (getrusage ru_maxrss).
  *
  * Frames: the first --frames colour/depth pairs of the shared TUM sequence
  * (ROISLAM_SHARED_DATA_DIR/tum/rgbd_dataset_freiburg1_rpy_first250, or --data
@@ -29,10 +32,11 @@
  * synthetic frames generated in code (a camera sliding over a textured plane
  * 2 m away, with one densely written poster as the natural ROI).
  *
- * Run (Release build; whole program about a minute on 2 cores):
+ * Run (Release build; whole program about 1 minute on 2 idle cores, 2 when they are
+ * shared):
  *   cmake -S . -B build -DCMAKE_BUILD_TYPE=Release
  *   cmake --build build --target roislam-stage-bench
- *   build/tests/benchmark/roislam-stage-bench --benchmark_min_time=0.5
+ *   build/tests/benchmark/roislam-stage-bench --benchmark_min_time=0.2
  * Each benchmark runs until --benchmark_min_time seconds (SIFT and the
  * FrontEnd runs: at least one call / one run of all frames). On a shared
  * machine wall-clock figures vary by 10-30 % between runs; add
@@ -41,8 +45,9 @@
  * Options of its own (in any order with the --benchmark_* flags):
  *   --data <dir>      TUM folder or .rawlog instead of the shared sequence
  *   --synthetic       use the synthetic frames even when real data exist
- *   --frames <n>      frames loaded / run through the front end (default 30)
+ *   --frames <n>      frames loaded / run through the front end (default 20)
  *   --cv-threads <n>  cv::setNumThreads (default: OpenCV's own choice)
+ *   --paired-passes <n>  passes of the paired comparison (default 1, 0 = off)
  * Select stages with --benchmark_filter (e.g. 'FrontEnd', 'Extract/orb').
  */
 #include <benchmark/benchmark.h>
@@ -59,12 +64,14 @@
 
 #include <CLI/CLI.hpp>
 #include <algorithm>
+#include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
 #include <iostream>
 #include <map>
+#include <memory>
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
@@ -618,6 +625,81 @@ void printFrontEndTable(const CCollectingReporter& rep)
                "faster.\n";
 }
 
+/** Paired comparison that contention on a shared machine cannot bias: for each
+ *  feature type benchmarked, one odometry per mode, fed the same frame in turn
+ *  (mode order rotated per frame), timing each process() call. Prints per-frame
+ *  wall and process-CPU cost and their ratios to traditional. */
+void printPairedTable(const CCollectingReporter& rep, int passes)
+{
+  if (rep.frontEnd.empty() || passes <= 0)
+    return;
+  const TBenchData& d = data();
+  const EFrontEndMode modes[] = {
+      EFrontEndMode::Traditional, EFrontEndMode::RoiSmall, EFrontEndMode::RoiBig};
+  std::cout << "\nPaired front-end cost (modes interleaved frame by frame, " << passes << " x "
+            << d.frames.size() << " frames)\n"
+            << std::left << std::setw(12) << "mode" << std::setw(8) << "feature" << std::right
+            << std::setw(14) << "ms_per_frame" << std::setw(22) << "ratio_vs_traditional"
+            << std::setw(18) << "cpu_ms_per_frame" << std::setw(26) << "cpu_ratio_vs_traditional"
+            << "\n";
+  for (const auto type : {EFeatureType::ORB, EFeatureType::SIFT, EFeatureType::SURF})
+  {
+    // Only the modes whose FrontEnd benchmark ran (honours --benchmark_filter).
+    std::vector<std::size_t> used;
+    for (std::size_t m = 0; m < 3; ++m)
+      if (rep.frontEnd.count(roislam::frontend::toString(modes[m]) + "/" + toString(type)))
+        used.push_back(m);
+    if (used.empty())
+      continue;
+    double wallMs[3] = {0, 0, 0}, cpuMs[3] = {0, 0, 0};
+    std::size_t calls = 0;
+    for (int pass = 0; pass < passes; ++pass)
+    {
+      std::vector<std::unique_ptr<CRgbdOdometry>> odo(3);
+      for (const std::size_t m : used)
+      {
+        CRgbdOdometry::TOptions o;
+        o.mode = modes[m];
+        o.extractor.feature_type = type;
+        o.extractor.max_features = kMatchCap;
+        odo[m] = std::make_unique<CRgbdOdometry>(o);
+        odo[m]->setMinLoggingLevel(mrpt::system::LVL_ERROR);
+      }
+      for (std::size_t k = 0; k < d.frames.size(); ++k, ++calls)
+        for (std::size_t j = 0; j < used.size(); ++j)
+        {
+          const std::size_t m = used[(j + k) % used.size()];
+          const double cpu0 = processCpuMs();
+          const auto t0 = std::chrono::steady_clock::now();
+          benchmark::DoNotOptimize(odo[m]->process(d.frames[k]).inliers);
+          wallMs[m] +=
+              std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0)
+                  .count();
+          cpuMs[m] += processCpuMs() - cpu0;
+        }
+    }
+    const bool haveTrad = used.front() == 0;
+    for (const std::size_t m : used)
+    {
+      const double n = static_cast<double>(calls);
+      std::cout << std::left << std::setw(12) << roislam::frontend::toString(modes[m])
+                << std::setw(8) << toString(type) << std::right << std::fixed
+                << std::setprecision(2) << std::setw(14) << wallMs[m] / n;
+      if (haveTrad)
+        std::cout << std::setw(22) << wallMs[0] / wallMs[m];
+      else
+        std::cout << std::setw(22) << "n/a";
+      std::cout << std::setw(18) << cpuMs[m] / n;
+      if (haveTrad)
+        std::cout << std::setw(26) << cpuMs[0] / cpuMs[m];
+      else
+        std::cout << std::setw(26) << "n/a";
+      std::cout << "\n";
+    }
+  }
+  std::cout << "ratio = cost(traditional) / cost(mode): > 1 means the ROI mode is faster.\n";
+}
+
 void registerBenchmarks()
 {
   using benchmark::RegisterBenchmark;
@@ -658,8 +740,9 @@ void printUsage()
   std::cout << "roislam-stage-bench options:\n"
                "  [--data <TUM folder or .rawlog>]  (default: the shared TUM sequence)\n"
                "  [--synthetic]                     synthetic frames even if real data exist\n"
-               "  [--frames <n>]                    frames loaded / run (default 30)\n"
-               "  [--cv-threads <n>]                cv::setNumThreads (default OpenCV's)\n";
+               "  [--frames <n>]                    frames loaded / run (default 20)\n"
+               "  [--cv-threads <n>]                cv::setNumThreads (default OpenCV's)\n"
+               "  [--paired-passes <n>]             paired front-end comparison (default 1)\n";
 }
 }  // namespace
 
@@ -671,13 +754,18 @@ int main(int argc, char** argv)
     CLI::App app{"roislam-stage-bench: per-stage micro-benchmarks (plus --benchmark_* flags)"};
     std::string dataPath;
     bool synthetic = false;
-    std::size_t frames = 30;
+    std::size_t frames = 20;
     int cvThreads = -1;
+    int pairedPasses = 1;
     app.add_option("--data", dataPath, "TUM folder or .rawlog (default: the shared TUM sequence)");
     app.add_flag("--synthetic", synthetic, "use synthetic frames even when real data exist");
     app.add_option("--frames", frames, "frames loaded and run through the front end")
         ->check(CLI::Range(std::size_t{2}, std::size_t{10000}));
     app.add_option("--cv-threads", cvThreads, "cv::setNumThreads (default: OpenCV's choice)");
+    app.add_option(
+           "--paired-passes", pairedPasses,
+           "passes of the interleaved front-end comparison after the benchmarks (0 = off)")
+        ->check(CLI::Range(0, 100));
     try
     {
       app.parse(argc, argv);
@@ -703,6 +791,7 @@ int main(int argc, char** argv)
     reporter.useMeansWhereMissing();
 
     printFrontEndTable(reporter);
+    printPairedTable(reporter, pairedPasses);
     rusage usage{};
     getrusage(RUSAGE_SELF, &usage);
     std::cout << "\npeak memory (ru_maxrss): " << std::fixed << std::setprecision(1)

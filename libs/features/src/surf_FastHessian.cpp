@@ -39,11 +39,26 @@ struct TBox
   int sum(const int32_t* p) const { return p[o11] - p[o01] - p[o10] + p[o00]; }
 };
 
+/** Half-extent across the derivative direction of the Dxx / Dyy lobes of a
+ *  filter of side L: the paper's 9x9 filter has lobes 5 pixels wide, i.e.
+ *  5/9 of L, and larger filters are that filter scaled up. (Widening the lobes
+ *  by 2 pixels per 6 of L, i.e. 2 * lobe - 1 = 2/3 of L for large filters,
+ *  makes Dxx / Dyy wider than Dxy: the box Hessian is then no longer
+ *  consistent, its determinant depends on the image orientation and coarse
+ *  keypoints moved by several pixels under rotation.) The width is kept odd
+ *  so that the filter stays centred on a pixel. */
+int crossHalfExtent(int L)
+{
+  return static_cast<int>(std::lround((5.0 * L / 9.0 - 1.0) / 2.0));
+}
+
 /** The three box filters of one filter size L = 3 * lobe (lobe odd). Dxx is
- *  the whole 3-lobe region minus 3x its middle lobe (weights 1, -2, 1); Dxy
- *  the four lobe x lobe squares around the centre. Responses are normalised by
- *  the filter area L^2 (paper, section 3.3), which is what OpenCV's SURF
- *  hessianThreshold refers to. */
+ *  the whole 3-lobe region minus 3x its middle lobe (weights 1, -2, 1), each
+ *  lobe 2 * crossHalfExtent(L) + 1 tall; Dxy the four lobe x lobe squares
+ *  around the centre. Responses are normalised by the filter area L^2 (paper,
+ *  section 3.3), which is what OpenCV's SURF hessianThreshold refers to. With
+ *  the paper's proportions at every size the Frobenius-norm balance of Dxy
+ *  against Dxx (paper eq. 4) stays at its 9x9 value, so w is constant. */
 struct TFilter
 {
   int L = 0, border = 0;
@@ -52,11 +67,11 @@ struct TFilter
 
   TFilter(int size, int stride) : L(size), border((size - 1) / 2)
   {
-    const int lobe = size / 3, h = (lobe - 1) / 2, b = border;
-    xxAll = TBox(-b, -(lobe - 1), b, lobe - 1, stride);
-    xxMid = TBox(-h, -(lobe - 1), h, lobe - 1, stride);
-    yyAll = TBox(-(lobe - 1), -b, lobe - 1, b, stride);
-    yyMid = TBox(-(lobe - 1), -h, lobe - 1, h, stride);
+    const int lobe = size / 3, h = (lobe - 1) / 2, b = border, q = crossHalfExtent(size);
+    xxAll = TBox(-b, -q, b, q, stride);
+    xxMid = TBox(-h, -q, h, q, stride);
+    yyAll = TBox(-q, -b, q, b, stride);
+    yyMid = TBox(-q, -h, q, h, stride);
     xy[0] = TBox(-lobe, -lobe, -1, -1, stride);  // weight +1
     xy[1] = TBox(1, -lobe, lobe, -1, stride);    // -1
     xy[2] = TBox(-lobe, 1, -1, lobe, stride);    // -1
@@ -340,13 +355,13 @@ int laplacianSign(const TIntegral& in, const cv::KeyPoint& kp)
   int lobe = std::max(3, static_cast<int>(std::lround(kp.size / 3.0f)));
   if (lobe % 2 == 0)
     ++lobe;
-  const int L = 3 * lobe, b = (L - 1) / 2, h = (lobe - 1) / 2;
+  const int L = 3 * lobe, b = (L - 1) / 2, h = (lobe - 1) / 2, q = crossHalfExtent(L);
   const int x = static_cast<int>(std::lround(kp.pt.x)), y = static_cast<int>(std::lround(kp.pt.y));
   // Clamped sums: keypoints from other detectors may lie near the border.
   const auto box = [&](int x0, int y0, int x1, int y1)
   { return in.boxClamped(x + x0, y + y0, x + x1 + 1, y + y1 + 1); };
-  const int dxx = box(-b, -(lobe - 1), b, lobe - 1) - 3 * box(-h, -(lobe - 1), h, lobe - 1);
-  const int dyy = box(-(lobe - 1), -b, lobe - 1, b) - 3 * box(-(lobe - 1), -h, lobe - 1, h);
+  const int dxx = box(-b, -q, b, q) - 3 * box(-h, -q, h, q);
+  const int dyy = box(-q, -b, q, b) - 3 * box(-q, -h, q, h);
   return (dxx + dyy) > 0 ? 1 : -1;
 }
 }  // namespace roislam::features::surf

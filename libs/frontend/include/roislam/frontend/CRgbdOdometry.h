@@ -9,9 +9,11 @@
  * over the inliers, whose Hessian gives the information matrix.
  * When features fail: depth-only projective point-to-plane ICP against the
  * reference keyframe, then constant velocity, so tracking never stops
- * (except strict_roi, see below). A new keyframe is made when the motion from
- * the reference keyframe exceeds the thresholds or the inliers drop; it brings
- * constraints to the recent keyframes for the pose graph.
+ * (except strict_roi, see below). A new keyframe is made when the motion since
+ * the last keyframe exceeds the thresholds, the feature inliers drop, or the
+ * frame could only be registered against an older keyframe; it brings
+ * constraints to the recent keyframes for the pose graph (keyframe id == its
+ * position in keyframes(), so the back end can use it as node id).
  *
  * Called by the graph-SLAM back end (roislam::graphslam) and apps, one frame
  * at a time, in order. Not thread-safe.
@@ -22,8 +24,10 @@
  * register against any recent keyframe, is Lost: TFrameResult::pose is
  * nullopt, no keyframe is made, stats().lost is incremented and the next frame
  * is again tracked against the last keyframe (so tracking resumes if the ROI
- * comes back). Apps should report such a run as failed (the dissertation's
- * "no trajectory"): see TStats::lost. Outside strict_roi, no frame is Lost.
+ * comes back). If the very first frames are Lost, the first frame with enough
+ * ROI features becomes keyframe 0 at the initial pose. Apps should report a
+ * run with lost frames as failed (the dissertation's "no trajectory"): see
+ * TStats::lost. Outside strict_roi, no frame is Lost.
  *
  * ini section "FrontEnd" (TOptions), units in brackets:
  *  - mode                     traditional|roi_small|roi_big|roi (default traditional);
@@ -42,7 +46,7 @@
  *  - ransac_threshold_m       [m] > 0 (0.03): 3-D inlier distance of RANSAC
  *  - ransac_max_iterations    int >= 1 (200), adaptive (confidence 0.995)
  *  - refine_iterations        int >= 0 (10): Gauss-Newton iterations on inliers
- *  - reprojection_threshold_px [px] > 0 (3.0): inlier gate after refinement
+ *  - reprojection_threshold_px [px] > 0 (2.0): inlier gate after refinement
  *  - pixel_sigma_px           [px] > 0 (1.0): keypoint noise for the information
  *  - scale_aware_weights     bool (false): keypoint noise grows with the
  *                             detection size (ORB: size/31 x pixel_sigma_px);
@@ -122,7 +126,7 @@ class CRgbdOdometry : public mrpt::system::COutputLogger
     double ransac_threshold_m = 0.03;
     int ransac_max_iterations = 200;
     int refine_iterations = 10;
-    double reprojection_threshold_px = 3.0;
+    double reprojection_threshold_px = 2.0;
     double pixel_sigma_px = 1.0;
     bool scale_aware_weights = false;
     double min_depth_m = 0.3;

@@ -1,0 +1,61 @@
+// roi-bench on the real apps (synthetic textured sequence): the figures it
+// reports must equal those of the same app run by hand.
+#include <gtest/gtest.h>
+#include <roislam/bench/CBenchApp.h>
+#include <roislam/bench/CResultsCollector.h>
+#include <roislam/bench/ProcessUtils.h>
+#include <roislam/testing/TestData.h>
+
+#include <filesystem>
+#include <sstream>
+
+using namespace roislam::bench;
+namespace fs = std::filesystem;
+
+TEST(EndToEnd, figuresEqualHandRuns)
+{
+  ROISLAM_REQUIRE_SYNTHETIC(seq, "textured");
+  const std::string bin = roislam::testing::binaryDir() + "/apps";
+  for (const char* app : {"roi-landmarks", "roi-graphslam"})
+    if (!fs::exists(bin + "/" + app + "/" + app))
+      GTEST_SKIP() << app << " not built";
+  const std::string tmp = roislam::testing::makeTempDir("bench_e2e");
+  CBenchApp::TOptions o;
+  o.datasets = {seq};
+  o.outputDir = tmp + "/out";
+  o.binDir = bin;
+  o.configDir = roislam::testing::sourceDir() + "/config";
+  o.tests = "1,2";
+  o.plan.features = {"surf"};
+  o.plan.modes = {"traditional"};
+  o.noDefaultVariants = true;
+  std::ostringstream out, err;
+  ASSERT_EQ(CBenchApp(o).run(out, err), 0) << err.str();
+  const auto records = CResultsCollector::loadFolder(o.outputDir);
+  ASSERT_EQ(records.size(), 2u);
+  EXPECT_TRUE(fs::exists(o.outputDir + "/report.md"));
+  EXPECT_TRUE(fs::exists(o.outputDir + "/results.csv"));
+
+  for (const auto& r : records)
+  {
+    // Run the exact recorded command again by hand, into another folder.
+    auto argv = r.run.argv;
+    const std::string handOut = tmp + "/hand_" + r.run.id;
+    for (std::size_t i = 0; i + 1 < argv.size(); ++i)
+      if (argv[i] == "--output-dir")
+        argv[i + 1] = handOut;
+    const auto p = runProcess(argv, "", tmp + "/hand.log");
+    const bool handOk = p.succeeded() && fs::exists(handOut + "/summary.json");
+    EXPECT_EQ(handOk, r.ok) << r.run.id << ": " << r.failureReason;
+    if (!handOk || !r.ok)
+      continue;
+    const auto hand = nlohmann::json::parse(readFile(handOut + "/summary.json"));
+    for (const char* key :
+         {"frames", "landmarks", "false_positives", "false_negatives", "precision", "recall",
+          "keyframes", "ate_rmse", "rpe_trans_rmse"})
+      if (hand.contains(key))
+        EXPECT_EQ(hand.at(key), r.summary.at(key)) << r.run.id << " " << key;
+  }
+}
+fs::remove_all(tmp);
+}
