@@ -53,9 +53,10 @@ TEST(EndToEnd, figuresEqualHandRuns)
     for (const char* key :
          {"frames", "landmarks", "false_positives", "false_negatives", "precision", "recall",
           "keyframes", "ate_rmse", "rpe_trans_rmse"})
+    {
       if (hand.contains(key))
         EXPECT_EQ(hand.at(key), r.summary.at(key)) << r.run.id << " " << key;
+    }
   }
-}
-fs::remove_all(tmp);
+  fs::remove_all(tmp);
 }

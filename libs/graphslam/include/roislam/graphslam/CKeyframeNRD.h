@@ -57,5 +57,6 @@ class CKeyframeNRD : public mrpt::graphslam::deciders::CNodeRegistrationDecider<
   std::shared_ptr<CSlamContext> m_context;
   bool m_explicitContext = false;
   mrpt::poses::CPose3D m_currentPose;
+  std::size_t m_observations = 0;
 };
 }  // namespace roislam::graphslam
