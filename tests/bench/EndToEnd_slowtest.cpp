@@ -55,7 +55,9 @@ TEST(EndToEnd, figuresEqualHandRuns)
           "keyframes", "ate_rmse", "rpe_trans_rmse"})
     {
       if (hand.contains(key))
+      {
         EXPECT_EQ(hand.at(key), r.summary.at(key)) << r.run.id << " " << key;
+      }
     }
   }
   fs::remove_all(tmp);

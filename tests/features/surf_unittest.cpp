@@ -133,10 +133,12 @@ TInvariance invariance(
 
 TEST(CSurf, GaussianBlobIsLocalisedAndScaleFollowsSigma)
 {
-  // With the paper's filters and its mapping s = 1.2 L / 9 a blob of sigma
-  // is found at s ~= 0.70 sigma (the box filters act like a slightly wider
-  // Gaussian than 1.2); what matters for matching is that the ratio is the
-  // same at every scale, i.e. detection is scale covariant.
+  // An exact Gaussian-derivative detector finds a blob of sigma at s = sigma.
+  // The paper's box filters with its mapping s = 1.2 L / 9 do not: integrating
+  // the continuous box filters (paper proportions) over a Gaussian blob, the
+  // normalised determinant peaks at L = 5.35 sigma, i.e. s = 0.713 sigma (the
+  // 9x9 box acts like a Gaussian of 1.68, not 1.2, on blobs). What matters
+  // for matching is that the ratio is the same at every scale.
   std::vector<double> ratios;
   for (double sigma : {3.0, 5.0, 8.0, 12.0, 20.0})
   {
@@ -147,10 +149,139 @@ TEST(CSurf, GaussianBlobIsLocalisedAndScaleFollowsSigma)
     EXPECT_LT(cv::norm(d.kps[k].pt - cv::Point2f(c)), 1.0) << "sigma " << sigma;
     const double s = 1.2 * d.kps[k].size / 9.0;
     ratios.push_back(s / sigma);
-    EXPECT_NEAR(s / sigma, 0.70, 0.10) << "sigma " << sigma << " detected at scale " << s;
+    EXPECT_NEAR(s / sigma, 0.713, 0.06) << "sigma " << sigma << " detected at scale " << s;
   }
   const auto [lo, hi] = std::minmax_element(ratios.begin(), ratios.end());
   EXPECT_LT(*hi / *lo, 1.15) << "detected scale not proportional to the blob's sigma";
+}
+
+namespace
+{
+/** An anisotropic Gaussian blob: centre, std along / across its axis (px),
+ *  axis angle (rad) and amplitude (grey levels). */
+struct TBlob
+{
+  cv::Point2d c;
+  double sAlong = 1, sAcross = 1, theta = 0, amp = 0;
+};
+
+/** 8-bit image of blobs on grey 128, sampled analytically at the pixel
+ *  centres, after rotating the scene by rotDeg (image axes, +x towards +y)
+ *  about rc; no resampling, so the rotated image is exact. */
+cv::Mat renderScene(const std::vector<TBlob>& blobs, cv::Size size, double rotDeg, cv::Point2d rc)
+{
+  const double a = rotDeg * CV_PI / 180, ca = std::cos(a), sa = std::sin(a);
+  cv::Mat img(size, CV_32F, cv::Scalar(128));
+  for (int y = 0; y < size.height; ++y)
+    for (int x = 0; x < size.width; ++x)
+    {
+      const double dx = x - rc.x, dy = y - rc.y;
+      const double u = rc.x + ca * dx + sa * dy, v = rc.y - sa * dx + ca * dy;
+      double val = 128;
+      for (const auto& b : blobs)
+      {
+        const double px = u - b.c.x, py = v - b.c.y;
+        if (px * px + py * py > 36 * b.sAlong * b.sAlong)
+          continue;
+        const double p = std::cos(b.theta) * px + std::sin(b.theta) * py;
+        const double q = -std::sin(b.theta) * px + std::cos(b.theta) * py;
+        val += b.amp *
+               std::exp(-0.5 * (p * p / (b.sAlong * b.sAlong) + q * q / (b.sAcross * b.sAcross)));
+      }
+      img.at<float>(y, x) = static_cast<float>(val);
+    }
+  cv::Mat u8;
+  img.convertTo(u8, CV_8U);
+  return u8;
+}
+
+cv::Point2f rotateAbout(cv::Point2f p, double rotDeg, cv::Point2d rc)
+{
+  const double a = rotDeg * CV_PI / 180, dx = p.x - rc.x, dy = p.y - rc.y;
+  return {
+      static_cast<float>(rc.x + std::cos(a) * dx - std::sin(a) * dy),
+      static_cast<float>(rc.y + std::sin(a) * dx + std::cos(a) * dy)};
+}
+}  // namespace
+
+TEST(CSurf, BlobsAtNonIntegerPositionsAreLocalisedAndRotationInvariantAtEveryScale)
+{
+  // Every octave (filter sizes 15..141): position error < 0.1 s, and the
+  // same position (mapped) and size when the scene is rotated by 30 degrees
+  // about an arbitrary centre.
+  const cv::Point2d c(300.37, 231.81), rc(271.3, 198.6);
+  const double rot = 30;
+  CSurf::TParams p;
+  p.hessianThreshold = 10;
+  for (double sigma : {3.0, 4.5, 6.0, 8.0, 11.0, 14.0, 17.0, 20.0})
+    for (double amp : {80.0, -80.0})
+    {
+      const std::vector<TBlob> scene{{c, sigma, sigma, 0, amp}};
+      const TDetection a = run(renderScene(scene, {640, 480}, 0, rc), p);
+      const TDetection b = run(renderScene(scene, {640, 480}, rot, rc), p);
+      const int ka = nearest(a.kps, cv::Point2f(c), 5.0f);
+      ASSERT_GE(ka, 0) << "sigma " << sigma << " amp " << amp << " not detected";
+      const cv::Point2f q = rotateAbout(a.kps[ka].pt, rot, rc);
+      const int kb = nearest(b.kps, q, 5.0f);
+      ASSERT_GE(kb, 0) << "sigma " << sigma << " amp " << amp << " not detected after rotation";
+      const double s = 1.2 * a.kps[ka].size / 9.0;
+      EXPECT_LT(cv::norm(a.kps[ka].pt - cv::Point2f(c)), 0.1 * s) << "sigma " << sigma;
+      EXPECT_LT(cv::norm(b.kps[kb].pt - rotateAbout(cv::Point2f(c), rot, rc)), 0.1 * s)
+          << "sigma " << sigma;
+      EXPECT_LT(cv::norm(b.kps[kb].pt - q), 0.1 * s) << "sigma " << sigma;
+      EXPECT_NEAR(b.kps[kb].size / a.kps[ka].size, 1.0, 0.05) << "sigma " << sigma;
+    }
+}
+
+TEST(CSurf, CoarseKeypointsOfAnAsymmetricSceneFollowRotation)
+{
+  // Overlapping anisotropic blobs make asymmetric structures whose keypoint
+  // positions depend on how isotropic the box-filter Hessian is. With lobes
+  // 2 * lobe - 1 wide (instead of the paper's 5/9 L) only ~72 % of the coarse
+  // keypoints (L >= 30) were found again within 0.3 s after a 30 degree
+  // rotation of the exact scene, and those of L >= 60 had median errors of
+  // ~5 px (measured 89 of 124 = 72 %); now 113 of 129 = 88 %.
+  const cv::Point2d rc(271.3, 198.6);
+  const double rot = 30;
+  CSurf::TParams p;
+  p.hessianThreshold = 20;
+  int coarse = 0, found = 0;
+  for (unsigned seed : {1u, 2u})
+  {
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<double> u(0, 1);
+    std::vector<TBlob> scene;
+    for (int k = 0; k < 150; ++k)
+    {
+      TBlob b;
+      b.c = {120 + u(rng) * 400, 90 + u(rng) * 300};
+      b.sAlong = 2 + u(rng) * 10;
+      b.theta = u(rng) * CV_PI;
+      b.amp = (u(rng) < 0.5 ? -1 : 1) * (30 + u(rng) * 40);
+      scene.push_back(b);
+    }
+    for (auto& b : scene)
+      b.sAcross = b.sAlong * (0.4 + 0.4 * u(rng));
+    const TDetection a = run(renderScene(scene, {640, 480}, 0, rc), p);
+    const TDetection b = run(renderScene(scene, {640, 480}, rot, rc), p);
+    const cv::Rect2f inner(60, 60, 520, 360);
+    for (const auto& ka : a.kps)
+    {
+      const cv::Point2f q = rotateAbout(ka.pt, rot, rc);
+      if (ka.size < 30 || !inner.contains(ka.pt) || !inner.contains(q))
+        continue;
+      ++coarse;
+      const double s = 1.2 * ka.size / 9.0;
+      for (const auto& kb : b.kps)
+        if (std::abs(std::log(kb.size / ka.size)) < std::log(1.2) && cv::norm(kb.pt - q) < 0.3 * s)
+        {
+          ++found;
+          break;
+        }
+    }
+  }
+  ASSERT_GE(coarse, 60);
+  EXPECT_GE(static_cast<double>(found) / coarse, 0.8) << found << " of " << coarse;
 }
 
 TEST(CSurf, LaplacianSignSeparatesBrightAndDarkBlobs)

@@ -65,7 +65,8 @@ TEST(Deciders, RegisterKeyframeNodesEdgesAndLoopClosure)
     EXPECT_GE(lc.toKeyframe, lc.fromKeyframe + 3);
   std::map<std::string, int> stats;
   erd.getEdgesStats(&stats);
-  EXPECT_GE(stats["loop_proximity"], 1);
+  EXPECT_EQ(stats["lc"], static_cast<int>(ctx->loopClosures().size()));
+  EXPECT_GE(erd.edgeCounts().at("loop_proximity"), 1);
 
   ctx->optimize(graph);
   for (const auto& [id, pose] : graph.nodes)

@@ -8,6 +8,7 @@
 #include <roislam/bench/ProcessUtils.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <set>
 #include <stdexcept>
@@ -36,6 +37,9 @@ CBenchApp::CBenchApp(const TOptions& options) : m_options(options)
     throw std::invalid_argument("--jobs must be >= 1");
   if (m_options.selfExe.empty())
     m_options.selfExe = selfExecutablePath();
+  // A bare --merge (re-make the report of --output-dir) may arrive as one empty value.
+  auto& md = m_options.mergeDirs;
+  md.erase(std::remove(md.begin(), md.end(), std::string()), md.end());
   m_options.plan.tests = CExperimentPlan::parseTests(m_options.tests);
   if (m_options.noDefaultVariants)
     m_options.plan.variants.clear();

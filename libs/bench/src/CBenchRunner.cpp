@@ -125,7 +125,11 @@ TRunRecord CBenchRunner::runOne(const TBenchRun& run) const
   else if (p.timedOut)
     rec.failureReason = "timed out after " + std::to_string(m_options.timeout_s) + " s";
   else if (p.signal != 0)
-    rec.failureReason = "killed by signal " + std::to_string(p.signal);
+  {
+    const std::string msg = firstLine(rec.stderrTail);
+    rec.failureReason =
+        "killed by signal " + std::to_string(p.signal) + (msg.empty() ? "" : ": " + msg);
+  }
   else if (p.exitCode != 0)
   {
     const std::string msg = firstLine(rec.stderrTail);

@@ -33,6 +33,28 @@ double localScale(const cv::Matx33d& H, cv::Point2d p)
 }
 }  // namespace
 
+double circleOverlapError(double r1, double r2, double d)
+{
+  if (!(r1 > 0) || !(r2 > 0))
+    return 1.0;
+  d = std::abs(d);
+  const double a1 = CV_PI * r1 * r1, a2 = CV_PI * r2 * r2;
+  double inter;
+  if (d >= r1 + r2)
+    inter = 0;
+  else if (d <= std::abs(r1 - r2))
+    inter = std::min(a1, a2);
+  else
+  {
+    // Two circular segments (lens area).
+    const double c1 = std::clamp((d * d + r1 * r1 - r2 * r2) / (2 * d * r1), -1.0, 1.0);
+    const double c2 = std::clamp((d * d + r2 * r2 - r1 * r1) / (2 * d * r2), -1.0, 1.0);
+    const double k = (-d + r1 + r2) * (d + r1 - r2) * (d - r1 + r2) * (d + r1 + r2);
+    inter = r1 * r1 * std::acos(c1) + r2 * r2 * std::acos(c2) - 0.5 * std::sqrt(std::max(0.0, k));
+  }
+  return 1.0 - inter / (a1 + a2 - inter);
+}
+
 TPairMetrics evaluatePair(
     const std::vector<cv::KeyPoint>& kpsA, const cv::Mat& descA,
     const std::vector<cv::KeyPoint>& kpsB, const cv::Mat& descB, const cv::Matx33d& H,
@@ -74,13 +96,31 @@ TPairMetrics evaluatePair(
 
   const double tol2 = crit.pixelTolerance * crit.pixelTolerance;
   const double logR = std::log(crit.maxScaleRatio);
-  const auto consistent = [&](size_t ia, int j, double& d2)
+  const bool overlap = crit.mode == TCorrespondenceCriterion::EMode::Overlap;
+  if (overlap && !(crit.regionRadiusPerSize > 0 && crit.normalisedRadius > 0 &&
+                   crit.maxOverlapError > 0 && crit.maxOverlapError <= 1))
+    throw std::invalid_argument("evaluatePair: invalid overlap criterion parameters");
+  // The score sorts candidate pairs (closest first): squared distance in
+  // pixel mode, overlap error in overlap mode.
+  const auto consistent = [&](size_t ia, int j, double& score)
   {
     const cv::Point2d d = mappedA[ia] - cv::Point2d(kpsB[j].pt);
-    d2 = d.dot(d);
+    const double d2 = d.dot(d);
+    const double sa = kpsA[inA[ia]].size * scaleA[ia], sb = kpsB[j].size;
+    if (overlap)
+    {
+      if (!(sa > 0) || !(sb > 0))
+        return false;  // no region
+      // Mapped reference region normalised to normalisedRadius, the same
+      // factor applied to the other region and to the centre distance.
+      const double ra = crit.regionRadiusPerSize * sa, rb = crit.regionRadiusPerSize * sb;
+      const double f = crit.normalisedRadius / ra;
+      score = circleOverlapError(ra * f, rb * f, std::sqrt(d2) * f);
+      return score < crit.maxOverlapError;
+    }
+    score = d2;
     if (d2 > tol2)
       return false;
-    const double sa = kpsA[inA[ia]].size * scaleA[ia], sb = kpsB[j].size;
     if (!(sa > 0) || !(sb > 0))
       return true;  // no scale information: position only
     return std::abs(std::log(sb / sa)) <= logR;

@@ -133,6 +133,8 @@ void CFeatureBench::TOptions::loadFromConfigFile(
   brightness_offset = c.read_int(s, "brightness_offset", brightness_offset);
   pixel_tolerance = c.read_double(s, "pixel_tolerance", pixel_tolerance);
   border_margin = c.read_double(s, "border_margin", border_margin);
+  max_overlap_error = c.read_double(s, "max_overlap_error", max_overlap_error);
+  region_scale = c.read_double(s, "region_scale", region_scale);
   validate(s);
 }
 
@@ -148,6 +150,8 @@ void CFeatureBench::TOptions::saveToConfigFile(
   c.write(s, "brightness_offset", brightness_offset);
   c.write(s, "pixel_tolerance", pixel_tolerance);
   c.write(s, "border_margin", border_margin);
+  c.write(s, "max_overlap_error", max_overlap_error);
+  c.write(s, "region_scale", region_scale);
 }
 
 void CFeatureBench::TOptions::validate(const std::string& s) const
@@ -176,6 +180,10 @@ void CFeatureBench::TOptions::validate(const std::string& s) const
     bad("pixel_tolerance", "must be > 0");
   if (!(border_margin >= 0))
     bad("border_margin", "must be >= 0");
+  if (!(max_overlap_error > 0 && max_overlap_error <= 1))
+    bad("max_overlap_error", "must be in (0, 1]");
+  if (!(region_scale > 0))
+    bad("region_scale", "must be > 0");
 }
 
 std::vector<std::string> CFeatureBench::parseList(const std::string& commaList)
@@ -288,6 +296,13 @@ CFeatureBench::TResult CFeatureBench::run() const
   {
     const TExtractor ex = makeExtractor(name, o.max_features);
     const int norm = ex.feature->defaultNorm();
+    TCorrespondenceCriterion critOverlap = crit;
+    critOverlap.mode = TCorrespondenceCriterion::EMode::Overlap;
+    critOverlap.maxOverlapError = o.max_overlap_error;
+    const std::optional<double> perSigma = sizePerBlobSigma(*ex.feature);
+    critOverlap.regionRadiusPerSize = perSigma ? o.region_scale / *perSigma : 0.5;
+    res.regionRadiusPerSize[name] = critOverlap.regionRadiusPerSize;
+    res.regionCalibrated[name] = perSigma.has_value();
     std::map<std::string, TRow> acc;
     for (const auto& t : transforms)
     {
@@ -333,6 +348,11 @@ CFeatureBench::TResult CFeatureBench::run() const
         row.repeatability += m.repeatability;
         row.matchingScore += m.matchingScore;
         row.correspondencesPerFrame += static_cast<double>(m.correspondences);
+        const TPairMetrics mo =
+            evaluatePair(kpA, descA, kpB, descB, H[t], img.size(), img.size(), norm, critOverlap);
+        row.repeatabilityOverlap += mo.repeatability;
+        row.matchingScoreOverlap += mo.matchingScore;
+        row.correspondencesOverlapPerFrame += static_cast<double>(mo.correspondences);
         row.commonPerFrame += static_cast<double>(std::min(m.commonA, m.commonB));
       }
     }
@@ -345,11 +365,55 @@ CFeatureBench::TResult CFeatureBench::run() const
       r.repeatability /= n;
       r.matchingScore /= n;
       r.correspondencesPerFrame /= n;
+      r.repeatabilityOverlap /= n;
+      r.matchingScoreOverlap /= n;
+      r.correspondencesOverlapPerFrame /= n;
       r.commonPerFrame /= n;
       res.rows.push_back(r);
     }
   }
   return res;
+}
+
+std::optional<double> CFeatureBench::sizePerBlobSigma(cv::Feature2D& extractor)
+{
+  constexpr double kSigma = 8.0;
+  const cv::Point2d c(128.3, 127.6);  // non-integer on purpose
+  double sum = 0;
+  int n = 0;
+  for (const double amp : {100.0, -100.0})
+  {
+    cv::Mat f(256, 256, CV_32F);
+    for (int y = 0; y < f.rows; ++y)
+      for (int x = 0; x < f.cols; ++x)
+      {
+        const double r2 = (x - c.x) * (x - c.x) + (y - c.y) * (y - c.y);
+        f.at<float>(y, x) = static_cast<float>(128 + amp * std::exp(-r2 / (2 * kSigma * kSigma)));
+      }
+    cv::Mat img;
+    f.convertTo(img, CV_8U);
+    std::vector<cv::KeyPoint> kps;
+    extractor.detect(img, kps);
+    const cv::KeyPoint* best = nullptr;
+    double bestD = 0.25 * kSigma;  // must sit on the blob
+    for (const auto& k : kps)
+    {
+      const double d = cv::norm(cv::Point2d(k.pt) - c);
+      if (d < bestD && k.size > 0)
+      {
+        bestD = d;
+        best = &k;
+      }
+    }
+    if (best)
+    {
+      sum += best->size / kSigma;
+      ++n;
+    }
+  }
+  if (n == 0)
+    return std::nullopt;
+  return sum / n;
 }
 
 std::string CFeatureBench::toTable(const TResult& r)
@@ -360,7 +424,8 @@ std::string CFeatureBench::toTable(const TResult& r)
      << (r.maxFeatures > 0 ? std::to_string(r.maxFeatures) : std::string("none")) << "\n";
   os << std::left << std::setw(8) << "extr" << std::setw(12) << "transform" << std::right
      << std::setw(9) << "kp/frame" << std::setw(10) << "ms/frame" << std::setw(9) << "repeat%"
-     << std::setw(8) << "match%" << std::setw(11) << "corr/frame"
+     << std::setw(8) << "match%" << std::setw(11) << "corr/frame" << std::setw(10) << "ovRep%"
+     << std::setw(9) << "ovMatch%" << std::setw(9) << "ovCorr"
      << "\n";
   os << std::fixed;
   for (const auto& row : r.rows)
@@ -368,7 +433,19 @@ std::string CFeatureBench::toTable(const TResult& r)
        << std::setprecision(0) << std::setw(9) << row.keypointsPerFrame << std::setprecision(1)
        << std::setw(10) << row.msPerFrame << std::setw(9) << 100 * row.repeatability << std::setw(8)
        << 100 * row.matchingScore << std::setprecision(0) << std::setw(11)
-       << row.correspondencesPerFrame << "\n";
+       << row.correspondencesPerFrame << std::setprecision(1) << std::setw(10)
+       << 100 * row.repeatabilityOverlap << std::setw(9) << 100 * row.matchingScoreOverlap
+       << std::setprecision(0) << std::setw(9) << row.correspondencesOverlapPerFrame << "\n";
+  os << "repeat%/match%: pixel criterion ("
+     << "H(a) within the pixel tolerance of b, sizes "
+     << "within 1.29x); ov*: overlap error < max_overlap_error of circular regions\n";
+  for (const auto& [name, k] : r.regionRadiusPerSize)
+  {
+    const auto it = r.regionCalibrated.find(name);
+    const bool cal = it != r.regionCalibrated.end() && it->second;
+    os << "overlap region radius " << name << ": " << std::setprecision(3) << k << " x size ("
+       << (cal ? "blob calibration" : "no blob detected: size / 2") << ")\n";
+  }
   // Mean time over all images of each extractor, and SURF's speed-up on SIFT.
   std::map<std::string, std::pair<double, double>> time;  // sum, count
   for (const auto& row : r.rows)
@@ -404,6 +481,9 @@ std::string CFeatureBench::toJson(const TResult& r)
          {"repeatability", row.repeatability},
          {"matching_score", row.matchingScore},
          {"correspondences_per_frame", row.correspondencesPerFrame},
+         {"repeatability_overlap", row.repeatabilityOverlap},
+         {"matching_score_overlap", row.matchingScoreOverlap},
+         {"correspondences_overlap_per_frame", row.correspondencesOverlapPerFrame},
          {"common_per_frame", row.commonPerFrame}});
   return j.dump(2);
 }

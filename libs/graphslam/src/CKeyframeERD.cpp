@@ -109,8 +109,18 @@ CKeyframeERD::TEdgeReport CKeyframeERD::processNewKeyframe(std::size_t id)
 
 void CKeyframeERD::getEdgesStats(std::map<std::string, int>* edgeTypeToNum) const
 {
-  if (edgeTypeToNum)
-    *edgeTypeToNum = m_stats;
+  // CGraphSlamEngine only accepts its own edge-type names ("lc" and
+  // "Odometry"/"ICP2D"/"ICP3D"); the detailed counts are in edgeCounts().
+  if (!edgeTypeToNum)
+    return;
+  edgeTypeToNum->clear();
+  const auto get = [&](const char* k)
+  {
+    const auto it = m_stats.find(k);
+    return it == m_stats.end() ? 0 : it->second;
+  };
+  (*edgeTypeToNum)["lc"] = get("loop_landmark") + get("loop_proximity");
+  (*edgeTypeToNum)["Odometry"] = get("recent");
 }
 
 void CKeyframeERD::getDescriptiveReport(std::string* report) const

@@ -60,8 +60,8 @@ bool CKeyframeNRD::updateState(
   if (!scan)
     return false;  // other sensors carry nothing for us
   scan->load();
-  auto frame = io::observationToFrame(
-      *scan, "CKeyframeNRD observation " + std::to_string(m_observations));
+  auto frame =
+      io::observationToFrame(*scan, "CKeyframeNRD observation " + std::to_string(m_observations));
   scan->unload();
   // Observations carry no sequence index; number them in arrival order.
   frame.index = m_observations++;

@@ -103,7 +103,7 @@ std::string CRoiGraphSlamApp::TSummary::resultLine() const
   if (ateRmse)
     ss << "ATE RMSE " << std::setprecision(4) << *ateRmse << " m, ";
   else
-    ss << "ATE n/a (no ground truth), ";
+    ss << "ATE n/a, ";
   if (rpeTransRmse && rpeRotRmseDeg)
     ss << "RPE " << std::setprecision(4) << *rpeTransRmse << " m / " << std::setprecision(2)
        << *rpeRotRmseDeg << " deg, ";
@@ -158,9 +158,9 @@ CRoiGraphSlamApp::TSummary CRoiGraphSlamApp::run()
     if (m_args.progress)
       m_args.progress(s);
   };
+  auto source = io::CFrameSource::open(m_args.input, m_args.camera);
   checkWritableDir(m_args.outputDir);
   const std::string out = m_args.outputDir + "/";
-  auto source = io::CFrameSource::open(m_args.input, m_args.camera);
   progress(
       "roi-graphslam: " + source->name() + ", " + std::to_string(source->size()) +
       " frames, mode " + frontend::toString(m_config.frontEnd.mode) + ", " +
@@ -395,6 +395,7 @@ CRoiGraphSlamApp::TSummary CRoiGraphSlamApp::run()
     lmLoops += lc.source == ELoopSource::Landmark;
   j["loop_closures_landmark"] = lmLoops;
   j["loop_closures_proximity"] = s.loopClosures - lmLoops;
+  j["loop_closures_rejected"] = ctx->rejectedLoopClosures();
   j["landmarks"] = ctx->database().size();
   j["graph_nodes"] = graph.nodes.size();
   j["graph_edges"] = graph.edges.size();

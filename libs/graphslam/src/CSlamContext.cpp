@@ -59,6 +59,7 @@ void CSlamContext::TOptions::saveToConfigFile(
   c.write(s, "loop_min_inliers", loop_min_inliers);
   c.write(s, "loop_max_discrepancy_m", loop_max_discrepancy_m);
   c.write(s, "optimizer_max_iterations", optimizer_max_iterations);
+  c.write(s, "loop_outlier_chi2", loop_outlier_chi2);
   c.write(s, "map_decimation", map_decimation);
   c.write(s, "map_max_depth_m", map_max_depth_m);
   c.write(s, "edge_information", edge_information);
@@ -82,6 +83,8 @@ void CSlamContext::TOptions::validate() const
     badKey("loop_max_discrepancy_m", "must be > 0");
   if (optimizer_max_iterations < 1)
     badKey("optimizer_max_iterations", "must be >= 1");
+  if (!(loop_outlier_chi2 > 0))
+    badKey("loop_outlier_chi2", "must be > 0");
   if (map_decimation < 1)
     badKey("map_decimation", "must be >= 1");
   if (!(map_max_depth_m > 0))
@@ -269,6 +272,36 @@ TOptimizationReport CSlamContext::optimize(TGraph& graph)
   params["max_iterations"] = static_cast<uint64_t>(m_config.backEnd.optimizer_max_iterations);
   mrpt::graphslam::optimize_graph_spa_levmarq(graph, info, nullptr, params);
   r.iterations = info.num_iters;
+  // A false closure stays inconsistent with everything else after the
+  // optimisation: drop the worst such edges and solve again.
+  for (int round = 0; round < 3; ++round)
+  {
+    std::vector<std::size_t> outliers;
+    for (std::size_t i = 0; i < m_loops.size(); ++i)
+    {
+      const auto key = std::make_pair(
+          static_cast<mrpt::graphs::TNodeID>(m_loops[i].fromKeyframe),
+          static_cast<mrpt::graphs::TNodeID>(m_loops[i].toKeyframe));
+      const auto it = graph.edges.find(key);
+      if (it == graph.edges.end())
+        continue;
+      if (graph.getEdgeSquareError(it, false) > m_config.backEnd.loop_outlier_chi2)
+        outliers.push_back(i);
+    }
+    if (outliers.empty())
+      break;
+    for (auto k = outliers.rbegin(); k != outliers.rend(); ++k)
+    {
+      const auto& lc = m_loops[*k];
+      graph.edges.erase(graph.edges.find(std::make_pair(
+          static_cast<mrpt::graphs::TNodeID>(lc.fromKeyframe),
+          static_cast<mrpt::graphs::TNodeID>(lc.toKeyframe))));
+      m_loops.erase(m_loops.begin() + static_cast<std::ptrdiff_t>(*k));
+      ++m_rejectedLoops;
+    }
+    mrpt::graphslam::optimize_graph_spa_levmarq(graph, info, nullptr, params);
+    r.iterations += info.num_iters;
+  }
   r.chi2After = graph.chi2();
   for (const auto& [id, pose] : graph.nodes)
     if (id < m_odometry.keyframes().size())

@@ -8,7 +8,10 @@
 #include <mrpt/config/CLoadableOptions.h>
 #include <roislam/featurebench/BenchMetrics.h>
 
+#include <map>
 #include <opencv2/core.hpp>
+#include <opencv2/features2d.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -27,8 +30,21 @@ class CFeatureBench
    *                   blur,brightness (default all)
    *  - blur_sigma     double > 0: Gaussian blur sigma, pixels (default 2.0)
    *  - brightness_offset  int: added grey level, saturating (default 40)
-   *  - pixel_tolerance    double > 0: correspondence distance, pixels (default 2.5)
+   *  - pixel_tolerance    double > 0: pixel criterion, correspondence
+   *                       distance, pixels (default 2.5)
    *  - border_margin      double >= 0: common-part margin, pixels (default 8)
+   *  - max_overlap_error  double in (0, 1]: overlap criterion, largest region
+   *                       overlap error (default 0.4, IJCV 2005)
+   *  - region_scale       double > 0: overlap criterion, region radius in
+   *                       units of the keypoint's blob scale (default 3)
+   * Both criteria (BenchMetrics.h) are evaluated in every run and reported.
+   * For the overlap criterion every extractor's keypoint.size is converted to
+   * a "blob scale" by calibration: the size it reports for an isolated
+   * Gaussian blob of sigma 8 px (bright and dark) is taken as sigma 8, so the
+   * regions of all extractors are the same multiple of the blob they sit on.
+   * An extractor that detects no such blob (ORB: FAST corners) falls back to
+   * the OpenCV meaning of size, the diameter of the described neighbourhood:
+   * region radius = size / 2.
    */
   struct TOptions : public mrpt::config::CLoadableOptions
   {
@@ -42,6 +58,8 @@ class CFeatureBench
     int brightness_offset = 40;
     double pixel_tolerance = 2.5;
     double border_margin = 8.0;
+    double max_overlap_error = 0.4;
+    double region_scale = 3.0;
 
     void loadFromConfigFile(
         const mrpt::config::CConfigFileBase& source, const std::string& section) override;
@@ -60,9 +78,13 @@ class CFeatureBench
     double keypointsPerFrame = 0;
     /** Mean detect+describe time per image (originals and warped images). */
     double msPerFrame = 0;
-    /** Means over frames of the per-frame values (BenchMetrics.h). */
+    /** Means over frames of the per-frame values (BenchMetrics.h), pixel
+     *  criterion. */
     double repeatability = 0, matchingScore = 0;
     double correspondencesPerFrame = 0, commonPerFrame = 0;
+    /** The same under the overlap-error criterion. */
+    double repeatabilityOverlap = 0, matchingScoreOverlap = 0;
+    double correspondencesOverlapPerFrame = 0;
   };
 
   struct TResult
@@ -72,6 +94,10 @@ class CFeatureBench
     std::size_t frames = 0;
     cv::Size imageSize;
     std::vector<TRow> rows;
+    /** Per extractor: overlap-criterion region radius per unit keypoint.size,
+     *  and whether it came from the blob calibration (else size / 2). */
+    std::map<std::string, double> regionRadiusPerSize;
+    std::map<std::string, bool> regionCalibrated;
     /** Row of (extractor, transform), or nullptr. */
     const TRow* find(const std::string& extractor, const std::string& transform) const;
   };
@@ -86,6 +112,11 @@ class CFeatureBench
   /** Homography of a named transformation for an image of the given size
    *  (identity for blur and brightness); throws std::invalid_argument. */
   static cv::Matx33d homography(const std::string& transform, const cv::Size& size);
+
+  /** keypoint.size the extractor reports for a Gaussian blob of sigma 8 px
+   *  divided by 8 (mean of a bright and a dark blob), or std::nullopt when it
+   *  finds neither blob. */
+  static std::optional<double> sizePerBlobSigma(cv::Feature2D& extractor);
 
   /** Fixed-width text table, one line per row. */
   static std::string toTable(const TResult& result);

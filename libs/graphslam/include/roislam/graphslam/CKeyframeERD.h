@@ -46,7 +46,10 @@ class CKeyframeERD : public mrpt::graphslam::deciders::CEdgeRegistrationDecider<
   void setGraphPtr(TGraph* graph) override;
   void loadParams(const std::string& iniFile) override {}
   void printParams() const override {}
+  /** For the engine: {"lc": loop closures, "Odometry": recent-keyframe edges}. */
   void getEdgesStats(std::map<std::string, int>* edgeTypeToNum) const override;
+  /** Edges added by kind: "recent", "loop_landmark", "loop_proximity". */
+  const std::map<std::string, int>& edgeCounts() const { return m_stats; }
   void getDescriptiveReport(std::string* report) const override;
 
   static constexpr const char* kName = "CKeyframeERD";

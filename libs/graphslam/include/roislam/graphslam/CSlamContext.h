@@ -18,6 +18,10 @@
  *  - loop_min_inliers          int >= 3 (25): 3-D RANSAC inliers to accept
  *  - loop_max_discrepancy_m    [m] > 0 (0.5): reject a verified closure whose
  *                              relative pose disagrees with the estimate by more
+ *  - loop_outlier_chi2         double > 0 (30): after an optimisation, a loop
+ *                              edge whose squared Mahalanobis error exceeds
+ *                              this is removed as a false closure and the
+ *                              graph re-optimised (at most 3 rounds)
  *  - optimizer_max_iterations  int >= 1 (50): Levenberg-Marquardt (SPA) limit
  *  - map_decimation            int >= 1 (8): every n-th pixel/row of a
  *                              keyframe's depth goes into the map cloud
@@ -88,6 +92,7 @@ class CSlamContext
     int loop_min_inliers = 25;
     double loop_max_discrepancy_m = 0.5;
     int optimizer_max_iterations = 50;
+    double loop_outlier_chi2 = 30;
     int map_decimation = 8;
     double map_max_depth_m = 4.0;
     std::string edge_information = "diagonal";
@@ -154,10 +159,14 @@ class CSlamContext
 
   /** Records an accepted closure (counted in loopClosures()). */
   void addLoopClosure(const TLoopClosure& lc) { m_loops.push_back(lc); }
+  /** Accepted closures still in the graph. */
   const std::vector<TLoopClosure>& loopClosures() const { return m_loops; }
+  /** Closures removed again by optimize() as outliers. */
+  std::size_t rejectedLoopClosures() const { return m_rejectedLoops; }
 
-  /** Optimises `graph` (SPA Levenberg-Marquardt, root fixed) and pushes every
-   *  optimised node pose into the front end as its keyframe pose. */
+  /** Optimises `graph` (SPA Levenberg-Marquardt, root fixed), removes loop
+   *  edges that remain inconsistent (loop_outlier_chi2) and re-optimises, then
+   *  pushes every optimised node pose into the front end as its keyframe pose. */
   TOptimizationReport optimize(TGraph& graph);
 
   /** Keyframe map clouds in each keyframe's optical camera frame. */
@@ -179,6 +188,7 @@ class CSlamContext
   /** Landmark id -> keyframes that sighted it. */
   std::map<int32_t, std::vector<std::size_t>> m_sightings;
   std::vector<TLoopClosure> m_loops;
+  std::size_t m_rejectedLoops = 0;
 };
 
 /** "landmark" | "proximity". */

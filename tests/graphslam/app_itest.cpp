@@ -1,0 +1,148 @@
+/* roi-graphslam end to end (the executable, as users run it) on the
+ * synthetic sequences of the ctest fixture and on bad input. */
+#include <gtest/gtest.h>
+#include <roislam/testing/TestData.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+
+namespace fs = std::filesystem;
+
+namespace
+{
+struct TRun
+{
+  int exitCode = -1;
+  std::string err;
+};
+
+TRun runApp(const std::string& args)
+{
+  const std::string exe = roislam::testing::binaryDir() + "/apps/roi-graphslam/roi-graphslam";
+  const std::string errFile = roislam::testing::makeTempDir("gs_err") + "/stderr.txt";
+  const int rc = std::system((exe + " " + args + " > /dev/null 2> " + errFile).c_str());
+  TRun r;
+  r.exitCode = WIFEXITED(rc) ? WEXITSTATUS(rc) : -1;
+  std::ifstream f(errFile);
+  std::stringstream ss;
+  ss << f.rdbuf();
+  r.err = ss.str();
+  fs::remove_all(fs::path(errFile).parent_path());
+  return r;
+}
+
+nlohmann::json readSummary(const std::string& dir)
+{
+  std::ifstream f(dir + "/summary.json");
+  return nlohmann::json::parse(f);
+}
+
+std::string config(const std::string& name)
+{
+  return roislam::testing::sourceDir() + "/config/" + name;
+}
+}  // namespace
+
+TEST(RoiGraphSlamApp, TexturedLoopIsAccurateAndClosesLoops)
+{
+  ROISLAM_REQUIRE_SYNTHETIC(seq, "textured");
+  const std::string out = roislam::testing::makeTempDir("gs_textured");
+  const auto r =
+      runApp("--ini " + config("traditional.ini") + " --input " + seq + " --output-dir " + out);
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  for (const char* f :
+       {"trajectory.txt", "graph.graph", "map.bt", "scene.3Dscene", "snapshot.png", "frames.csv",
+        "summary.json"})
+    EXPECT_TRUE(fs::exists(out + "/" + f)) << f;
+  const auto s = readSummary(out);
+  EXPECT_EQ(s["tracked_frames"], s["frames"]);
+  EXPECT_GE(s["loop_closures"].get<int>(), 1);
+  ASSERT_FALSE(s["ate_rmse"].is_null());
+  EXPECT_LT(s["ate_rmse"].get<double>(), 0.01);
+  EXPECT_FALSE(s["failed"].get<bool>());
+  fs::remove_all(out);
+}
+
+TEST(RoiGraphSlamApp, FeaturelessTrackedByFallbackButStrictRoiFails)
+{
+  ROISLAM_REQUIRE_SYNTHETIC(seq, "featureless");
+  const std::string out = roislam::testing::makeTempDir("gs_featureless");
+  auto r = runApp(
+      "--ini " + config("roi_big.ini") + " --input " + seq + " --output-dir " + out +
+      " --no-snapshot");
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  auto s = readSummary(out);
+  EXPECT_EQ(s["tracked_frames"], s["frames"]);
+  EXPECT_EQ(s["lost_frames"].get<int>(), 0);
+  EXPECT_GT(s["fallback_frames"].get<int>(), 0);
+
+  // The dissertation's behaviour: ROI without fallback loses the featureless wall.
+  r = runApp(
+      "--ini " + config("roi_big.ini") + " --input " + seq + " --output-dir " + out +
+      " --no-snapshot --strict-roi");
+  EXPECT_EQ(r.exitCode, 1);
+  EXPECT_NE(r.err.find("tracking failed"), std::string::npos) << r.err;
+  s = readSummary(out);
+  EXPECT_TRUE(s["failed"].get<bool>());
+  EXPECT_GT(s["lost_frames"].get<int>(), 0);
+  fs::remove_all(out);
+}
+
+TEST(RoiGraphSlamApp, BadInputAndIniGiveOneLineErrors)
+{
+  const std::string out = roislam::testing::makeTempDir("gs_bad");
+  auto r = runApp("--input /nonexistent/seq --output-dir " + out);
+  EXPECT_EQ(r.exitCode, 1);
+  EXPECT_EQ(r.err.rfind("roi-graphslam: error: ", 0), 0u) << r.err;
+  EXPECT_NE(r.err.find("/nonexistent/seq"), std::string::npos) << r.err;
+
+  const std::string ini = out + "/bad.ini";
+  {
+    std::ofstream f(ini);
+    f << "[GraphSlam]\nloop_min_keyframe_gapp = 4\n";
+  }
+  r = runApp("--ini " + ini + " --input /nonexistent/seq --output-dir " + out);
+  EXPECT_EQ(r.exitCode, 1);
+  EXPECT_NE(
+      r.err.find("ini " + ini + ": [GraphSlam] unknown key 'loop_min_keyframe_gapp'"),
+      std::string::npos)
+      << r.err;
+  {
+    std::ofstream f(ini);
+    f << "[FrontEnd]\nmode = traditional\nfoo = 1\n";
+  }
+  r = runApp("--ini " + ini + " --input /nonexistent/seq --output-dir " + out);
+  EXPECT_NE(r.err.find("[FrontEnd] unknown key 'foo'"), std::string::npos) << r.err;
+
+  r = runApp("--ini /nonexistent.ini --input x --output-dir " + out);
+  EXPECT_EQ(r.exitCode, 1);
+  EXPECT_NE(r.err.find("ini /nonexistent.ini: cannot open"), std::string::npos) << r.err;
+
+  // Unwritable output folder (a path below a regular file), valid input.
+  if (const auto seq = roislam::testing::syntheticSequence("featureless"))
+  {
+    r = runApp("--input " + *seq + " --output-dir " + ini + "/sub");
+    EXPECT_EQ(r.exitCode, 1);
+    EXPECT_NE(r.err.find("output dir " + ini + "/sub"), std::string::npos) << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  }
+  fs::remove_all(out);
+}
+
+TEST(RoiGraphSlamApp, ListsOurDecidersByName)
+{
+  const std::string exe = roislam::testing::binaryDir() + "/apps/roi-graphslam/roi-graphslam";
+  FILE* p = popen((exe + " --list-node-regs --list-edge-regs").c_str(), "r");
+  ASSERT_TRUE(p);
+  std::string text;
+  char buf[512];
+  while (fgets(buf, sizeof buf, p))
+    text += buf;
+  EXPECT_EQ(pclose(p), 0);
+  EXPECT_NE(text.find("CKeyframeNRD: "), std::string::npos) << text;
+  EXPECT_NE(text.find("CKeyframeERD: "), std::string::npos) << text;
+}
