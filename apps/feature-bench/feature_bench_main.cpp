@@ -1,5 +1,6 @@
 /* feature-bench: compares SIFT, SURF (roislam's), ORB and AKAZE on real frames
  * warped by known homographies. Thin front end over CFeatureBench. */
+#include <roislam/common/ProcessTuning.h>
 #include <roislam/featurebench/CFeatureBench.h>
 
 #include <CLI/CLI.hpp>
@@ -8,6 +9,7 @@
 
 int main(int argc, char** argv)
 {
+  roislam::common::tuneAllocatorForImages();
   using roislam::featurebench::CFeatureBench;
   CLI::App app{
       "feature-bench: keypoints/frame, ms/frame, repeatability and matching score of "

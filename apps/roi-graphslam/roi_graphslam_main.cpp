@@ -3,6 +3,7 @@
  * snapshot, frames.csv and summary.json into the output folder. All the work
  * is in roislam::graphslam::CRoiGraphSlamApp.
  */
+#include <roislam/common/ProcessTuning.h>
 #include <roislam/graphslam/CRoiGraphSlamApp.h>
 
 #include <CLI/CLI.hpp>
@@ -11,6 +12,7 @@
 
 int main(int argc, char** argv)
 {
+  roislam::common::tuneAllocatorForImages();
   CLI::App cli{"RGB-D graph SLAM with ROI landmark tracking (MRPT 3-D pose graph)"};
   roislam::graphslam::CRoiGraphSlamApp::TArguments args;
   std::string mode, feature;

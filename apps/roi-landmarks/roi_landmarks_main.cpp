@@ -3,6 +3,7 @@
  * summary.json into the output folder. All the work is in
  * roislam::landmarks::CRoiLandmarksApp.
  */
+#include <roislam/common/ProcessTuning.h>
 #include <roislam/landmarks/CRoiLandmarksApp.h>
 
 #include <CLI/CLI.hpp>
@@ -11,6 +12,7 @@
 
 int main(int argc, char** argv)
 {
+  roislam::common::tuneAllocatorForImages();
   CLI::App cli{"ROI landmark database on an RGB-D sequence (Test 1: the pipeline alone)"};
   roislam::landmarks::CRoiLandmarksApp::TArguments args;
   std::string feature, roi, rawlog;

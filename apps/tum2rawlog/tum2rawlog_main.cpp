@@ -1,5 +1,6 @@
 /* tum2rawlog: converts a TUM RGB-D benchmark folder into an MRPT rawlog of
  * CObservation3DRangeScan (see roislam::io::CTum2RawlogApp for the format). */
+#include <roislam/common/ProcessTuning.h>
 #include <roislam/io/CTum2RawlogApp.h>
 
 #include <CLI/CLI.hpp>
@@ -7,6 +8,7 @@
 
 int main(int argc, char** argv)
 {
+  roislam::common::tuneAllocatorForImages();
   roislam::io::CTum2RawlogApp::TOptions opts;
   CLI::App cli{"Converts a TUM RGB-D folder into an MRPT rawlog of CObservation3DRangeScan"};
   cli.add_option("-i,--input", opts.input, "TUM sequence folder (rgb.txt, depth.txt, ...)")

@@ -51,6 +51,7 @@
  * Select stages with --benchmark_filter (e.g. 'FrontEnd', 'Extract/orb').
  */
 #include <benchmark/benchmark.h>
+#include <roislam/common/ProcessTuning.h>
 #include <roislam/features/CFeatureExtractor.h>
 #include <roislam/frontend/CRgbdOdometry.h>
 #include <roislam/io/CFrameSource.h>
@@ -748,6 +749,8 @@ void printUsage()
 
 int main(int argc, char** argv)
 {
+  // As the apps do, so that stage times match theirs.
+  roislam::common::tuneAllocatorForImages();
   try
   {
     benchmark::Initialize(&argc, argv, &printUsage);

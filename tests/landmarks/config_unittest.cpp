@@ -3,7 +3,7 @@
  * helper works on any CLoadableOptions. */
 #include <gtest/gtest.h>
 #include <mrpt/config/CConfigFileMemory.h>
-#include <roislam/landmarks/IniKeyCheck.h>
+#include <roislam/common/IniKeyCheck.h>
 #include <roislam/landmarks/TPipelineOptions.h>
 #include <roislam/testing/TestData.h>
 
@@ -114,18 +114,18 @@ TEST(Config, MissingFileIsNamed)
 
 TEST(Config, KeyCheckHelperOnAnyOptions)
 {
-  const auto keys = knownIniKeys(CLandmarkScorer::TOptions());
+  const auto keys = roislam::common::knownIniKeys(CLandmarkScorer::TOptions());
   EXPECT_EQ(keys.size(), 3u);
   EXPECT_TRUE(std::find(keys.begin(), keys.end(), "match_radius") != keys.end());
   mrpt::config::CConfigFileMemory cfg("[S]\nmatch_radius = 1\nbogus = 2\n");
   try
   {
-    checkIniKeys(cfg, "S", keys, "f.ini");
+    roislam::common::checkIniKeys(cfg, "S", keys, "f.ini");
     FAIL();
   }
   catch (const std::runtime_error& e)
   {
     EXPECT_STREQ(e.what(), "ini f.ini: [S] unknown key 'bogus'");
   }
-  EXPECT_NO_THROW(checkIniKeys(cfg, "Absent", keys, "f.ini"));
+  EXPECT_NO_THROW(roislam::common::checkIniKeys(cfg, "Absent", keys, "f.ini"));
 }

@@ -46,7 +46,8 @@ TData makeData(const CPose3D& truth, std::size_t n, double outlierRatio, double 
 
 double rotationErrorDeg(const CPose3D& a, const CPose3D& b)
 {
-  const auto R = (a - b).getRotationMatrix().asEigen();
+  // A named copy: asEigen() on the temporary would dangle.
+  const mrpt::math::CMatrixDouble33 R = (a - b).getRotationMatrix();
   return std::acos(std::clamp((R.trace() - 1.0) / 2.0, -1.0, 1.0)) * 180.0 / M_PI;
 }
 }  // namespace

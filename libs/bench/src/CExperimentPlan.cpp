@@ -2,6 +2,7 @@
 
 #include <mrpt/config/CConfigFileBase.h>
 #include <roislam/bench/ProcessUtils.h>
+#include <roislam/common/StringLists.h>
 
 #include <algorithm>
 #include <filesystem>
@@ -12,31 +13,11 @@ namespace fs = std::filesystem;
 
 namespace roislam::bench
 {
+using common::joinList;
+using common::splitList;
+
 namespace
 {
-std::vector<std::string> splitList(const std::string& text)
-{
-  std::vector<std::string> out;
-  std::stringstream ss(text);
-  std::string item;
-  while (std::getline(ss, item, ','))
-  {
-    item.erase(0, item.find_first_not_of(" \t"));
-    item.erase(item.find_last_not_of(" \t") + 1);
-    if (!item.empty())
-      out.push_back(item);
-  }
-  return out;
-}
-
-std::string joinList(const std::vector<std::string>& v)
-{
-  std::string out;
-  for (const auto& s : v)
-    out += (out.empty() ? "" : ",") + s;
-  return out;
-}
-
 std::string safeName(const std::string& s)
 {
   std::string out = s;

@@ -1,5 +1,6 @@
 /* feature-bench engine (see CFeatureBench.h). */
 #include <mrpt/config/CConfigFileBase.h>
+#include <roislam/common/StringLists.h>
 #include <roislam/featurebench/CFeatureBench.h>
 #include <roislam/features/CSurf.h>
 
@@ -18,31 +19,11 @@
 
 namespace roislam::featurebench
 {
+using common::joinList;
+using common::splitList;
+
 namespace
 {
-std::vector<std::string> splitList(const std::string& s)
-{
-  std::vector<std::string> out;
-  std::stringstream ss(s);
-  std::string item;
-  while (std::getline(ss, item, ','))
-  {
-    item.erase(0, item.find_first_not_of(" \t"));
-    item.erase(item.find_last_not_of(" \t") + 1);
-    if (!item.empty())
-      out.push_back(item);
-  }
-  return out;
-}
-
-std::string joinList(const std::vector<std::string>& v)
-{
-  std::string s;
-  for (const auto& x : v)
-    s += (s.empty() ? "" : ",") + x;
-  return s;
-}
-
 const std::vector<std::string> kExtractors{"sift", "surf", "orb", "akaze"};
 const std::vector<std::string> kTransforms{"none",     "rot15",    "rot30", "rot45",     "scale1.2",
                                            "scale1.5", "scale2.0", "blur",  "brightness"};

@@ -1,6 +1,7 @@
 #include "roislam/features/CFeatureExtractor.h"
 
 #include <mrpt/config/CConfigFileBase.h>
+#include <roislam/common/IniErrors.h>
 
 #include <algorithm>
 #include <numeric>
@@ -11,14 +12,6 @@
 
 namespace roislam::features
 {
-namespace
-{
-[[noreturn]] void badKey(const std::string& section, const std::string& key, const std::string& why)
-{
-  throw std::invalid_argument("[" + section + "] " + key + ": " + why);
-}
-}  // namespace
-
 void CFeatureExtractor::TOptions::loadFromConfigFile(
     const mrpt::config::CConfigFileBase& c, const std::string& s)
 {
@@ -29,7 +22,7 @@ void CFeatureExtractor::TOptions::loadFromConfigFile(
   }
   catch (const std::invalid_argument& e)
   {
-    badKey(s, "feature_type", e.what());
+    common::throwBadIniKey(s, "feature_type", e.what());
   }
   max_features = c.read_int(s, "max_features", max_features);
   surf_hessian_threshold = c.read_double(s, "surf_hessian_threshold", surf_hessian_threshold);
@@ -38,13 +31,13 @@ void CFeatureExtractor::TOptions::loadFromConfigFile(
   surf_extended = c.read_bool(s, "surf_extended", surf_extended);
   surf_upright = c.read_bool(s, "surf_upright", surf_upright);
   if (max_features < 0)
-    badKey(s, "max_features", "must be >= 0 (0 = no cap)");
+    common::throwBadIniKey(s, "max_features", "must be >= 0 (0 = no cap)");
   if (!(surf_hessian_threshold > 0))
-    badKey(s, "surf_hessian_threshold", "must be > 0");
+    common::throwBadIniKey(s, "surf_hessian_threshold", "must be > 0");
   if (surf_octaves < 1)
-    badKey(s, "surf_octaves", "must be >= 1");
+    common::throwBadIniKey(s, "surf_octaves", "must be >= 1");
   if (surf_octave_layers < 1)
-    badKey(s, "surf_octave_layers", "must be >= 1");
+    common::throwBadIniKey(s, "surf_octave_layers", "must be >= 1");
 }
 
 void CFeatureExtractor::TOptions::saveToConfigFile(

@@ -1,6 +1,7 @@
 #include "roislam/frontend/CRgbdOdometry.h"
 
 #include <mrpt/config/CConfigFileBase.h>
+#include <roislam/common/IniErrors.h>
 #include <roislam/matching/CRigidTransformRansac.h>
 
 #include <algorithm>
@@ -22,11 +23,6 @@ using detail::TRigid;
 
 namespace
 {
-[[noreturn]] void badKey(const std::string& section, const std::string& key, const std::string& why)
-{
-  throw std::invalid_argument("[" + section + "] " + key + ": " + why);
-}
-
 using Clock = std::chrono::steady_clock;
 double msSince(Clock::time_point t0)
 {
@@ -134,7 +130,7 @@ void CRgbdOdometry::TOptions::loadFromConfigFile(
   }
   catch (const std::invalid_argument& e)
   {
-    badKey(s, "mode", e.what());
+    common::throwBadIniKey(s, "mode", e.what());
   }
   strict_roi = c.read_bool(s, "strict_roi", strict_roi);
   min_roi_features = c.read_int(s, "min_roi_features", min_roi_features);
@@ -203,43 +199,43 @@ void CRgbdOdometry::TOptions::validate() const
 {
   const std::string s = "FrontEnd";
   if (min_roi_features < 3)
-    badKey(s, "min_roi_features", "must be >= 3");
+    common::throwBadIniKey(s, "min_roi_features", "must be >= 3");
   if (min_inliers < 3)
-    badKey(s, "min_inliers", "must be >= 3");
+    common::throwBadIniKey(s, "min_inliers", "must be >= 3");
   if (!(keyframe_translation_m > 0))
-    badKey(s, "keyframe_translation_m", "must be > 0");
+    common::throwBadIniKey(s, "keyframe_translation_m", "must be > 0");
   if (!(keyframe_rotation_deg > 0))
-    badKey(s, "keyframe_rotation_deg", "must be > 0");
+    common::throwBadIniKey(s, "keyframe_rotation_deg", "must be > 0");
   if (keyframe_min_inliers < 0)
-    badKey(s, "keyframe_min_inliers", "must be >= 0");
+    common::throwBadIniKey(s, "keyframe_min_inliers", "must be >= 0");
   if (recent_keyframes < 0)
-    badKey(s, "recent_keyframes", "must be >= 0");
+    common::throwBadIniKey(s, "recent_keyframes", "must be >= 0");
   if (!(ransac_threshold_m > 0))
-    badKey(s, "ransac_threshold_m", "must be > 0");
+    common::throwBadIniKey(s, "ransac_threshold_m", "must be > 0");
   if (ransac_max_iterations < 1)
-    badKey(s, "ransac_max_iterations", "must be >= 1");
+    common::throwBadIniKey(s, "ransac_max_iterations", "must be >= 1");
   if (refine_iterations < 0)
-    badKey(s, "refine_iterations", "must be >= 0");
+    common::throwBadIniKey(s, "refine_iterations", "must be >= 0");
   if (!(reprojection_threshold_px > 0))
-    badKey(s, "reprojection_threshold_px", "must be > 0");
+    common::throwBadIniKey(s, "reprojection_threshold_px", "must be > 0");
   if (!(pixel_sigma_px > 0))
-    badKey(s, "pixel_sigma_px", "must be > 0");
+    common::throwBadIniKey(s, "pixel_sigma_px", "must be > 0");
   if (!(min_depth_m >= 0))
-    badKey(s, "min_depth_m", "must be >= 0");
+    common::throwBadIniKey(s, "min_depth_m", "must be >= 0");
   if (!(max_depth_m > min_depth_m))
-    badKey(s, "max_depth_m", "must be > min_depth_m");
+    common::throwBadIniKey(s, "max_depth_m", "must be > min_depth_m");
   if (!(depth_discontinuity_m >= 0))
-    badKey(s, "depth_discontinuity_m", "must be >= 0");
+    common::throwBadIniKey(s, "depth_discontinuity_m", "must be >= 0");
   if (icp_decimation < 1)
-    badKey(s, "icp_decimation", "must be >= 1");
+    common::throwBadIniKey(s, "icp_decimation", "must be >= 1");
   if (icp_max_iterations < 1)
-    badKey(s, "icp_max_iterations", "must be >= 1");
+    common::throwBadIniKey(s, "icp_max_iterations", "must be >= 1");
   if (!(icp_max_distance_m > 0))
-    badKey(s, "icp_max_distance_m", "must be > 0");
+    common::throwBadIniKey(s, "icp_max_distance_m", "must be > 0");
   if (icp_min_pairs < 6)
-    badKey(s, "icp_min_pairs", "must be >= 6");
+    common::throwBadIniKey(s, "icp_min_pairs", "must be >= 6");
   if (!(constant_velocity_information_scale > 0))
-    badKey(s, "constant_velocity_information_scale", "must be > 0");
+    common::throwBadIniKey(s, "constant_velocity_information_scale", "must be > 0");
 }
 
 // ---------------------------------------------------------------- implementation

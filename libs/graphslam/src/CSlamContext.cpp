@@ -2,8 +2,9 @@
 #include <mrpt/containers/yaml.h>
 #include <mrpt/graphslam/levmarq.h>
 #include <mrpt/system/CTicTac.h>
+#include <roislam/common/IniErrors.h>
+#include <roislam/common/IniKeyCheck.h>
 #include <roislam/graphslam/CSlamContext.h>
-#include <roislam/landmarks/IniKeyCheck.h>
 
 #include <algorithm>
 #include <cmath>
@@ -18,7 +19,7 @@ const char* kSection = "GraphSlam";
 
 [[noreturn]] void badKey(const std::string& key, const std::string& why)
 {
-  throw std::invalid_argument(std::string("[") + kSection + "] " + key + ": " + why);
+  common::throwBadIniKey(kSection, key, why);
 }
 }  // namespace
 
@@ -360,12 +361,12 @@ CSlamContext::TConfig CSlamContext::loadConfig(
   TConfig c;
   // Front-end options save their sub-component sections under fixed names.
   for (const std::string s : {"FrontEnd", "RoiDetector", "FeatureExtractor", "FeatureMatcher"})
-    landmarks::checkIniKeys(cfg, s, keysOf(c.frontEnd, "FrontEnd", s), fileLabel);
-  landmarks::checkIniKeys(cfg, "GraphSlam", keysOf(c.backEnd, "GraphSlam", "GraphSlam"), fileLabel);
-  landmarks::checkIniKeys(
+    common::checkIniKeys(cfg, s, keysOf(c.frontEnd, "FrontEnd", s), fileLabel);
+  common::checkIniKeys(cfg, "GraphSlam", keysOf(c.backEnd, "GraphSlam", "GraphSlam"), fileLabel);
+  common::checkIniKeys(
       cfg, "LandmarkDatabase", keysOf(c.database, "LandmarkDatabase", "LandmarkDatabase"),
       fileLabel);
-  landmarks::checkIniKeys(
+  common::checkIniKeys(
       cfg, "HomographyLocator", keysOf(c.locator, "HomographyLocator", "HomographyLocator"),
       fileLabel);
   try

@@ -6,7 +6,7 @@
 #include <stdexcept>
 
 #include "IniRead.h"
-#include "roislam/landmarks/IniKeyCheck.h"
+#include "roislam/common/IniKeyCheck.h"
 
 namespace roislam::landmarks
 {
@@ -37,9 +37,9 @@ void loadSection(
     const mrpt::config::CConfigFileBase& cfg, const std::string& section, OPTIONS& options,
     const std::vector<std::string>& extraKeys, const std::string& fileLabel)
 {
-  std::vector<std::string> keys = knownIniKeys(OPTIONS());
+  std::vector<std::string> keys = common::knownIniKeys(OPTIONS());
   keys.insert(keys.end(), extraKeys.begin(), extraKeys.end());
-  checkIniKeys(cfg, section, keys, fileLabel);
+  common::checkIniKeys(cfg, section, keys, fileLabel);
   if (!cfg.sectionExists(section))
     return;
   try

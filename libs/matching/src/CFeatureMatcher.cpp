@@ -1,6 +1,7 @@
 #include "roislam/matching/CFeatureMatcher.h"
 
 #include <mrpt/config/CConfigFileBase.h>
+#include <roislam/common/IniErrors.h>
 
 #include <opencv2/features2d.hpp>
 #include <opencv2/flann.hpp>
@@ -10,11 +11,6 @@ namespace roislam::matching
 {
 namespace
 {
-[[noreturn]] void badKey(const std::string& section, const std::string& key, const std::string& why)
-{
-  throw std::invalid_argument("[" + section + "] " + key + ": " + why);
-}
-
 cv::Ptr<cv::DescriptorMatcher> makeMatcher(EMatcherType type, bool binary)
 {
   if (type == EMatcherType::BRUTE_FORCE)
@@ -64,11 +60,12 @@ void CFeatureMatcher::TOptions::loadFromConfigFile(
   else if (m == "brute_force")
     matcher = EMatcherType::BRUTE_FORCE;
   else
-    badKey(s, "matcher", "unknown matcher '" + m + "' (expected flann or brute_force)");
+    common::throwBadIniKey(
+        s, "matcher", "unknown matcher '" + m + "' (expected flann or brute_force)");
   ratio = c.read_double(s, "ratio", ratio);
   cross_check = c.read_bool(s, "cross_check", cross_check);
   if (!(ratio > 0 && ratio <= 1))
-    badKey(s, "ratio", "must be in (0, 1]");
+    common::throwBadIniKey(s, "ratio", "must be in (0, 1]");
 }
 
 void CFeatureMatcher::TOptions::saveToConfigFile(

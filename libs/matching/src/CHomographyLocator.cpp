@@ -1,6 +1,7 @@
 #include "roislam/matching/CHomographyLocator.h"
 
 #include <mrpt/config/CConfigFileBase.h>
+#include <roislam/common/IniErrors.h>
 
 #include <cmath>
 #include <opencv2/calib3d.hpp>
@@ -11,25 +12,20 @@ namespace roislam::matching
 {
 namespace
 {
-[[noreturn]] void badKey(const std::string& section, const std::string& key, const std::string& why)
-{
-  throw std::invalid_argument("[" + section + "] " + key + ": " + why);
-}
-
 void validate(const CHomographyLocator::TOptions& o, const std::string& s)
 {
   if (!(o.ransac_reproj_threshold > 0))
-    badKey(s, "ransac_reproj_threshold", "must be > 0");
+    common::throwBadIniKey(s, "ransac_reproj_threshold", "must be > 0");
   if (o.ransac_max_iters <= 0)
-    badKey(s, "ransac_max_iters", "must be > 0");
+    common::throwBadIniKey(s, "ransac_max_iters", "must be > 0");
   if (!(o.ransac_confidence > 0 && o.ransac_confidence < 1))
-    badKey(s, "ransac_confidence", "must be in (0, 1)");
+    common::throwBadIniKey(s, "ransac_confidence", "must be in (0, 1)");
   if (o.min_inliers < 4)
-    badKey(s, "min_inliers", "must be >= 4");
+    common::throwBadIniKey(s, "min_inliers", "must be >= 4");
   if (!(o.min_inlier_ratio >= 0 && o.min_inlier_ratio <= 1))
-    badKey(s, "min_inlier_ratio", "must be in [0, 1]");
+    common::throwBadIniKey(s, "min_inlier_ratio", "must be in [0, 1]");
   if (!(o.max_scale_change > 1))
-    badKey(s, "max_scale_change", "must be > 1");
+    common::throwBadIniKey(s, "max_scale_change", "must be > 1");
 }
 }  // namespace
 

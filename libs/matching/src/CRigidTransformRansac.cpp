@@ -1,6 +1,7 @@
 #include "roislam/matching/CRigidTransformRansac.h"
 
 #include <mrpt/config/CConfigFileBase.h>
+#include <roislam/common/IniErrors.h>
 
 #include <Eigen/Dense>
 #include <algorithm>
@@ -13,21 +14,16 @@ namespace roislam::matching
 {
 namespace
 {
-[[noreturn]] void badKey(const std::string& section, const std::string& key, const std::string& why)
-{
-  throw std::invalid_argument("[" + section + "] " + key + ": " + why);
-}
-
 void check(const CRigidTransformRansac::TOptions& o, const std::string& s)
 {
   if (!(o.threshold_m > 0))
-    badKey(s, "threshold_m", "must be > 0");
+    common::throwBadIniKey(s, "threshold_m", "must be > 0");
   if (o.max_iterations < 1)
-    badKey(s, "max_iterations", "must be >= 1");
+    common::throwBadIniKey(s, "max_iterations", "must be >= 1");
   if (!(o.confidence > 0 && o.confidence < 1))
-    badKey(s, "confidence", "must be in (0, 1)");
+    common::throwBadIniKey(s, "confidence", "must be in (0, 1)");
   if (o.min_inliers < 3)
-    badKey(s, "min_inliers", "must be >= 3");
+    common::throwBadIniKey(s, "min_inliers", "must be >= 3");
 }
 
 inline Eigen::Vector3d toEigen(const mrpt::math::TPoint3D& p)
@@ -89,7 +85,7 @@ void CRigidTransformRansac::TOptions::loadFromConfigFile(
   min_inliers = c.read_int(s, "min_inliers", min_inliers);
   const int sd = c.read_int(s, "seed", static_cast<int>(seed));
   if (sd < 0)
-    badKey(s, "seed", "must be >= 0");
+    common::throwBadIniKey(s, "seed", "must be >= 0");
   seed = static_cast<std::uint32_t>(sd);
   check(*this, s);
 }

@@ -1,20 +1,13 @@
 #include "roislam/roi/CRoiDetector.h"
 
 #include <mrpt/config/CConfigFileBase.h>
+#include <roislam/common/IniErrors.h>
 
 #include <opencv2/imgproc.hpp>
 #include <stdexcept>
 
 namespace roislam::roi
 {
-namespace
-{
-[[noreturn]] void badKey(const std::string& section, const std::string& key, const std::string& why)
-{
-  throw std::invalid_argument("[" + section + "] " + key + ": " + why);
-}
-}  // namespace
-
 void CRoiDetector::TOptions::setPreset(const std::string& name)
 {
   if (name == "small")
@@ -43,7 +36,7 @@ void CRoiDetector::TOptions::loadFromConfigFile(
   }
   catch (const std::invalid_argument& e)
   {
-    badKey(s, "preset", e.what());
+    common::throwBadIniKey(s, "preset", e.what());
   }
   if (preset == "custom")
   {
@@ -51,20 +44,20 @@ void CRoiDetector::TOptions::loadFromConfigFile(
     dilations = c.read_int(s, "dilations", dilations);
   }
   else if (c.keyExists(s, "erosions") || c.keyExists(s, "dilations"))
-    badKey(s, "erosions/dilations", "only allowed with preset = custom");
+    common::throwBadIniKey(s, "erosions/dilations", "only allowed with preset = custom");
   canny_low = c.read_double(s, "canny_low", canny_low);
   canny_high = c.read_double(s, "canny_high", canny_high);
   min_area_fraction = c.read_double(s, "min_area_fraction", min_area_fraction);
   if (erosions < 0)
-    badKey(s, "erosions", "must be >= 0");
+    common::throwBadIniKey(s, "erosions", "must be >= 0");
   if (dilations < 0)
-    badKey(s, "dilations", "must be >= 0");
+    common::throwBadIniKey(s, "dilations", "must be >= 0");
   if (!(canny_low >= 0))
-    badKey(s, "canny_low", "must be >= 0");
+    common::throwBadIniKey(s, "canny_low", "must be >= 0");
   if (!(canny_high >= canny_low))
-    badKey(s, "canny_high", "must be >= canny_low");
+    common::throwBadIniKey(s, "canny_high", "must be >= canny_low");
   if (!(min_area_fraction >= 0 && min_area_fraction < 1))
-    badKey(s, "min_area_fraction", "must be in [0, 1)");
+    common::throwBadIniKey(s, "min_area_fraction", "must be in [0, 1)");
 }
 
 void CRoiDetector::TOptions::saveToConfigFile(

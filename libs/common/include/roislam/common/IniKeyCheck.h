@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-namespace roislam::landmarks
+namespace roislam::common
 {
 /** The keys that options.saveToConfigFile() writes into one section, i.e. the
  *  keys that options.loadFromConfigFile() understands (for TOptions whose save
@@ -24,4 +24,4 @@ std::vector<std::string> knownIniKeys(const mrpt::config::CLoadableOptions& opti
 void checkIniKeys(
     const mrpt::config::CConfigFileBase& cfg, const std::string& section,
     const std::vector<std::string>& knownKeys, const std::string& fileLabel);
-}  // namespace roislam::landmarks
+}  // namespace roislam::common

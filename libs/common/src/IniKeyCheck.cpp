@@ -1,4 +1,4 @@
-#include "roislam/landmarks/IniKeyCheck.h"
+#include "roislam/common/IniKeyCheck.h"
 
 #include <mrpt/config/CConfigFileMemory.h>
 
@@ -6,7 +6,7 @@
 #include <cctype>
 #include <stdexcept>
 
-namespace roislam::landmarks
+namespace roislam::common
 {
 namespace
 {
@@ -45,4 +45,4 @@ void checkIniKeys(
           "ini " + fileLabel + ": [" + section + "] unknown key '" + key + "'");
   }
 }
-}  // namespace roislam::landmarks
+}  // namespace roislam::common
