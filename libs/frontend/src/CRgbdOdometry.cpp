@@ -352,7 +352,8 @@ std::optional<TRegistration> registerSets(
   if (ref.features.size() < minInl || cur.features.size() < minInl)
     return std::nullopt;
   auto t0 = Clock::now();
-  const auto matches = matcher.match(cur.features, ref.features);
+  const auto matches =
+      ref.index ? ref.index->match(cur.features) : matcher.match(cur.features, ref.features);
   if (matchMs)
     *matchMs += msSince(t0);
   if (matchesOut)
@@ -640,6 +641,10 @@ TFrameResult CRgbdOdometry::process(const io::TRGBDFrame& frame)
     res.newKeyframeId = m_keyframes.back().id;
     I.icpMaps[res.newKeyframeId] = I.icp->buildMap(depth);
     const std::size_t keep = static_cast<std::size_t>(o.recent_keyframes) + 1;
+    m_keyframes.back().index =
+        std::make_shared<matching::CFeatureIndex>(o.matcher, m_keyframes.back().features);
+    if (m_keyframes.size() > keep)
+      m_keyframes[m_keyframes.size() - 1 - keep].index.reset();
     while (I.icpMaps.size() > keep)
       I.icpMaps.erase(I.icpMaps.begin());
     I.haveLast = true;

@@ -140,6 +140,7 @@ void CLandmarkDatabase::rebuildVoteIndex() const
   }
   if (!rows.empty())
     cv::vconcat(rows, m_voteSet.descriptors);
+  m_voteIndex = std::make_shared<matching::CFeatureIndex>(m_voteMatcher.options(), m_voteSet);
   m_voteIndexValid = true;
 }
 
@@ -162,7 +163,7 @@ std::vector<int32_t> CLandmarkDatabase::candidates(
   if (!m_voteIndexValid)
     rebuildVoteIndex();
   std::vector<int> votes(m_landmarks.size(), 0);
-  for (const auto& m : m_voteMatcher.match(roiFeatures, m_voteSet))
+  for (const auto& m : m_voteIndex->match(roiFeatures))
     ++votes[m_voteOwner[m.trainIdx]];
   std::stable_sort(
       pool.begin(), pool.end(), [&](int32_t a, int32_t b) { return votes[a] > votes[b]; });
@@ -190,12 +191,14 @@ CLandmarkDatabase::TQueryResult CLandmarkDatabase::query(
 
   const auto ids = candidates(roiFeatures, worldPosition);
   best.candidates = static_cast<int>(ids.size());
+  // One search structure over the ROI for all candidates.
+  const matching::CFeatureIndex roiIndex(m_matcher.options(), roiFeatures);
   for (int32_t id : ids)
   {
     const CLandmark& lm = m_landmarks[id];
     if (lm.features.empty())
       continue;
-    const auto matches = m_matcher.match(lm.features, roiFeatures);
+    const auto matches = roiIndex.match(lm.features);
     const auto located = m_locator.locate(lm.features, lm.box, roiFeatures, imageSize, matches);
     if (!located)
       continue;

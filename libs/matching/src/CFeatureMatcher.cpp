@@ -3,53 +3,12 @@
 #include <mrpt/config/CConfigFileBase.h>
 #include <roislam/common/IniErrors.h>
 
-#include <opencv2/features2d.hpp>
-#include <opencv2/flann.hpp>
 #include <stdexcept>
+
+#include "roislam/matching/CFeatureIndex.h"
 
 namespace roislam::matching
 {
-namespace
-{
-cv::Ptr<cv::DescriptorMatcher> makeMatcher(EMatcherType type, bool binary)
-{
-  if (type == EMatcherType::BRUTE_FORCE)
-    return cv::BFMatcher::create(binary ? cv::NORM_HAMMING : cv::NORM_L2);
-  if (binary)
-    // Multi-probe LSH as recommended by FLANN for binary descriptors.
-    return cv::makePtr<cv::FlannBasedMatcher>(
-        cv::makePtr<cv::flann::LshIndexParams>(6, 12, 1), cv::makePtr<cv::flann::SearchParams>(32));
-  return cv::makePtr<cv::FlannBasedMatcher>(
-      cv::makePtr<cv::flann::KDTreeIndexParams>(4), cv::makePtr<cv::flann::SearchParams>(32));
-}
-
-// One direction: best match per query row that passes the ratio test.
-std::vector<cv::DMatch> ratioMatches(
-    const cv::Mat& query, const cv::Mat& train, EMatcherType type, bool binary, double ratio)
-{
-  std::vector<std::vector<cv::DMatch>> knn;
-  makeMatcher(type, binary)->knnMatch(query, train, knn, 2);
-  std::vector<cv::DMatch> out;
-  out.reserve(knn.size());
-  for (const auto& k : knn)
-  {
-    if (k.empty())
-      continue;
-    // A single candidate (tiny train set, or LSH finding one bucket) has no
-    // second neighbour to compare with; it is kept only with ratio 1.
-    if (k.size() == 1)
-    {
-      if (ratio >= 1.0)
-        out.push_back(k[0]);
-      continue;
-    }
-    if (k[0].distance <= ratio * k[1].distance)
-      out.push_back(k[0]);
-  }
-  return out;
-}
-}  // namespace
-
 void CFeatureMatcher::TOptions::loadFromConfigFile(
     const mrpt::config::CConfigFileBase& c, const std::string& s)
 {
@@ -89,25 +48,6 @@ std::vector<cv::DMatch> CFeatureMatcher::match(
 {
   if (query.empty() || train.empty())
     return {};
-  if (query.type != train.type || query.descriptors.type() != train.descriptors.type() ||
-      query.descriptors.cols != train.descriptors.cols)
-    throw std::invalid_argument("CFeatureMatcher::match: feature sets of different types");
-  const bool binary = features::isBinary(query.type);
-  auto fwd = ratioMatches(
-      query.descriptors, train.descriptors, m_options.matcher, binary, m_options.ratio);
-  if (!m_options.cross_check)
-    return fwd;
-
-  // Mutual check: the train feature's own best match must be the query feature.
-  std::vector<std::vector<cv::DMatch>> back;
-  makeMatcher(m_options.matcher, binary)->knnMatch(train.descriptors, query.descriptors, back, 1);
-  std::vector<cv::DMatch> out;
-  for (const auto& m : fwd)
-  {
-    const auto& b = back[static_cast<std::size_t>(m.trainIdx)];
-    if (!b.empty() && b[0].trainIdx == m.queryIdx)
-      out.push_back(m);
-  }
-  return out;
+  return CFeatureIndex(m_options, train).match(query);
 }
 }  // namespace roislam::matching

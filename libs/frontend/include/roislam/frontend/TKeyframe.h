@@ -8,8 +8,10 @@
 #include <mrpt/math/TPoint3D.h>
 #include <mrpt/poses/CPose3D.h>
 #include <roislam/features/TFeatureSet.h>
+#include <roislam/matching/CFeatureIndex.h>
 
 #include <cstddef>
+#include <memory>
 #include <opencv2/core/types.hpp>
 #include <optional>
 #include <vector>
@@ -35,6 +37,11 @@ struct TKeyframe
   std::vector<mrpt::math::TPoint3D> points;
   /** Undistorted pixel coordinates of each feature (for reprojection). */
   std::vector<cv::Point2f> pixels;
+  /** Search structure over features, kept only while the keyframe is one of
+   *  the recent ones every frame is matched against (null otherwise: older
+   *  keyframes are matched rarely, by loop closures, and the indexes of a
+   *  long sequence would cost hundreds of MB). */
+  std::shared_ptr<const matching::CFeatureIndex> index;
   /** The ROI of the frame (ROI modes), if one was found. */
   std::optional<cv::Rect> roi;
   /** ROI mode only: the frame itself was tracked with whole-image features. */

@@ -21,9 +21,11 @@
 #include <mrpt/serialization/CSerializable.h>
 #include <roislam/landmarks/CLandmark.h>
 #include <roislam/landmarks/FeatureGeometry.h>
+#include <roislam/matching/CFeatureIndex.h>
 #include <roislam/matching/CFeatureMatcher.h>
 #include <roislam/matching/CHomographyLocator.h>
 
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -149,6 +151,8 @@ class CLandmarkDatabase : public mrpt::serialization::CSerializable
    *  rebuilt lazily after add(). */
   mutable features::TFeatureSet m_voteSet;
   mutable std::vector<int32_t> m_voteOwner;
+  /** Search structure over m_voteSet, built with it. */
+  mutable std::shared_ptr<matching::CFeatureIndex> m_voteIndex;
   mutable bool m_voteIndexValid = false;
 };
 }  // namespace roislam::landmarks

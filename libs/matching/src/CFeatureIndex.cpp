@@ -1,0 +1,77 @@
+#include "roislam/matching/CFeatureIndex.h"
+
+#include <opencv2/flann.hpp>
+#include <stdexcept>
+
+namespace roislam::matching
+{
+namespace
+{
+cv::Ptr<cv::DescriptorMatcher> makeMatcher(EMatcherType type, bool binary)
+{
+  if (type == EMatcherType::BRUTE_FORCE)
+    return cv::BFMatcher::create(binary ? cv::NORM_HAMMING : cv::NORM_L2);
+  if (binary)
+    // Multi-probe LSH as recommended by FLANN for binary descriptors.
+    return cv::makePtr<cv::FlannBasedMatcher>(
+        cv::makePtr<cv::flann::LshIndexParams>(6, 12, 1), cv::makePtr<cv::flann::SearchParams>(32));
+  return cv::makePtr<cv::FlannBasedMatcher>(
+      cv::makePtr<cv::flann::KDTreeIndexParams>(4), cv::makePtr<cv::flann::SearchParams>(32));
+}
+}  // namespace
+
+CFeatureIndex::CFeatureIndex(
+    const CFeatureMatcher::TOptions& options, const features::TFeatureSet& train)
+    : m_options(options), m_type(train.type), m_descriptors(train.descriptors)
+{
+  if (m_descriptors.empty())
+    return;
+  m_index = makeMatcher(m_options.matcher, features::isBinary(m_type));
+  m_index->add(std::vector<cv::Mat>{m_descriptors});
+  m_index->train();
+}
+
+std::vector<cv::DMatch> CFeatureIndex::match(const features::TFeatureSet& query) const
+{
+  if (query.empty() || m_descriptors.empty())
+    return {};
+  if (query.type != m_type || query.descriptors.type() != m_descriptors.type() ||
+      query.descriptors.cols != m_descriptors.cols)
+    throw std::invalid_argument("CFeatureMatcher::match: feature sets of different types");
+
+  std::vector<std::vector<cv::DMatch>> knn;
+  m_index->knnMatch(query.descriptors, knn, 2);
+  std::vector<cv::DMatch> fwd;
+  fwd.reserve(knn.size());
+  for (const auto& k : knn)
+  {
+    if (k.empty())
+      continue;
+    // A single candidate (tiny train set, or LSH finding one bucket) has no
+    // second neighbour to compare with; it is kept only with ratio 1.
+    if (k.size() == 1)
+    {
+      if (m_options.ratio >= 1.0)
+        fwd.push_back(k[0]);
+      continue;
+    }
+    if (k[0].distance <= m_options.ratio * k[1].distance)
+      fwd.push_back(k[0]);
+  }
+  if (!m_options.cross_check)
+    return fwd;
+
+  // Mutual check: the train feature's own best match must be the query feature.
+  std::vector<std::vector<cv::DMatch>> back;
+  makeMatcher(m_options.matcher, features::isBinary(m_type))
+      ->knnMatch(m_descriptors, query.descriptors, back, 1);
+  std::vector<cv::DMatch> out;
+  for (const auto& m : fwd)
+  {
+    const auto& b = back[static_cast<std::size_t>(m.trainIdx)];
+    if (!b.empty() && b[0].trainIdx == m.queryIdx)
+      out.push_back(m);
+  }
+  return out;
+}
+}  // namespace roislam::matching
