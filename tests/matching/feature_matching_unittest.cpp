@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 #include <mrpt/config/CConfigFileMemory.h>
 #include <roislam/features/CFeatureExtractor.h>
+#include <roislam/matching/CFeatureIndex.h>
 #include <roislam/matching/CFeatureMatcher.h>
 #include <roislam/matching/CHomographyLocator.h>
 
@@ -155,4 +156,47 @@ TEST(CFeatureMatcherOptions, iniErrorsNameSectionAndKey)
   h.write("HomographyLocator", "min_inliers", 2);
   matching::CHomographyLocator::TOptions ho;
   EXPECT_THROW(ho.loadFromConfigFile(h, "HomographyLocator"), std::invalid_argument);
+}
+
+TEST(CFeatureIndex, matchesLikeTheMatcherForEveryTypeAndRepeatedQueries)
+{
+  const cv::Mat a = sceneWithPatch(cv::Rect(200, 150, 200, 150), 3);
+  cv::Mat b;
+  cv::warpAffine(
+      a, b, cv::getRotationMatrix2D(cv::Point2f(320, 240), 8.0, 1.05), a.size(), cv::INTER_LINEAR);
+  for (auto t : {EFeatureType::SIFT, EFeatureType::SURF, EFeatureType::ORB})
+    for (auto m : {matching::EMatcherType::FLANN, matching::EMatcherType::BRUTE_FORCE})
+    {
+      const auto fa = extract(t, a);
+      const auto fb = extract(t, b);
+      matching::CFeatureMatcher::TOptions o;
+      o.matcher = m;
+      // The mutual check builds a fresh (randomised) FLANN index over the
+      // query each time, so it is exercised with exact search only.
+      o.cross_check = m == matching::EMatcherType::BRUTE_FORCE;
+      const matching::CFeatureIndex index(o, fb);
+      EXPECT_EQ(index.size(), fb.size());
+      const auto once = index.match(fa);
+      ASSERT_GT(once.size(), 20u) << features::toString(t);
+      // The index is reusable: a second query gives the same matches.
+      const auto twice = index.match(fa);
+      ASSERT_EQ(once.size(), twice.size());
+      for (std::size_t i = 0; i < once.size(); ++i)
+      {
+        EXPECT_EQ(once[i].queryIdx, twice[i].queryIdx);
+        EXPECT_EQ(once[i].trainIdx, twice[i].trainIdx);
+      }
+      if (m == matching::EMatcherType::BRUTE_FORCE)
+      {
+        // Exact search: identical to a one-off match.
+        const auto direct = matching::CFeatureMatcher(o).match(fa, fb);
+        ASSERT_EQ(direct.size(), once.size());
+        for (std::size_t i = 0; i < once.size(); ++i)
+          EXPECT_EQ(direct[i].trainIdx, once[i].trainIdx);
+      }
+      EXPECT_TRUE(matching::CFeatureIndex(o, features::TFeatureSet()).match(fa).empty());
+      EXPECT_THROW(
+          index.match(extract(t == EFeatureType::ORB ? EFeatureType::SIFT : EFeatureType::ORB, a)),
+          std::invalid_argument);
+    }
 }
