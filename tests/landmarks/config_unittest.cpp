@@ -88,6 +88,8 @@ TEST(Config, BadValuesNameSectionAndKey)
 {
   const std::string e1 = loadError("[LandmarkScoring]\nmatch_radius = -1\n");
   EXPECT_TRUE(contains(e1, "[LandmarkScoring] match_radius")) << e1;
+  const std::string e1b = loadError("[LandmarkScoring]\nrecall_position = centre\n");
+  EXPECT_TRUE(contains(e1b, "[LandmarkScoring] recall_position")) << e1b;
   const std::string e2 = loadError("[RoiLandmarks]\nmax_depth = far\n");
   EXPECT_TRUE(contains(e2, "[RoiLandmarks] max_depth")) << e2;
   const std::string e3 = loadError("[RoiLandmarks]\nconfirm = maybe\n");
@@ -115,7 +117,7 @@ TEST(Config, MissingFileIsNamed)
 TEST(Config, KeyCheckHelperOnAnyOptions)
 {
   const auto keys = roislam::common::knownIniKeys(CLandmarkScorer::TOptions());
-  EXPECT_EQ(keys.size(), 3u);
+  EXPECT_EQ(keys.size(), 4u);
   EXPECT_TRUE(std::find(keys.begin(), keys.end(), "match_radius") != keys.end());
   mrpt::config::CConfigFileMemory cfg("[S]\nmatch_radius = 1\nbogus = 2\n");
   try

@@ -276,8 +276,11 @@ std::string CReportWriter::render(const std::vector<TRunRecord>& records) const
     md << "\n";
 
     md << "Re-identification per extractor (our precision / recall of landmark recalls, mean "
-          "over sequences; the dissertation reports its average true-positive and "
-          "true-negative rates).\n\n| extractor | precision | recall | diss. TP rate | diss. TN "
+          "over sequences; a recall is true when the landmark's point, carried by the match, "
+          "lies within match_radius of its stored position; the ROI-median variant is in each "
+          "run's summary.json under alternative_scoring; the dissertation reports its average "
+          "true-positive and true-negative rates).\n\n| extractor | precision | recall | diss. TP "
+          "rate | diss. TN "
           "rate | fps | diss. fps |\n|---|---|---|---|---|---|---|\n";
     for (const auto& f : feats)
     {

@@ -156,6 +156,9 @@ void CRgbdOdometry::TOptions::loadFromConfigFile(
   icp_min_pairs = c.read_int(s, "icp_min_pairs", icp_min_pairs);
   constant_velocity_information_scale =
       c.read_double(s, "constant_velocity_information_scale", constant_velocity_information_scale);
+  keyframe_full_features = c.read_bool(s, "keyframe_full_features", keyframe_full_features);
+  keyframe_full_registration =
+      c.read_bool(s, "keyframe_full_registration", keyframe_full_registration);
 
   roi.loadFromConfigFile(c, "RoiDetector");
   extractor.loadFromConfigFile(c, "FeatureExtractor");
@@ -189,6 +192,7 @@ void CRgbdOdometry::TOptions::saveToConfigFile(
   c.write(s, "icp_max_distance_m", icp_max_distance_m);
   c.write(s, "icp_min_pairs", icp_min_pairs);
   c.write(s, "keyframe_full_features", keyframe_full_features);
+  c.write(s, "keyframe_full_registration", keyframe_full_registration);
   c.write(s, "constant_velocity_information_scale", constant_velocity_information_scale);
   roi.saveToConfigFile(c, "RoiDetector");
   extractor.saveToConfigFile(c, "FeatureExtractor");
@@ -759,7 +763,7 @@ TFrameResult CRgbdOdometry::process(const io::TRGBDFrame& frame)
     ref = lastKf;
   }
   res.referenceKeyframe = ref;
-  const mrpt::poses::CPose3D world = m_keyframes[ref].pose + res.relativePose;
+  mrpt::poses::CPose3D world = m_keyframes[ref].pose + res.relativePose;
   res.pose = world;
   I.velocity = world - lastWorld;
 
@@ -782,6 +786,24 @@ TFrameResult CRgbdOdometry::process(const io::TRGBDFrame& frame)
 
   // New keyframe: odometry edge from the reference, plus recent keyframes.
   const auto tk = Clock::now();
+  // ROI modes: the keyframe's edges come from the whole image's features it
+  // stores anyway (as loop closures do); the ROI tracks the frames between.
+  const bool fullEdges = isRoiMode(o.mode) && !o.strict_roi && o.keyframe_full_features &&
+                         o.keyframe_full_registration && cur.features.size() < full.features.size();
+  if (fullEdges && isFeatureMethod(res.method))
+  {
+    if (const auto r = registerSets(
+            m_keyframes[ref], full, I.matcher, I.ransac, I.pinhole, o, nullptr, nullptr, nullptr))
+    {
+      res.relativePose = detail::toPose(r->T);
+      res.relativeInformation = toMrpt(detail::tangentInfoToYpr(r->information, res.relativePose));
+      res.inliers = r->inliers;
+      world = m_keyframes[ref].pose + res.relativePose;
+      res.pose = world;
+      I.velocity = world - lastWorld;
+    }
+  }
+  const TKeyframe& edgeSet = fullEdges ? full : cur;
   TKeyframeConstraint first;
   first.fromKeyframe = ref;
   first.toKeyframe = m_keyframes.size();
@@ -798,7 +820,7 @@ TFrameResult CRgbdOdometry::process(const io::TRGBDFrame& frame)
       continue;
     ++extra;
     const auto r = registerSets(
-        m_keyframes[id], cur, I.matcher, I.ransac, I.pinhole, o, nullptr, nullptr, nullptr);
+        m_keyframes[id], edgeSet, I.matcher, I.ransac, I.pinhole, o, nullptr, nullptr, nullptr);
     if (!r)
       continue;
     TKeyframeConstraint c;

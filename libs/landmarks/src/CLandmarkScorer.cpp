@@ -1,5 +1,7 @@
 #include "roislam/landmarks/CLandmarkScorer.h"
 
+#include <roislam/common/IniErrors.h>
+
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
@@ -15,6 +17,11 @@ void CLandmarkScorer::TOptions::loadFromConfigFile(
   match_radius = detail::readDouble(c, s, "match_radius", match_radius);
   max_time_difference = detail::readDouble(c, s, "max_time_difference", max_time_difference);
   interpolate = detail::readBool(c, s, "interpolate", interpolate);
+  recall_position = c.read_string(s, "recall_position", recall_position);
+  if (recall_position != "landmark_point" && recall_position != "roi_median")
+    common::throwBadIniKey(
+        s, "recall_position",
+        "unknown value '" + recall_position + "' (expected landmark_point or roi_median)");
   detail::require(match_radius > 0, s, "match_radius", match_radius, "> 0");
   detail::require(max_time_difference > 0, s, "max_time_difference", max_time_difference, "> 0");
 }
@@ -25,6 +32,7 @@ void CLandmarkScorer::TOptions::saveToConfigFile(
   c.write(s, "match_radius", match_radius);
   c.write(s, "max_time_difference", max_time_difference);
   c.write(s, "interpolate", interpolate);
+  c.write(s, "recall_position", recall_position);
 }
 
 const char* toString(CLandmarkScorer::EOutcome outcome)

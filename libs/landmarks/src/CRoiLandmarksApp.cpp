@@ -299,18 +299,23 @@ CRoiLandmarksApp::TSummary CRoiLandmarksApp::run()
   }
 
   // Scores and counts.
-  std::optional<CLandmarkScorer::TScore> score, pointScore;
+  // The primary score uses [LandmarkScoring] recall_position; the other
+  // definition is reported beside it (alternative_scoring).
+  const bool pointPrimary = m_options.scoring.recall_position == "landmark_point";
+  sum.recallPosition = m_options.scoring.recall_position;
+  sum.altRecallPosition = pointPrimary ? "roi_median" : "landmark_point";
+  std::optional<CLandmarkScorer::TScore> score, altScore;
   if (scorer)
   {
-    score = scorer->score(events);
-    pointScore = scorer->score(pointEvents);
+    score = scorer->score(pointPrimary ? pointEvents : events);
+    altScore = scorer->score(pointPrimary ? events : pointEvents);
   }
-  std::vector<std::string> outcome(results.size()), pointOutcome(results.size());
+  std::vector<std::string> outcome(results.size()), altOutcome(results.size());
   if (score)
     for (std::size_t i = 0; i < events.size(); ++i)
     {
       outcome[eventRow[i]] = toString(score->outcomes[i]);
-      pointOutcome[eventRow[i]] = toString(pointScore->outcomes[i]);
+      altOutcome[eventRow[i]] = toString(altScore->outcomes[i]);
     }
 
   long matches = 0, falseMatches = 0;
@@ -343,9 +348,10 @@ CRoiLandmarksApp::TSummary CRoiLandmarksApp::run()
     sum.unscored = score->unscored;
     sum.precision = score->precision;
     sum.recall = score->recall;
-    sum.pointFalsePositives = pointScore->falsePositives;
-    sum.pointPrecision = pointScore->precision;
-    sum.pointRecall = pointScore->recall;
+    sum.altFalsePositives = altScore->falsePositives;
+    sum.altFalseNegatives = altScore->falseNegatives;
+    sum.altPrecision = altScore->precision;
+    sum.altRecall = altScore->recall;
   }
 
   // frames.csv
@@ -354,7 +360,7 @@ CRoiLandmarksApp::TSummary CRoiLandmarksApp::run()
          "roi_features,depth_valid,depth_mean_m,depth_median_m,roi_x,roi_y,roi_w,roi_h,"
          "recall_inliers,candidates,roi_pos_x,roi_pos_y,roi_pos_z,lm_x,lm_y,lm_w,lm_h,lm_pos_x,"
          "lm_pos_y,lm_pos_z,rigid_pairs,rigid_rms_m,cpu_seconds,s_roi,s_features,s_confirm,s_query,"
-         "score,point_score\n";
+         "score,alt_score\n";
   for (std::size_t i = 0; i < results.size(); ++i)
   {
     const auto& r = results[i];
@@ -386,7 +392,7 @@ CRoiLandmarksApp::TSummary CRoiLandmarksApp::run()
     csv << ',' << r.rigidInliers << ',' << fmt(r.rigidRms) << ',' << fmt(r.cpuSeconds, 5) << ','
         << fmt(r.secondsRoi, 5) << ',' << fmt(r.secondsFeatures, 5) << ','
         << fmt(r.secondsConfirm, 5) << ',' << fmt(r.secondsQuery, 5) << ',' << outcome[i] << ','
-        << pointOutcome[i] << '\n';
+        << altOutcome[i] << '\n';
   }
   writeTextAtomically((outDir / "frames.csv").string(), csv.str());
 
@@ -427,17 +433,18 @@ CRoiLandmarksApp::TSummary CRoiLandmarksApp::run()
   j["unscored"] = orNull(sum.unscored);
   j["precision"] = orNull(sum.precision);
   j["recall"] = orNull(sum.recall);
-  if (pointScore)
+  j["recall_position"] = sum.recallPosition;
+  if (altScore)
   {
-    j["landmark_point"] = {
-        {"true_positives", pointScore->truePositives},
-        {"false_positives", pointScore->falsePositives},
-        {"false_negatives", pointScore->falseNegatives},
-        {"precision", orNull(pointScore->precision)},
-        {"recall", orNull(pointScore->recall)}};
+    j["alternative_scoring"] = {{"recall_position", sum.altRecallPosition},
+                                {"true_positives", altScore->truePositives},
+                                {"false_positives", altScore->falsePositives},
+                                {"false_negatives", altScore->falseNegatives},
+                                {"precision", orNull(altScore->precision)},
+                                {"recall", orNull(altScore->recall)}};
   }
   else
-    j["landmark_point"] = nullptr;
+    j["alternative_scoring"] = nullptr;
   j["matches_per_frame"] = sum.matchesPerFrame;
   j["false_matches_per_frame"] = sum.falseMatchesPerFrame;
   j["duration_s"] = sum.durationS;
@@ -454,9 +461,9 @@ CRoiLandmarksApp::TSummary CRoiLandmarksApp::run()
   if (score)
     done << ", TP " << score->truePositives << " FP " << score->falsePositives << " FN "
          << score->falseNegatives << ", precision " << fmt(sum.precision.value_or(NAN), 3)
-         << " recall " << fmt(sum.recall.value_or(NAN), 3) << " (landmark point: TP "
-         << pointScore->truePositives << " FP " << pointScore->falsePositives << " FN "
-         << pointScore->falseNegatives << ")";
+         << " recall " << fmt(sum.recall.value_or(NAN), 3) << " (" << sum.recallPosition << "; "
+         << sum.altRecallPosition << ": TP " << altScore->truePositives << " FP "
+         << altScore->falsePositives << " FN " << altScore->falseNegatives << ")";
   done << ", " << fmt(sum.fps, 1) << " fps (pipeline), " << fmt(sum.wallS, 1) << " s wall";
   progress(done.str());
   return sum;

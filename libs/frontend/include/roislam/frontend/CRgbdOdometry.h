@@ -67,6 +67,11 @@
  *                             ROI features are matched against them. false
  *                             stores only the ROI subset (ROI-to-ROI matching,
  *                             the dissertation's way; measured far less robust)
+ *  - keyframe_full_registration  bool (true): non-strict ROI modes compute a
+ *                             new keyframe's graph edges (to its reference and
+ *                             the recent keyframes) from the whole image's
+ *                             features, which it stores anyway; the ROI's
+ *                             features track every frame in between.
  * In non-strict ROI modes, when the ROI features do not register, the
  * whole-image features are tried before depth ICP (FullImageFallback).
  * Sub-component sections: [RoiDetector] (CRoiDetector::TOptions),
@@ -139,6 +144,7 @@ class CRgbdOdometry : public mrpt::system::COutputLogger
     int icp_min_pairs = 500;
     double constant_velocity_information_scale = 1e-2;
     bool keyframe_full_features = true;
+    bool keyframe_full_registration = true;
 
     roi::CRoiDetector::TOptions roi;
     features::CFeatureExtractor::TOptions extractor;

@@ -9,12 +9,13 @@
  *                   m), lm_x/y/w/h and lm_pos_x/y/z (the landmark located in
  *                   this frame), rigid_pairs, rigid_rms_m, cpu_seconds,
  *                   s_roi/s_features/s_confirm/s_query (stage times), score and
- *                   point_score (TP/FP/FN/TN with ground truth)
+ *                   alt_score (TP/FP/FN/TN with ground truth, primary and
+ *                   alternative recall position)
  *  - landmarks/     each new landmark's ROI patch, named by frame (000123.png)
  *  - landmarks.db   the database (gzip MRPT archive, CLandmarkDatabase)
  *  - summary.json   counts, ground-truth scores (null without ground truth;
- *                   "landmark_point": the scores with the landmark-point
- *                   position, see TSummary), matches per frame, duration and
+ *                   "recall_position" and "alternative_scoring": see
+ *                   TSummary), matches per frame, duration and
  *                   speed (duration_s/fps: pipeline wall time without I/O;
  *                   wall_s/fps_wall: whole run)
  *  - optionally an annotated rawlog: per frame the CObservation3DRangeScan
@@ -64,15 +65,17 @@ class CRoiLandmarksApp
     std::size_t landmarks = 0;
     std::size_t recalls = 0;
     std::optional<int> truePositives, falsePositives, falseNegatives, unscored;
-    /** Ground-truth scores, as the issue defines them: a ROI's position is
-     *  the median 3-D point of its features. */
+    /** Ground-truth scores (CLandmarkScorer) with the recall position chosen
+     *  by [LandmarkScoring] recall_position (default landmark_point: the
+     *  recalled landmark's stored point carried into the frame by the 3-D
+     *  alignment of the match, TFrameResult::landmarkPosition; roi_median:
+     *  the median 3-D point of the ROI box's features). */
     std::optional<double> precision, recall;
-    /** The same with a recall's position taken as the recalled landmark's
-     *  stored point mapped into the frame by the 3-D alignment of the match
-     *  inliers (TFrameResult::landmarkPosition): whether the same physical
-     *  surface was re-identified, independent of how the ROI box changed. */
-    std::optional<int> pointFalsePositives;
-    std::optional<double> pointPrecision, pointRecall;
+    std::string recallPosition;
+    /** The same counts with the other recall position. */
+    std::string altRecallPosition;
+    std::optional<int> altFalsePositives, altFalseNegatives;
+    std::optional<double> altPrecision, altRecall;
     double matchesPerFrame = 0;
     double falseMatchesPerFrame = 0;
     /** Pipeline time (sum of per-frame processing, no I/O) and its fps. */
