@@ -64,6 +64,31 @@ TEST(RoiGraphSlamApp, TexturedLoopIsAccurateAndClosesLoops)
   ASSERT_FALSE(s["ate_rmse"].is_null());
   EXPECT_LT(s["ate_rmse"].get<double>(), 0.01);
   EXPECT_FALSE(s["failed"].get<bool>());
+
+  // graph.graph opens in MRPT's own graph-slam tool (mrpt-apps), without a
+  // display: --info loads it and counts nodes and edges.
+#ifdef ROISLAM_MRPT_GRAPH_SLAM_TOOL
+  const std::string info = out + "/graph_info.txt";
+  const int rc = std::system((std::string(ROISLAM_MRPT_GRAPH_SLAM_TOOL) + " --info --3d -i " + out +
+                              "/graph.graph > " + info + " 2>&1")
+                                 .c_str());
+  ASSERT_EQ(rc, 0);
+  std::ifstream in(info);
+  std::string line;
+  int nodes = -1, edges = -1;
+  while (std::getline(in, line))
+  {
+    const auto colon = line.find(':');
+    if (colon == std::string::npos)
+      continue;
+    if (line.rfind("Edge count", 0) == 0)
+      edges = std::stoi(line.substr(colon + 1));
+    else if (line.rfind("Nodes count (in VERTEX2/3 entries)", 0) == 0)
+      nodes = std::stoi(line.substr(colon + 1));
+  }
+  EXPECT_EQ(nodes, s["graph_nodes"].get<int>());
+  EXPECT_EQ(edges, s["graph_edges"].get<int>());
+#endif
   fs::remove_all(out);
 }
 
