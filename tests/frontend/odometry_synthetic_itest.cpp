@@ -43,6 +43,33 @@ TEST(OdometrySynthetic, TexturedTraditionalAndRoi)
   }
 }
 
+TEST(OdometrySynthetic, WeakRoiRegistrationsFallBackToTheWholeImage)
+{
+  ROISLAM_REQUIRE_SYNTHETIC(dir, "textured");
+  auto o = orb(EFrontEndMode::RoiBig);
+  // More inliers than any ROI registration can have: every frame whose ROI
+  // holds only part of the image's features is tracked on the whole image.
+  o.min_roi_inliers = 100000;
+  const auto s = runOdometry(dir, o);
+  std::size_t partial = 0;
+  for (std::size_t k = 1; k < s.results.size(); ++k)
+  {
+    const auto& r = s.results[k];
+    if (r.method != ETrackingMethod::RoiFeatures && r.method != ETrackingMethod::FullImageFallback)
+      continue;
+    if (r.roiFeatures < r.featuresWithDepth)
+    {
+      ++partial;
+      EXPECT_EQ(r.method, ETrackingMethod::FullImageFallback) << "frame " << k;
+      EXPECT_EQ(r.trackingFeatures, r.featuresWithDepth) << "frame " << k;
+    }
+  }
+  EXPECT_GT(partial, s.results.size() / 2);
+  EXPECT_EQ(s.stats.lost, 0u);
+  ASSERT_TRUE(s.ate.has_value());
+  EXPECT_LT(*s.ate, 0.05);
+}
+
 TEST(OdometrySynthetic, FeaturelessTrackedFromDepth)
 {
   ROISLAM_REQUIRE_SYNTHETIC(dir, "featureless");

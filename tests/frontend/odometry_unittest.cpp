@@ -209,6 +209,9 @@ TEST(RgbdOdometry, OptionsIniRoundTripAndErrors)
   o.mode = EFrontEndMode::RoiSmall;
   o.keyframe_translation_m = 0.2;
   o.recent_keyframes = 1;
+  o.min_roi_inliers = 35;
+  o.keyframe_full_features = false;
+  o.keyframe_full_registration = false;
   mrpt::config::CConfigFileMemory cfg;
   o.saveToConfigFile(cfg, "FrontEnd");
   CRgbdOdometry::TOptions l;
@@ -216,6 +219,9 @@ TEST(RgbdOdometry, OptionsIniRoundTripAndErrors)
   EXPECT_EQ(l.mode, EFrontEndMode::RoiSmall);
   EXPECT_DOUBLE_EQ(l.keyframe_translation_m, 0.2);
   EXPECT_EQ(l.recent_keyframes, 1);
+  EXPECT_EQ(l.min_roi_inliers, 35);
+  EXPECT_FALSE(l.keyframe_full_features);
+  EXPECT_FALSE(l.keyframe_full_registration);
   EXPECT_EQ(l.extractor.max_features, 500);
 
   mrpt::config::CConfigFileMemory bad;

@@ -134,6 +134,7 @@ void CRgbdOdometry::TOptions::loadFromConfigFile(
   }
   strict_roi = c.read_bool(s, "strict_roi", strict_roi);
   min_roi_features = c.read_int(s, "min_roi_features", min_roi_features);
+  min_roi_inliers = c.read_int(s, "min_roi_inliers", min_roi_inliers);
   min_inliers = c.read_int(s, "min_inliers", min_inliers);
   keyframe_translation_m = c.read_double(s, "keyframe_translation_m", keyframe_translation_m);
   keyframe_rotation_deg = c.read_double(s, "keyframe_rotation_deg", keyframe_rotation_deg);
@@ -172,6 +173,7 @@ void CRgbdOdometry::TOptions::saveToConfigFile(
   c.write(s, "mode", toString(mode));
   c.write(s, "strict_roi", strict_roi);
   c.write(s, "min_roi_features", min_roi_features);
+  c.write(s, "min_roi_inliers", min_roi_inliers);
   c.write(s, "min_inliers", min_inliers);
   c.write(s, "keyframe_translation_m", keyframe_translation_m);
   c.write(s, "keyframe_rotation_deg", keyframe_rotation_deg);
@@ -204,6 +206,8 @@ void CRgbdOdometry::TOptions::validate() const
   const std::string s = "FrontEnd";
   if (min_roi_features < 3)
     common::throwBadIniKey(s, "min_roi_features", "must be >= 3");
+  if (min_roi_inliers < 0)
+    common::throwBadIniKey(s, "min_roi_inliers", "must be >= 0");
   if (min_inliers < 3)
     common::throwBadIniKey(s, "min_inliers", "must be >= 3");
   if (!(keyframe_translation_m > 0))
@@ -708,12 +712,24 @@ TFrameResult CRgbdOdometry::process(const io::TRGBDFrame& frame)
     }
   };
   track(cur);
-  if (!reg && isRoiMode(o.mode) && !o.strict_roi && !fallback &&
+  // A ROI registration on few inliers is kept only when nothing better exists.
+  const bool weakRoi =
+      reg && isRoiMode(o.mode) && !fallback && static_cast<int>(reg->inliers) < o.min_roi_inliers;
+  if ((!reg || weakRoi) && isRoiMode(o.mode) && !o.strict_roi && !fallback &&
       full.features.size() > cur.features.size())
   {
-    // The ROI's features did not register: the whole image's may.
+    // The ROI's features did not register (or barely): the whole image's may.
+    const auto roiReg = reg;
+    const std::size_t roiRef = ref;
+    const std::size_t roiMatches = res.matches;
     track(full);
-    if (reg)
+    if (!reg)
+    {
+      reg = roiReg;
+      ref = roiRef;
+      res.matches = roiMatches;
+    }
+    else
     {
       fallback = true;
       cur = full;

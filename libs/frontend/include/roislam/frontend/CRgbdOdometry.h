@@ -36,6 +36,9 @@
  *  - strict_roi               bool (false), see above
  *  - min_roi_features         int >= 3 (20): fewer ROI features with depth ->
  *                             full-image fallback (or Lost if strict)
+ *  - min_roi_inliers          int >= 0 (0 = off): a ROI registration with
+ *                             fewer inliers is replaced by a whole-image one
+ *                             when that registers (counted as fallback)
  *  - min_inliers              int >= 3 (15): fewer inliers -> features failed
  *  - keyframe_translation_m   [m] > 0 (0.10): new keyframe beyond this distance
  *  - keyframe_rotation_deg    [deg] > 0 (10): ... or beyond this rotation angle
@@ -123,6 +126,7 @@ class CRgbdOdometry : public mrpt::system::COutputLogger
     EFrontEndMode mode = EFrontEndMode::Traditional;
     bool strict_roi = false;
     int min_roi_features = 20;
+    int min_roi_inliers = 0;
     int min_inliers = 15;
     double keyframe_translation_m = 0.10;
     double keyframe_rotation_deg = 10.0;
