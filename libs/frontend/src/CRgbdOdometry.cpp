@@ -13,21 +13,24 @@
 #include <stdexcept>
 
 #include "CDepthIcp.h"
+#include "FeatureLifting.h"
+#include "KeyframeRegistration.h"
 #include "ReprojectionRefinement.h"
 #include "RigidMath.h"
+#include "Timing.h"
 
 namespace roislam::frontend
 {
 using detail::Matrix6d;
 using detail::TRigid;
 
+using detail::Clock;
+using detail::msSince;
+using detail::registerSets;
+using detail::TRegistration;
+
 namespace
 {
-using Clock = std::chrono::steady_clock;
-double msSince(Clock::time_point t0)
-{
-  return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
-}
 
 TInformation66 toMrpt(const Matrix6d& m)
 {
@@ -66,185 +69,6 @@ bool isFeatureMethod(ETrackingMethod m)
          m == ETrackingMethod::FullImageFallback;
 }
 }  // namespace
-
-std::string toString(ETrackingMethod m)
-{
-  switch (m)
-  {
-    case ETrackingMethod::Initial:
-      return "initial";
-    case ETrackingMethod::Features:
-      return "features";
-    case ETrackingMethod::RoiFeatures:
-      return "roi";
-    case ETrackingMethod::FullImageFallback:
-      return "full_image_fallback";
-    case ETrackingMethod::DepthIcp:
-      return "depth_icp";
-    case ETrackingMethod::ConstantVelocity:
-      return "constant_velocity";
-    case ETrackingMethod::Lost:
-      return "lost";
-  }
-  return "unknown";
-}
-
-EFrontEndMode frontEndModeFromString(const std::string& s)
-{
-  if (s == "traditional")
-    return EFrontEndMode::Traditional;
-  if (s == "roi_small")
-    return EFrontEndMode::RoiSmall;
-  if (s == "roi_big")
-    return EFrontEndMode::RoiBig;
-  if (s == "roi")
-    return EFrontEndMode::Roi;
-  throw std::invalid_argument(
-      "unknown front-end mode '" + s + "' (expected traditional, roi_small, roi_big or roi)");
-}
-
-std::string toString(EFrontEndMode m)
-{
-  switch (m)
-  {
-    case EFrontEndMode::Traditional:
-      return "traditional";
-    case EFrontEndMode::RoiSmall:
-      return "roi_small";
-    case EFrontEndMode::RoiBig:
-      return "roi_big";
-    case EFrontEndMode::Roi:
-      return "roi";
-  }
-  return "unknown";
-}
-
-// ---------------------------------------------------------------- options
-void CRgbdOdometry::TOptions::loadFromConfigFile(
-    const mrpt::config::CConfigFileBase& c, const std::string& s)
-{
-  const std::string m = c.read_string(s, "mode", toString(mode));
-  try
-  {
-    mode = frontEndModeFromString(m);
-  }
-  catch (const std::invalid_argument& e)
-  {
-    common::throwBadIniKey(s, "mode", e.what());
-  }
-  strict_roi = c.read_bool(s, "strict_roi", strict_roi);
-  min_roi_features = c.read_int(s, "min_roi_features", min_roi_features);
-  min_roi_inliers = c.read_int(s, "min_roi_inliers", min_roi_inliers);
-  min_inliers = c.read_int(s, "min_inliers", min_inliers);
-  keyframe_translation_m = c.read_double(s, "keyframe_translation_m", keyframe_translation_m);
-  keyframe_rotation_deg = c.read_double(s, "keyframe_rotation_deg", keyframe_rotation_deg);
-  keyframe_min_inliers = c.read_int(s, "keyframe_min_inliers", keyframe_min_inliers);
-  recent_keyframes = c.read_int(s, "recent_keyframes", recent_keyframes);
-  ransac_threshold_m = c.read_double(s, "ransac_threshold_m", ransac_threshold_m);
-  ransac_max_iterations = c.read_int(s, "ransac_max_iterations", ransac_max_iterations);
-  refine_iterations = c.read_int(s, "refine_iterations", refine_iterations);
-  reprojection_threshold_px =
-      c.read_double(s, "reprojection_threshold_px", reprojection_threshold_px);
-  pixel_sigma_px = c.read_double(s, "pixel_sigma_px", pixel_sigma_px);
-  scale_aware_weights = c.read_bool(s, "scale_aware_weights", scale_aware_weights);
-  min_depth_m = c.read_double(s, "min_depth_m", min_depth_m);
-  max_depth_m = c.read_double(s, "max_depth_m", max_depth_m);
-  depth_discontinuity_m = c.read_double(s, "depth_discontinuity_m", depth_discontinuity_m);
-  icp_fallback = c.read_bool(s, "icp_fallback", icp_fallback);
-  icp_decimation = c.read_int(s, "icp_decimation", icp_decimation);
-  icp_max_iterations = c.read_int(s, "icp_max_iterations", icp_max_iterations);
-  icp_max_distance_m = c.read_double(s, "icp_max_distance_m", icp_max_distance_m);
-  icp_min_pairs = c.read_int(s, "icp_min_pairs", icp_min_pairs);
-  constant_velocity_information_scale =
-      c.read_double(s, "constant_velocity_information_scale", constant_velocity_information_scale);
-  keyframe_full_features = c.read_bool(s, "keyframe_full_features", keyframe_full_features);
-  keyframe_full_registration =
-      c.read_bool(s, "keyframe_full_registration", keyframe_full_registration);
-
-  roi.loadFromConfigFile(c, "RoiDetector");
-  extractor.loadFromConfigFile(c, "FeatureExtractor");
-  matcher.loadFromConfigFile(c, "FeatureMatcher");
-  validate();
-}
-
-void CRgbdOdometry::TOptions::saveToConfigFile(
-    mrpt::config::CConfigFileBase& c, const std::string& s) const
-{
-  c.write(s, "mode", toString(mode));
-  c.write(s, "strict_roi", strict_roi);
-  c.write(s, "min_roi_features", min_roi_features);
-  c.write(s, "min_roi_inliers", min_roi_inliers);
-  c.write(s, "min_inliers", min_inliers);
-  c.write(s, "keyframe_translation_m", keyframe_translation_m);
-  c.write(s, "keyframe_rotation_deg", keyframe_rotation_deg);
-  c.write(s, "keyframe_min_inliers", keyframe_min_inliers);
-  c.write(s, "recent_keyframes", recent_keyframes);
-  c.write(s, "ransac_threshold_m", ransac_threshold_m);
-  c.write(s, "ransac_max_iterations", ransac_max_iterations);
-  c.write(s, "refine_iterations", refine_iterations);
-  c.write(s, "reprojection_threshold_px", reprojection_threshold_px);
-  c.write(s, "pixel_sigma_px", pixel_sigma_px);
-  c.write(s, "scale_aware_weights", scale_aware_weights);
-  c.write(s, "min_depth_m", min_depth_m);
-  c.write(s, "max_depth_m", max_depth_m);
-  c.write(s, "depth_discontinuity_m", depth_discontinuity_m);
-  c.write(s, "icp_fallback", icp_fallback);
-  c.write(s, "icp_decimation", icp_decimation);
-  c.write(s, "icp_max_iterations", icp_max_iterations);
-  c.write(s, "icp_max_distance_m", icp_max_distance_m);
-  c.write(s, "icp_min_pairs", icp_min_pairs);
-  c.write(s, "keyframe_full_features", keyframe_full_features);
-  c.write(s, "keyframe_full_registration", keyframe_full_registration);
-  c.write(s, "constant_velocity_information_scale", constant_velocity_information_scale);
-  roi.saveToConfigFile(c, "RoiDetector");
-  extractor.saveToConfigFile(c, "FeatureExtractor");
-  matcher.saveToConfigFile(c, "FeatureMatcher");
-}
-
-void CRgbdOdometry::TOptions::validate() const
-{
-  const std::string s = "FrontEnd";
-  if (min_roi_features < 3)
-    common::throwBadIniKey(s, "min_roi_features", "must be >= 3");
-  if (min_roi_inliers < 0)
-    common::throwBadIniKey(s, "min_roi_inliers", "must be >= 0");
-  if (min_inliers < 3)
-    common::throwBadIniKey(s, "min_inliers", "must be >= 3");
-  if (!(keyframe_translation_m > 0))
-    common::throwBadIniKey(s, "keyframe_translation_m", "must be > 0");
-  if (!(keyframe_rotation_deg > 0))
-    common::throwBadIniKey(s, "keyframe_rotation_deg", "must be > 0");
-  if (keyframe_min_inliers < 0)
-    common::throwBadIniKey(s, "keyframe_min_inliers", "must be >= 0");
-  if (recent_keyframes < 0)
-    common::throwBadIniKey(s, "recent_keyframes", "must be >= 0");
-  if (!(ransac_threshold_m > 0))
-    common::throwBadIniKey(s, "ransac_threshold_m", "must be > 0");
-  if (ransac_max_iterations < 1)
-    common::throwBadIniKey(s, "ransac_max_iterations", "must be >= 1");
-  if (refine_iterations < 0)
-    common::throwBadIniKey(s, "refine_iterations", "must be >= 0");
-  if (!(reprojection_threshold_px > 0))
-    common::throwBadIniKey(s, "reprojection_threshold_px", "must be > 0");
-  if (!(pixel_sigma_px > 0))
-    common::throwBadIniKey(s, "pixel_sigma_px", "must be > 0");
-  if (!(min_depth_m >= 0))
-    common::throwBadIniKey(s, "min_depth_m", "must be >= 0");
-  if (!(max_depth_m > min_depth_m))
-    common::throwBadIniKey(s, "max_depth_m", "must be > min_depth_m");
-  if (!(depth_discontinuity_m >= 0))
-    common::throwBadIniKey(s, "depth_discontinuity_m", "must be >= 0");
-  if (icp_decimation < 1)
-    common::throwBadIniKey(s, "icp_decimation", "must be >= 1");
-  if (icp_max_iterations < 1)
-    common::throwBadIniKey(s, "icp_max_iterations", "must be >= 1");
-  if (!(icp_max_distance_m > 0))
-    common::throwBadIniKey(s, "icp_max_distance_m", "must be > 0");
-  if (icp_min_pairs < 6)
-    common::throwBadIniKey(s, "icp_min_pairs", "must be >= 6");
-  if (!(constant_velocity_information_scale > 0))
-    common::throwBadIniKey(s, "constant_velocity_information_scale", "must be > 0");
-}
 
 // ---------------------------------------------------------------- implementation
 struct CRgbdOdometry::TImpl
@@ -339,99 +163,6 @@ void CRgbdOdometry::reset()
   m_impl->velocity = mrpt::poses::CPose3D();
 }
 
-namespace
-{
-// Matched pairs between a reference set (train: `ref`) and another (query: `cur`),
-// registered with 3-D RANSAC and refined on reprojection. T maps cur -> ref.
-struct TRegistration
-{
-  TRigid T;
-  Matrix6d information;
-  std::size_t matches = 0, inliers = 0;
-  double rmse3d = 0, rmsePx = 0;
-};
-
-std::optional<TRegistration> registerSets(
-    const TKeyframe& ref, const TKeyframe& cur, const matching::CFeatureMatcher& matcher,
-    const matching::CRigidTransformRansac& ransac, const detail::TPinhole& cam,
-    const CRgbdOdometry::TOptions& o, std::size_t* matchesOut, double* matchMs, double* ransacMs)
-{
-  const std::size_t minInl = static_cast<std::size_t>(o.min_inliers);
-  if (ref.features.size() < minInl || cur.features.size() < minInl)
-    return std::nullopt;
-  auto t0 = Clock::now();
-  const auto matches =
-      ref.index ? ref.index->match(cur.features) : matcher.match(cur.features, ref.features);
-  if (matchMs)
-    *matchMs += msSince(t0);
-  if (matchesOut)
-    *matchesOut = matches.size();
-  if (matches.size() < minInl)
-    return std::nullopt;
-  t0 = Clock::now();
-  std::vector<mrpt::math::TPoint3D> a, b;
-  detail::TCorrespondences c;
-  a.reserve(matches.size());
-  b.reserve(matches.size());
-  for (const auto& m : matches)
-  {
-    const auto& pa = ref.points[static_cast<std::size_t>(m.trainIdx)];
-    const auto& pb = cur.points[static_cast<std::size_t>(m.queryIdx)];
-    const auto& ua = ref.pixels[static_cast<std::size_t>(m.trainIdx)];
-    const auto& ub = cur.pixels[static_cast<std::size_t>(m.queryIdx)];
-    a.push_back(pa);
-    b.push_back(pb);
-    c.a.emplace_back(pa.x, pa.y, pa.z);
-    c.b.emplace_back(pb.x, pb.y, pb.z);
-    c.ua.emplace_back(ua.x, ua.y);
-    c.ub.emplace_back(ub.x, ub.y);
-    // Keypoint precision degrades with the detection scale (pyramid level).
-    const double sa = ref.features.keypoints[static_cast<std::size_t>(m.trainIdx)].size;
-    const double sb = cur.features.keypoints[static_cast<std::size_t>(m.queryIdx)].size;
-    c.sigma.push_back(0.5 * (sa + sb));
-  }
-  if (!o.scale_aware_weights)
-    c.sigma.clear();
-  else
-  {
-    // Normalise: the smallest detection size of the type has pixel_sigma_px.
-    double s0 = features::isBinary(ref.features.type) ? 31.0 : 1e9;
-    if (!features::isBinary(ref.features.type))
-      for (double v : c.sigma)
-        s0 = std::min(s0, v);
-    s0 = std::max(s0, 1e-3);
-    for (double& v : c.sigma)
-      v = o.pixel_sigma_px * std::max(1.0, v / s0);
-  }
-  const auto rs = ransac.estimate(a, b);
-  if (!rs)
-  {
-    if (ransacMs)
-      *ransacMs += msSince(t0);
-    return std::nullopt;
-  }
-  detail::TRefineParams rp;
-  rp.iterations = o.refine_iterations;
-  rp.inlierThresholdPx = o.reprojection_threshold_px;
-  rp.inlierThreshold3d = 2 * o.ransac_threshold_m;
-  rp.pixelSigma = o.pixel_sigma_px;
-  const auto rr =
-      detail::refineReprojection(cam, c, detail::fromPose(rs->transform), rs->inliers, rp);
-  if (ransacMs)
-    *ransacMs += msSince(t0);
-  if (rr.inliers.size() < minInl)
-    return std::nullopt;
-  TRegistration out;
-  out.T = rr.T;
-  out.information = rr.information;
-  out.matches = matches.size();
-  out.inliers = rr.inliers.size();
-  out.rmse3d = rr.rmse3d;
-  out.rmsePx = rr.rmsePx;
-  return out;
-}
-}  // namespace
-
 std::optional<TRelativePoseEstimate> CRgbdOdometry::registerKeyframes(
     std::size_t idA, std::size_t idB) const
 {
@@ -516,40 +247,8 @@ TFrameResult CRgbdOdometry::process(const io::TRGBDFrame& frame)
 
   // Lift to 3-D: undistorted pixel + depth at the (distorted) keypoint.
   t0 = Clock::now();
-  std::vector<int> valid;
-  std::vector<cv::Point2f> undist;
-  if (!all.empty())
-  {
-    std::vector<cv::Point2f> pts;
-    pts.reserve(all.size());
-    for (const auto& k : all.keypoints)
-      pts.push_back(k.pt);
-    cv::undistortPoints(pts, undist, I.K, I.dist, cv::noArray(), I.K);
-    for (std::size_t i = 0; i < pts.size(); ++i)
-    {
-      const int u = static_cast<int>(std::lround(pts[i].x));
-      const int v = static_cast<int>(std::lround(pts[i].y));
-      if (u < 1 || v < 1 || u >= depth.cols - 1 || v >= depth.rows - 1)
-        continue;
-      const float z = depth.at<float>(v, u);
-      if (!(z >= o.min_depth_m && z <= o.max_depth_m))
-        continue;
-      if (o.depth_discontinuity_m > 0)
-      {
-        float lo = z, hi = z;
-        for (int dv = -1; dv <= 1; ++dv)
-          for (int du = -1; du <= 1; ++du)
-          {
-            const float zz = depth.at<float>(v + dv, u + du);
-            lo = std::min(lo, zz);
-            hi = std::max(hi, zz);
-          }
-        if (lo <= 0 || hi - lo > o.depth_discontinuity_m * z)
-          continue;
-      }
-      valid.push_back(static_cast<int>(i));
-    }
-  }
+  const detail::TLiftedFeatures lifted = detail::liftFeatures(all, depth, I.K, I.dist, o);
+  const std::vector<int>& valid = lifted.valid;
   res.featuresWithDepth = valid.size();
   // Tracking set: ROI subset or the whole image.
   std::vector<int> chosen = valid;
@@ -574,23 +273,10 @@ TFrameResult CRgbdOdometry::process(const io::TRGBDFrame& frame)
   }
   auto makeSet = [&](const std::vector<int>& idx)
   {
-    TKeyframe k;
+    TKeyframe k = detail::makeFeatureSet(all, lifted, idx, depth, I.pinhole);
     k.frameIndex = frame.index;
     k.timestamp = frame.timestamp;
     k.roi = res.roi;
-    k.features = all.select(idx);
-    k.points.reserve(idx.size());
-    k.pixels.reserve(idx.size());
-    for (int i : idx)
-    {
-      const auto& u = undist[static_cast<std::size_t>(i)];
-      const cv::Point2f& p = all.keypoints[static_cast<std::size_t>(i)].pt;
-      const double z =
-          depth.at<float>(static_cast<int>(std::lround(p.y)), static_cast<int>(std::lround(p.x)));
-      k.points.emplace_back(
-          (u.x - I.pinhole.cx) / I.pinhole.fx * z, (u.y - I.pinhole.cy) / I.pinhole.fy * z, z);
-      k.pixels.push_back(u);
-    }
     return k;
   };
   // Whole-image set (keyframe storage, fallback) and the set tracked with.

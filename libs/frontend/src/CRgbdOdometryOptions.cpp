@@ -1,0 +1,189 @@
+// CRgbdOdometry::TOptions (ini load/save/validation) and the enum names.
+#include <mrpt/config/CConfigFileBase.h>
+#include <roislam/common/IniErrors.h>
+
+#include <stdexcept>
+
+#include "roislam/frontend/CRgbdOdometry.h"
+
+namespace roislam::frontend
+{
+std::string toString(ETrackingMethod m)
+{
+  switch (m)
+  {
+    case ETrackingMethod::Initial:
+      return "initial";
+    case ETrackingMethod::Features:
+      return "features";
+    case ETrackingMethod::RoiFeatures:
+      return "roi";
+    case ETrackingMethod::FullImageFallback:
+      return "full_image_fallback";
+    case ETrackingMethod::DepthIcp:
+      return "depth_icp";
+    case ETrackingMethod::ConstantVelocity:
+      return "constant_velocity";
+    case ETrackingMethod::Lost:
+      return "lost";
+  }
+  return "unknown";
+}
+
+EFrontEndMode frontEndModeFromString(const std::string& s)
+{
+  if (s == "traditional")
+    return EFrontEndMode::Traditional;
+  if (s == "roi_small")
+    return EFrontEndMode::RoiSmall;
+  if (s == "roi_big")
+    return EFrontEndMode::RoiBig;
+  if (s == "roi")
+    return EFrontEndMode::Roi;
+  throw std::invalid_argument(
+      "unknown front-end mode '" + s + "' (expected traditional, roi_small, roi_big or roi)");
+}
+
+std::string toString(EFrontEndMode m)
+{
+  switch (m)
+  {
+    case EFrontEndMode::Traditional:
+      return "traditional";
+    case EFrontEndMode::RoiSmall:
+      return "roi_small";
+    case EFrontEndMode::RoiBig:
+      return "roi_big";
+    case EFrontEndMode::Roi:
+      return "roi";
+  }
+  return "unknown";
+}
+
+// ---------------------------------------------------------------- options
+void CRgbdOdometry::TOptions::loadFromConfigFile(
+    const mrpt::config::CConfigFileBase& c, const std::string& s)
+{
+  const std::string m = c.read_string(s, "mode", toString(mode));
+  try
+  {
+    mode = frontEndModeFromString(m);
+  }
+  catch (const std::invalid_argument& e)
+  {
+    common::throwBadIniKey(s, "mode", e.what());
+  }
+  strict_roi = c.read_bool(s, "strict_roi", strict_roi);
+  min_roi_features = c.read_int(s, "min_roi_features", min_roi_features);
+  min_roi_inliers = c.read_int(s, "min_roi_inliers", min_roi_inliers);
+  min_inliers = c.read_int(s, "min_inliers", min_inliers);
+  keyframe_translation_m = c.read_double(s, "keyframe_translation_m", keyframe_translation_m);
+  keyframe_rotation_deg = c.read_double(s, "keyframe_rotation_deg", keyframe_rotation_deg);
+  keyframe_min_inliers = c.read_int(s, "keyframe_min_inliers", keyframe_min_inliers);
+  recent_keyframes = c.read_int(s, "recent_keyframes", recent_keyframes);
+  ransac_threshold_m = c.read_double(s, "ransac_threshold_m", ransac_threshold_m);
+  ransac_max_iterations = c.read_int(s, "ransac_max_iterations", ransac_max_iterations);
+  refine_iterations = c.read_int(s, "refine_iterations", refine_iterations);
+  reprojection_threshold_px =
+      c.read_double(s, "reprojection_threshold_px", reprojection_threshold_px);
+  pixel_sigma_px = c.read_double(s, "pixel_sigma_px", pixel_sigma_px);
+  scale_aware_weights = c.read_bool(s, "scale_aware_weights", scale_aware_weights);
+  min_depth_m = c.read_double(s, "min_depth_m", min_depth_m);
+  max_depth_m = c.read_double(s, "max_depth_m", max_depth_m);
+  depth_discontinuity_m = c.read_double(s, "depth_discontinuity_m", depth_discontinuity_m);
+  icp_fallback = c.read_bool(s, "icp_fallback", icp_fallback);
+  icp_decimation = c.read_int(s, "icp_decimation", icp_decimation);
+  icp_max_iterations = c.read_int(s, "icp_max_iterations", icp_max_iterations);
+  icp_max_distance_m = c.read_double(s, "icp_max_distance_m", icp_max_distance_m);
+  icp_min_pairs = c.read_int(s, "icp_min_pairs", icp_min_pairs);
+  constant_velocity_information_scale =
+      c.read_double(s, "constant_velocity_information_scale", constant_velocity_information_scale);
+  keyframe_full_features = c.read_bool(s, "keyframe_full_features", keyframe_full_features);
+  keyframe_full_registration =
+      c.read_bool(s, "keyframe_full_registration", keyframe_full_registration);
+
+  roi.loadFromConfigFile(c, "RoiDetector");
+  extractor.loadFromConfigFile(c, "FeatureExtractor");
+  matcher.loadFromConfigFile(c, "FeatureMatcher");
+  validate();
+}
+
+void CRgbdOdometry::TOptions::saveToConfigFile(
+    mrpt::config::CConfigFileBase& c, const std::string& s) const
+{
+  c.write(s, "mode", toString(mode));
+  c.write(s, "strict_roi", strict_roi);
+  c.write(s, "min_roi_features", min_roi_features);
+  c.write(s, "min_roi_inliers", min_roi_inliers);
+  c.write(s, "min_inliers", min_inliers);
+  c.write(s, "keyframe_translation_m", keyframe_translation_m);
+  c.write(s, "keyframe_rotation_deg", keyframe_rotation_deg);
+  c.write(s, "keyframe_min_inliers", keyframe_min_inliers);
+  c.write(s, "recent_keyframes", recent_keyframes);
+  c.write(s, "ransac_threshold_m", ransac_threshold_m);
+  c.write(s, "ransac_max_iterations", ransac_max_iterations);
+  c.write(s, "refine_iterations", refine_iterations);
+  c.write(s, "reprojection_threshold_px", reprojection_threshold_px);
+  c.write(s, "pixel_sigma_px", pixel_sigma_px);
+  c.write(s, "scale_aware_weights", scale_aware_weights);
+  c.write(s, "min_depth_m", min_depth_m);
+  c.write(s, "max_depth_m", max_depth_m);
+  c.write(s, "depth_discontinuity_m", depth_discontinuity_m);
+  c.write(s, "icp_fallback", icp_fallback);
+  c.write(s, "icp_decimation", icp_decimation);
+  c.write(s, "icp_max_iterations", icp_max_iterations);
+  c.write(s, "icp_max_distance_m", icp_max_distance_m);
+  c.write(s, "icp_min_pairs", icp_min_pairs);
+  c.write(s, "keyframe_full_features", keyframe_full_features);
+  c.write(s, "keyframe_full_registration", keyframe_full_registration);
+  c.write(s, "constant_velocity_information_scale", constant_velocity_information_scale);
+  roi.saveToConfigFile(c, "RoiDetector");
+  extractor.saveToConfigFile(c, "FeatureExtractor");
+  matcher.saveToConfigFile(c, "FeatureMatcher");
+}
+
+void CRgbdOdometry::TOptions::validate() const
+{
+  const std::string s = "FrontEnd";
+  if (min_roi_features < 3)
+    common::throwBadIniKey(s, "min_roi_features", "must be >= 3");
+  if (min_roi_inliers < 0)
+    common::throwBadIniKey(s, "min_roi_inliers", "must be >= 0");
+  if (min_inliers < 3)
+    common::throwBadIniKey(s, "min_inliers", "must be >= 3");
+  if (!(keyframe_translation_m > 0))
+    common::throwBadIniKey(s, "keyframe_translation_m", "must be > 0");
+  if (!(keyframe_rotation_deg > 0))
+    common::throwBadIniKey(s, "keyframe_rotation_deg", "must be > 0");
+  if (keyframe_min_inliers < 0)
+    common::throwBadIniKey(s, "keyframe_min_inliers", "must be >= 0");
+  if (recent_keyframes < 0)
+    common::throwBadIniKey(s, "recent_keyframes", "must be >= 0");
+  if (!(ransac_threshold_m > 0))
+    common::throwBadIniKey(s, "ransac_threshold_m", "must be > 0");
+  if (ransac_max_iterations < 1)
+    common::throwBadIniKey(s, "ransac_max_iterations", "must be >= 1");
+  if (refine_iterations < 0)
+    common::throwBadIniKey(s, "refine_iterations", "must be >= 0");
+  if (!(reprojection_threshold_px > 0))
+    common::throwBadIniKey(s, "reprojection_threshold_px", "must be > 0");
+  if (!(pixel_sigma_px > 0))
+    common::throwBadIniKey(s, "pixel_sigma_px", "must be > 0");
+  if (!(min_depth_m >= 0))
+    common::throwBadIniKey(s, "min_depth_m", "must be >= 0");
+  if (!(max_depth_m > min_depth_m))
+    common::throwBadIniKey(s, "max_depth_m", "must be > min_depth_m");
+  if (!(depth_discontinuity_m >= 0))
+    common::throwBadIniKey(s, "depth_discontinuity_m", "must be >= 0");
+  if (icp_decimation < 1)
+    common::throwBadIniKey(s, "icp_decimation", "must be >= 1");
+  if (icp_max_iterations < 1)
+    common::throwBadIniKey(s, "icp_max_iterations", "must be >= 1");
+  if (!(icp_max_distance_m > 0))
+    common::throwBadIniKey(s, "icp_max_distance_m", "must be > 0");
+  if (icp_min_pairs < 6)
+    common::throwBadIniKey(s, "icp_min_pairs", "must be >= 6");
+  if (!(constant_velocity_information_scale > 0))
+    common::throwBadIniKey(s, "constant_velocity_information_scale", "must be > 0");
+}
+}  // namespace roislam::frontend

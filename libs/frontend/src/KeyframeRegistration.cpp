@@ -1,0 +1,88 @@
+#include "KeyframeRegistration.h"
+
+#include <algorithm>
+#include <vector>
+
+#include "Timing.h"
+
+namespace roislam::frontend::detail
+{
+std::optional<TRegistration> registerSets(
+    const TKeyframe& ref, const TKeyframe& cur, const matching::CFeatureMatcher& matcher,
+    const matching::CRigidTransformRansac& ransac, const TPinhole& cam,
+    const CRgbdOdometry::TOptions& o, std::size_t* matchesOut, double* matchMs, double* ransacMs)
+{
+  const std::size_t minInl = static_cast<std::size_t>(o.min_inliers);
+  if (ref.features.size() < minInl || cur.features.size() < minInl)
+    return std::nullopt;
+  auto t0 = Clock::now();
+  const auto matches =
+      ref.index ? ref.index->match(cur.features) : matcher.match(cur.features, ref.features);
+  if (matchMs)
+    *matchMs += msSince(t0);
+  if (matchesOut)
+    *matchesOut = matches.size();
+  if (matches.size() < minInl)
+    return std::nullopt;
+  t0 = Clock::now();
+  std::vector<mrpt::math::TPoint3D> a, b;
+  TCorrespondences c;
+  a.reserve(matches.size());
+  b.reserve(matches.size());
+  for (const auto& m : matches)
+  {
+    const auto& pa = ref.points[static_cast<std::size_t>(m.trainIdx)];
+    const auto& pb = cur.points[static_cast<std::size_t>(m.queryIdx)];
+    const auto& ua = ref.pixels[static_cast<std::size_t>(m.trainIdx)];
+    const auto& ub = cur.pixels[static_cast<std::size_t>(m.queryIdx)];
+    a.push_back(pa);
+    b.push_back(pb);
+    c.a.emplace_back(pa.x, pa.y, pa.z);
+    c.b.emplace_back(pb.x, pb.y, pb.z);
+    c.ua.emplace_back(ua.x, ua.y);
+    c.ub.emplace_back(ub.x, ub.y);
+    // Keypoint precision degrades with the detection scale (pyramid level).
+    const double sa = ref.features.keypoints[static_cast<std::size_t>(m.trainIdx)].size;
+    const double sb = cur.features.keypoints[static_cast<std::size_t>(m.queryIdx)].size;
+    c.sigma.push_back(0.5 * (sa + sb));
+  }
+  if (!o.scale_aware_weights)
+    c.sigma.clear();
+  else
+  {
+    // Normalise: the smallest detection size of the type has pixel_sigma_px.
+    double s0 = features::isBinary(ref.features.type) ? 31.0 : 1e9;
+    if (!features::isBinary(ref.features.type))
+      for (double v : c.sigma)
+        s0 = std::min(s0, v);
+    s0 = std::max(s0, 1e-3);
+    for (double& v : c.sigma)
+      v = o.pixel_sigma_px * std::max(1.0, v / s0);
+  }
+  const auto rs = ransac.estimate(a, b);
+  if (!rs)
+  {
+    if (ransacMs)
+      *ransacMs += msSince(t0);
+    return std::nullopt;
+  }
+  TRefineParams rp;
+  rp.iterations = o.refine_iterations;
+  rp.inlierThresholdPx = o.reprojection_threshold_px;
+  rp.inlierThreshold3d = 2 * o.ransac_threshold_m;
+  rp.pixelSigma = o.pixel_sigma_px;
+  const auto rr = refineReprojection(cam, c, fromPose(rs->transform), rs->inliers, rp);
+  if (ransacMs)
+    *ransacMs += msSince(t0);
+  if (rr.inliers.size() < minInl)
+    return std::nullopt;
+  TRegistration out;
+  out.T = rr.T;
+  out.information = rr.information;
+  out.matches = matches.size();
+  out.inliers = rr.inliers.size();
+  out.rmse3d = rr.rmse3d;
+  out.rmsePx = rr.rmsePx;
+  return out;
+}
+}  // namespace roislam::frontend::detail
