@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <future>
 #include <map>
 #include <opencv2/calib3d.hpp>
 #include <opencv2/imgproc.hpp>
@@ -228,21 +229,32 @@ TFrameResult CRgbdOdometry::process(const io::TRGBDFrame& frame)
   cv::Mat grey;
   cv::cvtColor(frame.rgb, grey, cv::COLOR_BGR2GRAY);
 
-  // Stage 1: ROI.
-  auto t0 = Clock::now();
+  // Stages 1 and 2 are independent (both read the grey image): the ROI is
+  // detected on a second thread while the features are extracted, so that on
+  // a multi-core CPU the ROI costs no wall time. Features are extracted once,
+  // on the whole image.
+  std::future<std::pair<std::optional<roi::TRoi>, double>> roiJob;
   if (isRoiMode(o.mode))
+    roiJob = std::async(
+        std::launch::async,
+        [&I, &grey]()
+        {
+          const auto tr = Clock::now();
+          auto roi = I.roiDetector.detect(grey);
+          return std::make_pair(std::move(roi), msSince(tr));
+        });
+  auto t0 = Clock::now();
+  const features::TFeatureSet all = I.extractor.extract(grey);
+  res.times.extract_ms = msSince(t0);
+  if (roiJob.valid())
   {
-    if (const auto roi = I.roiDetector.detect(grey))
+    auto [roi, ms] = roiJob.get();
+    res.times.roi_ms = ms;
+    if (roi)
       res.roi = roi->box;
     else
       ++m_stats.noRoi;
   }
-  res.times.roi_ms = msSince(t0);
-
-  // Stage 2: features, once on the whole image.
-  t0 = Clock::now();
-  const features::TFeatureSet all = I.extractor.extract(grey);
-  res.times.extract_ms = msSince(t0);
   res.features = all.size();
 
   // Lift to 3-D: undistorted pixel + depth at the (distorted) keypoint.
