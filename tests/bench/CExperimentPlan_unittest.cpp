@@ -38,11 +38,11 @@ std::size_t countTest(const std::vector<TBenchRun>& runs, int test)
 TEST(CExperimentPlan, countsPerTest)
 {
   const auto runs = CExperimentPlan({}, locations()).build(twoSequences());
-  // Test 1: 2 seq x 3 features. Test 2: 2 x 3 features x (traditional + 2 ROI modes x 2
-  // variants). Test 3: 2 x (traditional + big ROI x 2 variants).
+  // Test 1: 2 seq x 3 features. Test 2: 2 x 3 features x (traditional + 2 ROI modes x 3
+  // variants). Test 3: 2 x (traditional + big ROI x 3 variants).
   EXPECT_EQ(countTest(runs, 1), 6u);
-  EXPECT_EQ(countTest(runs, 2), 30u);
-  EXPECT_EQ(countTest(runs, 3), 6u);
+  EXPECT_EQ(countTest(runs, 2), 42u);
+  EXPECT_EQ(countTest(runs, 3), 8u);
   std::set<std::string> ids;
   for (const auto& r : runs)
     ids.insert(r.id);

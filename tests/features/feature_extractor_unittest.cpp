@@ -46,6 +46,37 @@ TEST(CFeatureExtractor, capKeepsStrongestFirst)
   }
 }
 
+TEST(CFeatureExtractor, capWithRegionKeepsTheStrongestOfImageAndRegion)
+{
+  const cv::Mat img = texturedImage();
+  const cv::Rect region(400, 300, 160, 120);  // 6 % of the image
+  for (EFeatureType t : {EFeatureType::SIFT, EFeatureType::ORB, EFeatureType::SURF})
+  {
+    const auto ex = extractor(t, 40);
+    const auto all = ex.extractAll(img);
+    ASSERT_GT(all.size(), 200u) << toString(t);
+    ASSERT_EQ(all.descriptors.rows, static_cast<int>(all.size()));
+    for (std::size_t i = 1; i < all.size(); ++i)
+      ASSERT_GE(all.keypoints[i - 1].response, all.keypoints[i].response) << toString(t);
+    const auto capped = ex.capWithRegion(all, region);
+    const auto inside = [&](const cv::KeyPoint& k) { return cv::Rect2f(region).contains(k.pt); };
+    std::size_t in = 0;
+    for (const auto& k : capped.keypoints)
+      in += inside(k);
+    // The 40 strongest overall are there, and 40 inside the region.
+    EXPECT_EQ(in, 40u) << toString(t);
+    for (std::size_t i = 0; i < 40; ++i)
+      EXPECT_EQ(capped.keypoints[i].pt, all.keypoints[i].pt) << toString(t);
+    EXPECT_GE(capped.size(), 40u + 40u - in) << toString(t);
+    EXPECT_LE(capped.size(), 80u) << toString(t);
+    EXPECT_EQ(capped.descriptors.rows, static_cast<int>(capped.size()));
+    // No region: just the cap.
+    EXPECT_EQ(ex.capWithRegion(all, cv::Rect()).size(), 40u) << toString(t);
+    // No cap: unchanged.
+    EXPECT_EQ(extractor(t, 0).capWithRegion(all, region).size(), all.size()) << toString(t);
+  }
+}
+
 TEST(CFeatureExtractor, descriptorTypesMatchFeatureType)
 {
   const cv::Mat img = texturedImage();

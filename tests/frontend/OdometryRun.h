@@ -2,6 +2,7 @@
  * odometry-only trajectory (every frame's pose) against ground truth. */
 #pragma once
 
+#include <roislam/common/ProcessTuning.h>
 #include <roislam/evaluation/CTrajectoryEvaluator.h>
 #include <roislam/frontend/CRgbdOdometry.h>
 #include <roislam/io/CFrameSource.h>
@@ -28,6 +29,8 @@ inline TRunSummary runOdometry(
     const std::string& dir, const CRgbdOdometry::TOptions& options, std::size_t maxFrames = 0,
     bool initialFromGroundTruth = true)
 {
+  // As the apps do, so that the printed speeds compare with theirs.
+  common::tuneAllocatorForImages();
   TRunSummary s;
   auto src = io::CFrameSource::open(dir);
   io::TTrajectory gt;

@@ -149,6 +149,8 @@ std::string CReportWriter::versionLabel(const TRunRecord& rec)
     return base + " — strict (dissertation's behaviour)";
   if (rec.run.variant == "fallback")
     return base + " + fallback (**ours**)";
+  if (rec.run.variant == "roicap")
+    return base + " + fallback, N features in the ROI (**ours**)";
   return base + " — variant " + rec.run.variant + " (**ours**: " + rec.run.variantLabel + ")";
 }
 

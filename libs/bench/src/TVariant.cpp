@@ -54,11 +54,16 @@ TVariant TVariant::parse(const std::string& spec)
 
 std::vector<TVariant> defaultVariants()
 {
-  return {
-      {"strict",
-       "strict ROI, no fallback (dissertation's behaviour)",
-       {{"FrontEnd", "strict_roi", "true"}}},
-      {"fallback", "ROI with fallback (ours)", {{"FrontEnd", "strict_roi", "false"}}}};
+  return {// The dissertation: no fallback, and its N features taken in the ROI.
+          {"strict",
+           "strict ROI, no fallback (dissertation's behaviour)",
+           {{"FrontEnd", "strict_roi", "true"}, {"FrontEnd", "roi_feature_cap", "roi"}}},
+          {"fallback",
+           "ROI with fallback (ours)",
+           {{"FrontEnd", "strict_roi", "false"}, {"FrontEnd", "roi_feature_cap", "image"}}},
+          {"roicap",
+           "ROI with fallback, N features in the ROI (ours)",
+           {{"FrontEnd", "strict_roi", "false"}, {"FrontEnd", "roi_feature_cap", "roi"}}}};
 }
 
 std::string applyIniOverrides(const std::string& iniText, const std::vector<TIniOverride>& ov)

@@ -63,9 +63,12 @@ CFeatureExtractor::CFeatureExtractor(const TOptions& options) : m_options(option
     case EFeatureType::SIFT:
       // nfeatures = 0 keeps all, otherwise OpenCV keeps the best N by response.
       m_detector = cv::SIFT::create(m_options.max_features);
+      m_uncapped =
+          m_options.max_features > 0 ? cv::Ptr<cv::Feature2D>(cv::SIFT::create(0)) : m_detector;
       break;
     case EFeatureType::ORB:
       m_detector = cv::ORB::create(m_options.max_features > 0 ? m_options.max_features : 500);
+      m_uncapped = cv::ORB::create(std::max(5000, 10 * m_options.max_features));
       break;
     case EFeatureType::SURF:
     {
@@ -77,12 +80,16 @@ CFeatureExtractor::CFeatureExtractor(const TOptions& options) : m_options(option
       p.upright = m_options.surf_upright;
       p.maxFeatures = m_options.max_features;
       m_detector = CSurf::create(p);
+      p.maxFeatures = 0;
+      m_uncapped = CSurf::create(p);
       break;
     }
   }
 }
 
-TFeatureSet CFeatureExtractor::extract(const cv::Mat& image, const cv::Mat& mask) const
+namespace
+{
+cv::Mat toGrey(const cv::Mat& image)
 {
   cv::Mat grey = image;
   if (image.channels() == 3)
@@ -91,11 +98,16 @@ TFeatureSet CFeatureExtractor::extract(const cv::Mat& image, const cv::Mat& mask
     cv::cvtColor(image, grey, cv::COLOR_BGRA2GRAY);
   if (grey.type() != CV_8UC1)
     throw std::invalid_argument("CFeatureExtractor::extract: expected an 8-bit grey or BGR image");
+  return grey;
+}
 
+TFeatureSet detectSorted(
+    cv::Feature2D& detector, EFeatureType type, const cv::Mat& grey, const cv::Mat& mask, int cap)
+{
   TFeatureSet out;
-  out.type = m_options.feature_type;
+  out.type = type;
   cv::Mat desc;
-  m_detector->detectAndCompute(grey, mask, out.keypoints, desc);
+  detector.detectAndCompute(grey, mask, out.keypoints, desc);
 
   // Strongest first, capped: detectors differ in whether (and how exactly) they
   // honour a cap, so the order and the cap are enforced here uniformly.
@@ -104,9 +116,46 @@ TFeatureSet CFeatureExtractor::extract(const cv::Mat& image, const cv::Mat& mask
   std::stable_sort(
       order.begin(), order.end(),
       [&](int a, int b) { return out.keypoints[a].response > out.keypoints[b].response; });
-  if (m_options.max_features > 0 && order.size() > static_cast<std::size_t>(m_options.max_features))
-    order.resize(static_cast<std::size_t>(m_options.max_features));
+  if (cap > 0 && order.size() > static_cast<std::size_t>(cap))
+    order.resize(static_cast<std::size_t>(cap));
   out.descriptors = desc;
   return out.select(order);
 }
+}  // namespace
+
+TFeatureSet CFeatureExtractor::extract(const cv::Mat& image, const cv::Mat& mask) const
+{
+  return detectSorted(
+      *m_detector, m_options.feature_type, toGrey(image), mask, m_options.max_features);
+}
+
+TFeatureSet CFeatureExtractor::extractAll(const cv::Mat& image) const
+{
+  return detectSorted(*m_uncapped, m_options.feature_type, toGrey(image), cv::Mat(), 0);
+}
+
+TFeatureSet CFeatureExtractor::capWithRegion(
+    const TFeatureSet& strongestFirst, const cv::Rect& region) const
+{
+  const std::size_t n = static_cast<std::size_t>(m_options.max_features);
+  if (n == 0)
+    return strongestFirst;
+  const cv::Rect2f box(region);
+  std::vector<int> keep;
+  std::size_t inRegion = 0;
+  for (std::size_t i = 0; i < strongestFirst.size(); ++i)
+  {
+    const bool inside = box.contains(strongestFirst.keypoints[i].pt);
+    // The order is strongest first: the first n overall, and the first n
+    // inside the region, whichever list a feature belongs to.
+    if (i < n || (inside && inRegion < n))
+      keep.push_back(static_cast<int>(i));
+    if (inside)
+      ++inRegion;
+    if (i + 1 >= n && inRegion >= n)
+      break;
+  }
+  return strongestFirst.select(keep);
+}
+
 }  // namespace roislam::features

@@ -243,8 +243,10 @@ TFrameResult CRgbdOdometry::process(const io::TRGBDFrame& frame)
           auto roi = I.roiDetector.detect(grey);
           return std::make_pair(std::move(roi), msSince(tr));
         });
+  // roi_feature_cap = roi: every detection now, the cap per region below.
+  const bool capInRoi = isRoiMode(o.mode) && o.roi_feature_cap == "roi";
   auto t0 = Clock::now();
-  const features::TFeatureSet all = I.extractor.extract(grey);
+  features::TFeatureSet all = capInRoi ? I.extractor.extractAll(grey) : I.extractor.extract(grey);
   res.times.extract_ms = msSince(t0);
   if (roiJob.valid())
   {
@@ -254,6 +256,12 @@ TFrameResult CRgbdOdometry::process(const io::TRGBDFrame& frame)
       res.roi = roi->box;
     else
       ++m_stats.noRoi;
+  }
+  if (capInRoi)
+  {
+    t0 = Clock::now();
+    all = I.extractor.capWithRegion(all, res.roi.value_or(cv::Rect()));
+    res.times.extract_ms += msSince(t0);
   }
   res.features = all.size();
 

@@ -76,6 +76,7 @@ void CRgbdOdometry::TOptions::loadFromConfigFile(
   strict_roi = c.read_bool(s, "strict_roi", strict_roi);
   min_roi_features = c.read_int(s, "min_roi_features", min_roi_features);
   min_roi_inliers = c.read_int(s, "min_roi_inliers", min_roi_inliers);
+  roi_feature_cap = c.read_string(s, "roi_feature_cap", roi_feature_cap);
   min_inliers = c.read_int(s, "min_inliers", min_inliers);
   keyframe_translation_m = c.read_double(s, "keyframe_translation_m", keyframe_translation_m);
   keyframe_rotation_deg = c.read_double(s, "keyframe_rotation_deg", keyframe_rotation_deg);
@@ -115,6 +116,7 @@ void CRgbdOdometry::TOptions::saveToConfigFile(
   c.write(s, "strict_roi", strict_roi);
   c.write(s, "min_roi_features", min_roi_features);
   c.write(s, "min_roi_inliers", min_roi_inliers);
+  c.write(s, "roi_feature_cap", roi_feature_cap);
   c.write(s, "min_inliers", min_inliers);
   c.write(s, "keyframe_translation_m", keyframe_translation_m);
   c.write(s, "keyframe_rotation_deg", keyframe_rotation_deg);
@@ -149,6 +151,9 @@ void CRgbdOdometry::TOptions::validate() const
     common::throwBadIniKey(s, "min_roi_features", "must be >= 3");
   if (min_roi_inliers < 0)
     common::throwBadIniKey(s, "min_roi_inliers", "must be >= 0");
+  if (roi_feature_cap != "image" && roi_feature_cap != "roi")
+    common::throwBadIniKey(
+        s, "roi_feature_cap", "unknown value '" + roi_feature_cap + "' (expected image or roi)");
   if (min_inliers < 3)
     common::throwBadIniKey(s, "min_inliers", "must be >= 3");
   if (!(keyframe_translation_m > 0))

@@ -26,8 +26,10 @@ struct TVariant
   static TVariant parse(const std::string& spec);
 };
 
-/** "strict" ([FrontEnd] strict_roi = true, the dissertation's behaviour) and
- *  "fallback" (strict_roi = false, our default). */
+/** "strict" ([FrontEnd] strict_roi = true and roi_feature_cap = roi: no
+ *  fallback, N features in the ROI, the dissertation's behaviour), "fallback"
+ *  (strict_roi = false, roi_feature_cap = image: our default) and "roicap"
+ *  (fallback with N features in the ROI). */
 std::vector<TVariant> defaultVariants();
 
 /** iniText with each override set: an existing key in its section is replaced,

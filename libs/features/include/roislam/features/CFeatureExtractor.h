@@ -51,10 +51,24 @@ class CFeatureExtractor
    *  mask (optional, CV_8UC1) restricts detection. */
   TFeatureSet extract(const cv::Mat& image, const cv::Mat& mask = cv::Mat()) const;
 
+  /** As extract() but without the cap (ORB: at most 10x max_features, at
+   *  least 5000, since ORB needs a budget): every detection, strongest first.
+   *  Pair with capWithRegion() to cap per region after extracting once. */
+  TFeatureSet extractAll(const cv::Mat& image) const;
+
+  /** From a strongest-first set (extractAll()), the max_features strongest of
+   *  the whole image together with the max_features strongest whose keypoint
+   *  lies inside region, strongest first. This is the dissertation's cap "N
+   *  features in the ROI" without its second extraction. max_features = 0:
+   *  the set unchanged. */
+  TFeatureSet capWithRegion(const TFeatureSet& strongestFirst, const cv::Rect& region) const;
+
   const TOptions& options() const { return m_options; }
 
  private:
   TOptions m_options;
   cv::Ptr<cv::Feature2D> m_detector;
+  /** Same detector without the cap (extractAll). */
+  cv::Ptr<cv::Feature2D> m_uncapped;
 };
 }  // namespace roislam::features

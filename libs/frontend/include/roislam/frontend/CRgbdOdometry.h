@@ -39,6 +39,14 @@
  *  - min_roi_inliers          int >= 0 (0 = off): a ROI registration with
  *                             fewer inliers is replaced by a whole-image one
  *                             when that registers (counted as fallback)
+ *  - roi_feature_cap          image|roi (image): ROI modes, what
+ *                             [FeatureExtractor] max_features caps. image: the
+ *                             N strongest of the whole image, the ROI uses
+ *                             those inside it (cheapest). roi: every detection
+ *                             is described once, then the N strongest of the
+ *                             image plus the N strongest inside the ROI are
+ *                             kept: the dissertation's "N features in the ROI"
+ *                             (it matters with small N, Test 3's 50).
  *  - min_inliers              int >= 3 (15): fewer inliers -> features failed
  *  - keyframe_translation_m   [m] > 0 (0.10): new keyframe beyond this distance
  *  - keyframe_rotation_deg    [deg] > 0 (10): ... or beyond this rotation angle
@@ -79,8 +87,8 @@
  * whole-image features are tried before depth ICP (FullImageFallback).
  * Sub-component sections: [RoiDetector] (CRoiDetector::TOptions),
  * [FeatureExtractor] (CFeatureExtractor::TOptions), [FeatureMatcher]
- * (CFeatureMatcher::TOptions). A bad value throws std::invalid_argument
- * "[section] key: why".
+ * (CFeatureMatcher::TOptions; here brute_force by default). A bad value
+ * throws std::invalid_argument "[section] key: why".
  */
 #pragma once
 
@@ -113,6 +121,13 @@ enum class EFrontEndMode
 /** "traditional" | "roi_small" | "roi_big" | "roi"; throws std::invalid_argument. */
 EFrontEndMode frontEndModeFromString(const std::string& s);
 std::string toString(EFrontEndMode m);
+inline matching::CFeatureMatcher::TOptions bruteForceMatcher()
+{
+  matching::CFeatureMatcher::TOptions o;
+  o.matcher = matching::EMatcherType::BRUTE_FORCE;
+  return o;
+}
+
 inline bool isRoiMode(EFrontEndMode m)
 {
   return m != EFrontEndMode::Traditional;
@@ -127,6 +142,7 @@ class CRgbdOdometry : public mrpt::system::COutputLogger
     bool strict_roi = false;
     int min_roi_features = 20;
     int min_roi_inliers = 0;
+    std::string roi_feature_cap = "image";
     int min_inliers = 15;
     double keyframe_translation_m = 0.10;
     double keyframe_rotation_deg = 10.0;
@@ -152,7 +168,9 @@ class CRgbdOdometry : public mrpt::system::COutputLogger
 
     roi::CRoiDetector::TOptions roi;
     features::CFeatureExtractor::TOptions extractor;
-    matching::CFeatureMatcher::TOptions matcher;
+    /** Brute force by default (unlike CFeatureMatcher's FLANN): at a few
+     *  hundred features per set exact search is the faster one here. */
+    matching::CFeatureMatcher::TOptions matcher = bruteForceMatcher();
 
     /** Reads `section` (normally "FrontEnd") and the sub-component sections
      *  [RoiDetector], [FeatureExtractor], [FeatureMatcher]. */
