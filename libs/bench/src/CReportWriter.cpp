@@ -378,11 +378,16 @@ std::string CReportWriter::render(const std::vector<TRunRecord>& records) const
         {"Absolute trajectory error, RMSE (m)", "ate_rmse", "ate", 4, true},
         {"Relative pose error, translation RMSE (m)", "rpe_trans_rmse", "rpe_trans", 4, false},
         {"Relative pose error, rotation RMSE (deg)", "rpe_rot_rmse_deg", "rpe_rot_deg", 3, false}};
-    for (const auto& m : metrics)
+    // One table: a row per version, per extractor our cell and the
+    // dissertation's value (ref(mode, feature), "—" when it has none).
+    const auto versionTable =
+        [&](const std::string& title, const std::string& refLabel, int decimals,
+            const std::function<std::optional<double>(const TRunRecord&)>& get,
+            const std::function<std::string(const std::string&, const std::string&)>& ref)
     {
-      md << "### " << m.title << "\n\n| version |";
+      md << "### " << title << "\n\n| version |";
       for (const auto& f : feats)
-        md << " " << upper(f) << " | " << upper(f) << " diss. |";
+        md << " " << upper(f) << " | " << upper(f) << " " << refLabel << " |";
       md << "\n|---|";
       for (std::size_t k = 0; k < feats.size(); ++k)
         md << "---|---|";
@@ -392,44 +397,34 @@ std::string CReportWriter::render(const std::vector<TRunRecord>& records) const
         const std::string mode = vk.substr(0, vk.find('/'));
         md << "| " << labelOf(t2, vk) << " |";
         for (const auto& f : feats)
-        {
-          std::string ref = "—";
-          if (m.refHasStd)
-          {
-            if (auto a = m_ref.ate(2, mode, f))
-              ref = num(a->first, 3) + " ± " + num(a->second, 3);
-          }
-          else if (auto v = m_ref.scalar(2, mode, f, m.refKey))
-            ref = num(*v, 3);
-          md << " " << renderCell(cellFor(t2, vk, f, getter(m.key)), m.decimals, true) << " | "
-             << ref << " |";
-        }
+          md << " " << renderCell(cellFor(t2, vk, f, get), decimals, true) << " | " << ref(mode, f)
+             << " |";
         md << "\n";
       }
       md << "\n";
-    }
-    md << "### Duration per run (s; diss. in minutes on full sequences)\n\n| version |";
-    for (const auto& f : feats)
-      md << " " << upper(f) << " | " << upper(f) << " diss. (min) |";
-    md << "\n|---|";
-    for (std::size_t k = 0; k < feats.size(); ++k)
-      md << "---|---|";
-    md << "\n";
-    for (const auto& vk : keys)
-    {
-      const std::string mode = vk.substr(0, vk.find('/'));
-      md << "| " << labelOf(t2, vk) << " |";
-      for (const auto& f : feats)
-      {
-        const auto d = m_ref.scalar(2, mode, f, "duration_min");
-        md << " "
-           << renderCell(
-                  cellFor(t2, vk, f, [](const TRunRecord& r) { return durationOf(r); }), 1, true)
-           << " | " << (d ? num(*d, 1) : std::string("—")) << " |";
-      }
-      md << "\n";
-    }
-    md << "\n";
+    };
+    for (const auto& m : metrics)
+      versionTable(
+          m.title, "diss.", m.decimals, getter(m.key),
+          [&](const std::string& mode, const std::string& f)
+          {
+            if (m.refHasStd)
+            {
+              if (auto a = m_ref.ate(2, mode, f))
+                return num(a->first, 3) + " ± " + num(a->second, 3);
+            }
+            else if (auto v = m_ref.scalar(2, mode, f, m.refKey))
+              return num(*v, 3);
+            return std::string("—");
+          });
+    versionTable(
+        "Duration per run (s; diss. in minutes on full sequences)", "diss. (min)", 1,
+        [](const TRunRecord& r) { return std::optional<double>(durationOf(r)); },
+        [&](const std::string& mode, const std::string& f)
+        {
+          const auto d = m_ref.scalar(2, mode, f, "duration_min");
+          return d ? num(*d, 1) : std::string("—");
+        });
 
     md << "### Per sequence: ATE RMSE (m) / duration (s)\n\n| sequence | version |";
     for (const auto& f : feats)
