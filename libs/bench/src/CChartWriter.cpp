@@ -9,6 +9,7 @@
 #include <array>
 #include <cmath>
 #include <filesystem>
+#include <iterator>
 #include <map>
 #include <sstream>
 #include <stdexcept>
@@ -120,6 +121,7 @@ std::vector<std::string> CChartWriter::write(
     std::ostringstream dat;
     dat << "sequence SURF SIFT ORB\n";
     bool any = false;
+    double top = 0;  // headroom above the highest bar
     for (const auto& s : seqs)
     {
       dat << gpQuote(s);
@@ -130,6 +132,8 @@ std::vector<std::string> CChartWriter::write(
           if (r.run.test == 1 && r.run.sequence == s && r.run.feature == f && r.ok)
             v = r.number(key);
         any = any || v.has_value();
+        if (v)
+          top = std::max(top, *v);
         dat << " " << val(v);
       }
       dat << "\n";
@@ -144,7 +148,9 @@ std::vector<std::string> CChartWriter::write(
     std::string gp = header(name + ".png", W, H, title + " (missing bar = failed or n/a)");
     gp +=
         "set style data histograms\nset style histogram clustered gap 1\n"
-        "set style fill solid 0.8 border -1\nset boxwidth 0.9\nset yrange [0:*]\n"
+        "set style fill solid 0.8 border -1\nset boxwidth 0.9\n" +
+        (top > 0 ? "set yrange [0:" + std::to_string(top * 1.08) + "]\n"
+                 : std::string("set yrange [0:1]\n")) +
         "set xtics rotate by -20\nset grid ytics\n"
         "plot '" +
         name +
@@ -187,6 +193,7 @@ std::vector<std::string> CChartWriter::write(
         dat << " " << upper(f) << " " << upper(f) << "_std";
       dat << "\n";
       bool any = false;
+      double top = 0;  // highest mean + std: gnuplot's autoscale ignores error bars
       for (const auto& [key, label] : versions)
       {
         dat << gpQuote(label);
@@ -204,6 +211,8 @@ std::vector<std::string> CChartWriter::write(
             }
           const auto ms = meanStd(v);
           any = any || ms.has_value();
+          if (ms)
+            top = std::max(top, ms->mean + (std::isfinite(ms->std) ? ms->std : 0.0));
           dat << " " << val(ms ? std::optional<double>(ms->mean) : std::nullopt) << " "
               << val(ms ? std::optional<double>(ms->std) : std::nullopt);
         }
@@ -219,9 +228,10 @@ std::vector<std::string> CChartWriter::write(
               ", mean +- std over sequences (missing bar = all runs failed)");
       gp +=
           "set style data histograms\nset style histogram errorbars gap 1 lw 1\n"
-          "set style fill solid 0.8 border -1\nset boxwidth 0.9\nset yrange [0:*]\n"
-          "set xtics rotate by -20\nset grid ytics\nset ylabel " +
-          gpQuote(m[1]) + "\nplot ";
+          "set style fill solid 0.8 border -1\nset boxwidth 0.9\n" +
+          (top > 0 ? "set yrange [0:" + std::to_string(top * 1.08) + "]\n"
+                   : std::string("set yrange [0:*]\n")) +
+          "set xtics rotate by -20\nset grid ytics\nset ylabel " + gpQuote(m[1]) + "\nplot ";
       for (std::size_t k = 0; k < feats.size(); ++k)
       {
         gp += (k ? ", '' " : "'" + name + ".dat' ") + std::string("using ") +
@@ -287,16 +297,21 @@ std::vector<std::string> CChartWriter::write(
     writeFileAtomically((fs::path(dir) / (name + "_gt.dat")).string(), gtDat.str());
     std::string plots = "'" + name + "_gt.dat' using 1:2 with lines lw 2 lc rgb \"black\" title " +
                         gpQuote("ground truth");
+    // Distinct, colour-blind-safe colours; black is the ground truth's.
+    static const char* const kColours[] = {"#E69F00", "#56B4E9", "#009E73", "#D55E00",
+                                           "#0072B2", "#CC79A7", "#8C564B", "#7F7F7F"};
     int idx = 0;
     for (const auto* r : runs)
     {
       ++idx;
+      const std::string colour =
+          std::string("lc rgb \"") + kColours[(idx - 1) % std::size(kColours)] + "\" ";
       std::string label = shortVersion(*r);
       const fs::path est = fs::path(r->run.appOutputDir) / "trajectory.txt";
       if (!r->ok || !fs::exists(est))
       {
         label += ": failed";
-        plots += ", NaN with lines title " + gpQuote(label);
+        plots += ", NaN with lines " + colour + "title " + gpQuote(label);
         continue;
       }
       try
@@ -311,14 +326,14 @@ std::vector<std::string> CChartWriter::write(
         std::ostringstream ate;
         ate.precision(3);
         ate << res.ate.rmse;
-        plots += ", '" + f + "' using 1:2 with lines lw 1.5 " +
+        plots += ", '" + f + "' using 1:2 with lines lw 1.5 " + colour +
                  (r->run.variant == "strict" ? "dt 2 " : "") + "title " +
                  gpQuote(label + ", ATE " + ate.str() + " m");
       }
       catch (const std::exception& e)
       {
         m_warnings.push_back(est.string() + ": not plotted: " + e.what());
-        plots += ", NaN with lines title " + gpQuote(label + ": not aligned");
+        plots += ", NaN with lines " + colour + "title " + gpQuote(label + ": not aligned");
       }
     }
     std::string gp = header(
