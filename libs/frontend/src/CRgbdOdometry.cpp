@@ -185,7 +185,19 @@ std::optional<TRelativePoseEstimate> CRgbdOdometry::registerKeyframes(
   return e;
 }
 
-TFrameResult CRgbdOdometry::process(const io::TRGBDFrame& frame)
+CRgbdOdometry::TRoiHint CRgbdOdometry::detectRoiAhead(const io::TRGBDFrame& frame) const
+{
+  const auto t0 = Clock::now();
+  TRoiHint h;
+  h.frameIndex = frame.index;
+  h.timestamp = frame.timestamp;
+  h.roi = m_impl->roiDetector.detect(frame.rgb);
+  h.ms = msSince(t0);
+  return h;
+}
+
+TFrameResult CRgbdOdometry::process(
+    const io::TRGBDFrame& frame, const std::optional<TRoiHint>& roiHint)
 {
   const auto tStart = Clock::now();
   TImpl& I = *m_impl;
@@ -234,7 +246,9 @@ TFrameResult CRgbdOdometry::process(const io::TRGBDFrame& frame)
   // a multi-core CPU the ROI costs no wall time. Features are extracted once,
   // on the whole image.
   std::future<std::pair<std::optional<roi::TRoi>, double>> roiJob;
-  if (isRoiMode(o.mode))
+  const bool useHint = isRoiMode(o.mode) && roiHint && roiHint->frameIndex == frame.index &&
+                       roiHint->timestamp == frame.timestamp;
+  if (isRoiMode(o.mode) && !useHint)
     roiJob = std::async(
         std::launch::async,
         [&I, &grey]()
@@ -248,9 +262,9 @@ TFrameResult CRgbdOdometry::process(const io::TRGBDFrame& frame)
   auto t0 = Clock::now();
   features::TFeatureSet all = capInRoi ? I.extractor.extractAll(grey) : I.extractor.extract(grey);
   res.times.extract_ms = msSince(t0);
-  if (roiJob.valid())
+  if (roiJob.valid() || useHint)
   {
-    auto [roi, ms] = roiJob.get();
+    auto [roi, ms] = useHint ? std::make_pair(roiHint->roi, roiHint->ms) : roiJob.get();
     res.times.roi_ms = ms;
     if (roi)
       res.roi = roi->box;

@@ -177,16 +177,27 @@ CRoiGraphSlamApp::TSummary CRoiGraphSlamApp::run()
   std::vector<TFrameRecord> records;
   records.reserve(source->size());
   std::size_t optimizations = 0;
-  // Decode frame i+1 while frame i is processed.
-  auto fetch = [&source]() { return source->next(); };
+  // Decode frame i+1 while frame i is processed; in ROI modes that thread
+  // also detects its ROI (stage 1 then costs the tracking thread nothing).
+  using TRoiHint = frontend::CRgbdOdometry::TRoiHint;
+  const bool roiAhead = frontend::isRoiMode(m_config.frontEnd.mode);
+  auto fetch = [&source, &ctx, roiAhead]()
+  {
+    std::pair<std::optional<io::TRGBDFrame>, std::optional<TRoiHint>> out;
+    out.first = source->next();
+    if (out.first && roiAhead)
+      out.second = ctx->odometry().detectRoiAhead(*out.first);
+    return out;
+  };
   auto next = std::async(std::launch::async, fetch);
   for (;;)
   {
-    auto frame = next.get();
+    auto [frame, hint] = next.get();
     if (!frame || (m_args.maxFrames && records.size() >= m_args.maxFrames))
       break;
     next = std::async(std::launch::async, fetch);
 
+    ctx->setRoiHint(std::move(hint));
     const bool registered = nrd.processFrame(*frame);
     mrpt::system::CTicTac be;
     TFrameRecord rec;

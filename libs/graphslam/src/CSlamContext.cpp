@@ -105,7 +105,8 @@ CSlamContext::CSlamContext(const TConfig& config)
 
 const frontend::TFrameResult& CSlamContext::trackFrame(const io::TRGBDFrame& frame)
 {
-  m_last = m_odometry.process(frame);
+  m_last = m_odometry.process(frame, m_roiHint);
+  m_roiHint.reset();
   m_imageSize = frame.rgb.size();
   if (!m_last->isNewKeyframe)
     return *m_last;

@@ -202,9 +202,27 @@ class CRgbdOdometry : public mrpt::system::COutputLogger
    *  first camera frame). Call before the first process() (or after reset()). */
   void setInitialPose(const mrpt::poses::CPose3D& pose) { m_initialPose = pose; }
 
+  /** A ROI detected ahead of process() for one frame (detectRoiAhead). */
+  struct TRoiHint
+  {
+    std::size_t frameIndex = 0;
+    double timestamp = 0;
+    std::optional<roi::TRoi> roi;
+    double ms = 0;
+  };
+
+  /** Stage 1 for a frame that process() will receive later; const and safe to
+   *  call from another thread while process() runs (e.g. the thread that
+   *  decodes the next frame), so that in ROI modes the ROI costs the tracking
+   *  thread nothing even when feature extraction uses every core. */
+  TRoiHint detectRoiAhead(const io::TRGBDFrame& frame) const;
+
   /** Tracks one frame (frames in time order; rgb CV_8UC3, depth CV_32F metres,
-   *  same size; else std::invalid_argument). */
-  TFrameResult process(const io::TRGBDFrame& frame);
+   *  same size; else std::invalid_argument). A hint for this very frame
+   *  (same index and timestamp) replaces the ROI detection; others are
+   *  ignored. */
+  TFrameResult process(
+      const io::TRGBDFrame& frame, const std::optional<TRoiHint>& roiHint = std::nullopt);
 
   /** All keyframes so far; keyframes()[id].id == id. References are
    *  invalidated by process() (the container may grow). */

@@ -137,6 +137,13 @@ class CSlamContext
   const landmarks::CLandmarkDatabase& database() const { return m_database; }
   const TConfig& config() const { return m_config; }
 
+  /** A ROI detected ahead (CRgbdOdometry::detectRoiAhead) for the frame the
+   *  next trackFrame() receives; used once, ignored if for another frame. */
+  void setRoiHint(std::optional<frontend::CRgbdOdometry::TRoiHint> hint)
+  {
+    m_roiHint = std::move(hint);
+  }
+
   /** Tracks one frame with the front end and remembers the result; a new
    *  keyframe also gets its map cloud and ROI. Called by CKeyframeNRD. */
   const frontend::TFrameResult& trackFrame(const io::TRGBDFrame& frame);
@@ -178,6 +185,7 @@ class CSlamContext
   landmarks::CLandmarkDatabase m_database;
   roi::CRoiDetector m_roiDetector;
   std::optional<frontend::TFrameResult> m_last;
+  std::optional<frontend::CRgbdOdometry::TRoiHint> m_roiHint;
   std::vector<mrpt::maps::CColouredPointsMap> m_clouds;
   /** ROI box of each keyframe (detected on the keyframe image when the front
    *  end ran in traditional mode). */
