@@ -153,6 +153,38 @@ TEST(RgbdOdometry, RoiModeUsesRoiFeaturesWhenPresent)
   }
 }
 
+TEST(RgbdOdometry, RoiDetectedAheadIsUsedOnlyForItsFrame)
+{
+  auto o = baseOptions();
+  o.mode = EFrontEndMode::RoiBig;
+  CRgbdOdometry odo(o);
+  odo.setInitialPose(trajectoryPose(0));
+  const auto f0 = renderRoom(trajectoryPose(0), 110, 0, 0.0);
+  const auto f1 = renderRoom(trajectoryPose(1), 110, 1, 0.1);
+  // detectRoiAhead gives what process() would find itself.
+  const auto ahead = odo.detectRoiAhead(f0);
+  EXPECT_EQ(ahead.frameIndex, f0.index);
+  const auto r0 = odo.process(f0, ahead);
+  ASSERT_TRUE(ahead.roi.has_value());
+  ASSERT_TRUE(r0.roi.has_value());
+  EXPECT_EQ(*r0.roi, ahead.roi->box);
+  // A hint is taken as given for its frame (here a made-up box)...
+  auto forged = odo.detectRoiAhead(f1);
+  ASSERT_TRUE(forged.roi.has_value());
+  forged.roi->box = cv::Rect(10, 20, 300, 200);
+  CRgbdOdometry other(o);
+  other.setInitialPose(trajectoryPose(0));
+  other.process(f0);
+  EXPECT_EQ(*other.process(f1, forged).roi, cv::Rect(10, 20, 300, 200));
+  // ...and ignored for any other frame.
+  auto stale = ahead;  // frame 0's
+  stale.roi->box = cv::Rect(10, 20, 300, 200);
+  const auto r1 = odo.process(f1, stale);
+  ASSERT_TRUE(r1.roi.has_value());
+  EXPECT_NE(*r1.roi, cv::Rect(10, 20, 300, 200));
+  EXPECT_EQ(*r1.roi, odo.detectRoiAhead(f1).roi->box);
+}
+
 TEST(RgbdOdometry, StrictRoiLosesFramesWithoutRoi)
 {
   auto o = baseOptions();
