@@ -500,7 +500,11 @@ std::string CReportWriter::render(const std::vector<TRunRecord>& records) const
     md << "## Speed (Test 2 runs, measured in this benchmark)\n\n"
           "fps = frames / wall time of the app (summary.json); ratio = sum of this version's "
           "wall time over the sum of the traditional version's, on the sequences where both "
-          "succeeded; peak memory = largest peak RSS (app's figure, else wait4's).\n\n"
+          "succeeded; peak memory = largest peak RSS (app's figure, else wait4's). Each figure "
+          "comes from one run: on a shared machine single runs vary by 10-20 %, so ratios "
+          "within that band are not differences; `roislam-stage-bench --paired-passes 2 "
+          "--benchmark_filter=FrontEnd` interleaves the versions frame by frame for a robust "
+          "ratio.\n\n"
           "| version | extractor | fps | wall time ratio vs traditional | peak RSS (MiB) "
           "|\n|---|---|---|---|---|\n";
     const auto feats = featuresOf(t2);
