@@ -12,6 +12,7 @@
 #include <opencv2/calib3d.hpp>
 #include <opencv2/imgproc.hpp>
 #include <stdexcept>
+#include <tuple>
 
 #include "CDepthIcp.h"
 #include "FeatureLifting.h"
@@ -40,6 +41,29 @@ TInformation66 toMrpt(const Matrix6d& m)
     for (int c = 0; c < 6; ++c)
       o(r, c) = m(r, c);
   return o;
+}
+
+/** A registration (features or ICP; T maps the current frame into the
+ *  reference) as an MRPT relative pose and its information in MRPT's
+ *  (x, y, z, yaw, pitch, roll) order. */
+template <class TResult>
+std::pair<mrpt::poses::CPose3D, TInformation66> toMrptEstimate(const TResult& r)
+{
+  const mrpt::poses::CPose3D pose = detail::toPose(r.T);
+  return {pose, toMrpt(detail::tangentInfoToYpr(r.information, pose))};
+}
+
+/** Stage 1 on one image of a frame, timed (CRgbdOdometry::TRoiHint). */
+CRgbdOdometry::TRoiHint detectTimed(
+    const roi::CRoiDetector& detector, const io::TRGBDFrame& frame, const cv::Mat& image)
+{
+  const auto t0 = Clock::now();
+  CRgbdOdometry::TRoiHint h;
+  h.frameIndex = frame.index;
+  h.timestamp = frame.timestamp;
+  h.roi = detector.detect(image);
+  h.ms = msSince(t0);
+  return h;
 }
 
 TInformation66 scaledIdentity(double s)
@@ -176,8 +200,7 @@ std::optional<TRelativePoseEstimate> CRgbdOdometry::registerKeyframes(
   if (!r)
     return std::nullopt;
   TRelativePoseEstimate e;
-  e.pose = detail::toPose(r->T);
-  e.information = toMrpt(detail::tangentInfoToYpr(r->information, e.pose));
+  std::tie(e.pose, e.information) = toMrptEstimate(*r);
   e.matches = r->matches;
   e.inliers = r->inliers;
   e.rmse_m = r->rmse3d;
@@ -187,13 +210,7 @@ std::optional<TRelativePoseEstimate> CRgbdOdometry::registerKeyframes(
 
 CRgbdOdometry::TRoiHint CRgbdOdometry::detectRoiAhead(const io::TRGBDFrame& frame) const
 {
-  const auto t0 = Clock::now();
-  TRoiHint h;
-  h.frameIndex = frame.index;
-  h.timestamp = frame.timestamp;
-  h.roi = m_impl->roiDetector.detect(frame.rgb);
-  h.ms = msSince(t0);
-  return h;
+  return detectTimed(m_impl->roiDetector, frame, frame.rgb);
 }
 
 TFrameResult CRgbdOdometry::process(
@@ -245,18 +262,13 @@ TFrameResult CRgbdOdometry::process(
   // detected on a second thread while the features are extracted, so that on
   // a multi-core CPU the ROI costs no wall time. Features are extracted once,
   // on the whole image.
-  std::future<std::pair<std::optional<roi::TRoi>, double>> roiJob;
+  std::future<TRoiHint> roiJob;
   const bool useHint = isRoiMode(o.mode) && roiHint && roiHint->frameIndex == frame.index &&
                        roiHint->timestamp == frame.timestamp;
   if (isRoiMode(o.mode) && !useHint)
     roiJob = std::async(
         std::launch::async,
-        [&I, &grey]()
-        {
-          const auto tr = Clock::now();
-          auto roi = I.roiDetector.detect(grey);
-          return std::make_pair(std::move(roi), msSince(tr));
-        });
+        [&I, &frame, &grey]() { return detectTimed(I.roiDetector, frame, grey); });
   // roi_feature_cap = roi: every detection now, the cap per region below.
   const bool capInRoi = isRoiMode(o.mode) && o.roi_feature_cap == "roi";
   auto t0 = Clock::now();
@@ -264,10 +276,10 @@ TFrameResult CRgbdOdometry::process(
   res.times.extract_ms = msSince(t0);
   if (roiJob.valid() || useHint)
   {
-    auto [roi, ms] = useHint ? std::make_pair(roiHint->roi, roiHint->ms) : roiJob.get();
-    res.times.roi_ms = ms;
-    if (roi)
-      res.roi = roi->box;
+    const TRoiHint h = useHint ? *roiHint : roiJob.get();
+    res.times.roi_ms = h.ms;
+    if (h.roi)
+      res.roi = h.roi->box;
     else
       ++m_stats.noRoi;
   }
@@ -461,8 +473,7 @@ TFrameResult CRgbdOdometry::process(
   if (reg)
   {
     res.method = featureMethod(o.mode, fallback);
-    res.relativePose = detail::toPose(reg->T);
-    res.relativeInformation = toMrpt(detail::tangentInfoToYpr(reg->information, res.relativePose));
+    std::tie(res.relativePose, res.relativeInformation) = toMrptEstimate(*reg);
     res.inliers = reg->inliers;
   }
   else if (o.strict_roi && isRoiMode(o.mode))
@@ -482,9 +493,7 @@ TFrameResult CRgbdOdometry::process(
       if (ir)
       {
         res.method = ETrackingMethod::DepthIcp;
-        res.relativePose = detail::toPose(ir->T);
-        res.relativeInformation =
-            toMrpt(detail::tangentInfoToYpr(ir->information, res.relativePose));
+        std::tie(res.relativePose, res.relativeInformation) = toMrptEstimate(*ir);
         res.inliers = ir->pairs;
         done = true;
       }
@@ -531,8 +540,7 @@ TFrameResult CRgbdOdometry::process(
     if (const auto r = registerSets(
             m_keyframes[ref], full, I.matcher, I.ransac, I.pinhole, o, nullptr, nullptr, nullptr))
     {
-      res.relativePose = detail::toPose(r->T);
-      res.relativeInformation = toMrpt(detail::tangentInfoToYpr(r->information, res.relativePose));
+      std::tie(res.relativePose, res.relativeInformation) = toMrptEstimate(*r);
       res.inliers = r->inliers;
       world = m_keyframes[ref].pose + res.relativePose;
       res.pose = world;
@@ -562,8 +570,7 @@ TFrameResult CRgbdOdometry::process(
     TKeyframeConstraint c;
     c.fromKeyframe = id;
     c.toKeyframe = first.toKeyframe;
-    c.relativePose = detail::toPose(r->T);
-    c.information = toMrpt(detail::tangentInfoToYpr(r->information, c.relativePose));
+    std::tie(c.relativePose, c.information) = toMrptEstimate(*r);
     c.method = featureMethod(o.mode, fallback);
     c.inliers = r->inliers;
     res.constraints.push_back(c);

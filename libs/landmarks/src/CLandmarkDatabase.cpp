@@ -102,7 +102,7 @@ const CLandmark& CLandmarkDatabase::landmark(int32_t id) const
 void CLandmarkDatabase::clear()
 {
   m_landmarks.clear();
-  m_voteIndexValid = false;
+  m_voteIndex.reset();
 }
 
 int32_t CLandmarkDatabase::add(CLandmark landmark)
@@ -113,7 +113,7 @@ int32_t CLandmarkDatabase::add(CLandmark landmark)
         " features; cannot add " + features::toString(landmark.features.type));
   landmark.id = static_cast<int32_t>(m_landmarks.size());
   m_landmarks.push_back(std::move(landmark));
-  m_voteIndexValid = false;
+  m_voteIndex.reset();
   return m_landmarks.back().id;
 }
 
@@ -125,23 +125,21 @@ void CLandmarkDatabase::addSighting(int32_t id, const TLandmarkSighting& sightin
 
 void CLandmarkDatabase::rebuildVoteIndex() const
 {
-  m_voteSet = features::TFeatureSet();
+  // The index needs only the stacked descriptors (it keeps a reference).
+  features::TFeatureSet all;
   m_voteOwner.clear();
   std::vector<cv::Mat> rows;
   for (const auto& lm : m_landmarks)
   {
     if (lm.features.empty())
       continue;
-    m_voteSet.type = lm.features.type;
-    m_voteSet.keypoints.insert(
-        m_voteSet.keypoints.end(), lm.features.keypoints.begin(), lm.features.keypoints.end());
+    all.type = lm.features.type;
     m_voteOwner.insert(m_voteOwner.end(), lm.features.size(), lm.id);
     rows.push_back(lm.features.descriptors);
   }
   if (!rows.empty())
-    cv::vconcat(rows, m_voteSet.descriptors);
-  m_voteIndex = std::make_shared<matching::CFeatureIndex>(m_voteMatcher.options(), m_voteSet);
-  m_voteIndexValid = true;
+    cv::vconcat(rows, all.descriptors);
+  m_voteIndex = std::make_shared<matching::CFeatureIndex>(m_voteMatcher.options(), all);
 }
 
 std::vector<int32_t> CLandmarkDatabase::candidates(
@@ -160,7 +158,7 @@ std::vector<int32_t> CLandmarkDatabase::candidates(
   if (maxCandidates == 0 || pool.size() <= maxCandidates)
     return pool;
 
-  if (!m_voteIndexValid)
+  if (!m_voteIndex)
     rebuildVoteIndex();
   std::vector<int> votes(m_landmarks.size(), 0);
   for (const auto& m : m_voteIndex->match(roiFeatures))
@@ -276,7 +274,7 @@ void CLandmarkDatabase::serializeFrom(mrpt::serialization::CArchive& in, uint8_t
         if (loaded[i].id != static_cast<int32_t>(i))
           throw std::runtime_error("landmark ids in archive are not 0..n-1");
       m_landmarks = std::move(loaded);
-      m_voteIndexValid = false;
+      m_voteIndex.reset();
       break;
     }
     default:

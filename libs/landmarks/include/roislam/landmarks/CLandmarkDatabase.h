@@ -147,12 +147,9 @@ class CLandmarkDatabase : public mrpt::serialization::CSerializable
   matching::CHomographyLocator m_locator;
   std::vector<CLandmark> m_landmarks;
 
-  /** All landmark descriptors stacked, and the landmark owning each row;
-   *  rebuilt lazily after add(). */
-  mutable features::TFeatureSet m_voteSet;
+  /** Search structure over all landmark descriptors stacked, and the
+   *  landmark owning each row; built lazily, null after add()/clear()/load. */
   mutable std::vector<int32_t> m_voteOwner;
-  /** Search structure over m_voteSet, built with it. */
   mutable std::shared_ptr<matching::CFeatureIndex> m_voteIndex;
-  mutable bool m_voteIndexValid = false;
 };
 }  // namespace roislam::landmarks
