@@ -46,28 +46,56 @@ TEST(OdometrySynthetic, TexturedTraditionalAndRoi)
 TEST(OdometrySynthetic, WeakRoiRegistrationsFallBackToTheWholeImage)
 {
   ROISLAM_REQUIRE_SYNTHETIC(dir, "textured");
-  auto o = orb(EFrontEndMode::RoiBig);
-  // More inliers than any ROI registration can have: every frame whose ROI
-  // holds only part of the image's features is tracked on the whole image.
-  o.min_roi_inliers = 100000;
-  const auto s = runOdometry(dir, o);
-  std::size_t partial = 0;
-  for (std::size_t k = 1; k < s.results.size(); ++k)
+  // Two gates, each set so that no ROI registration can pass it: more
+  // inliers than a ROI can have, or a pose determined better than any
+  // registration can be. Every frame whose ROI holds only part of the image's
+  // features is then tracked on the whole image. With both gates off the ROI
+  // tracks most of those frames itself.
+  struct TCase
   {
-    const auto& r = s.results[k];
-    if (r.method != ETrackingMethod::RoiFeatures && r.method != ETrackingMethod::FullImageFallback)
-      continue;
-    if (r.roiFeatures < r.featuresWithDepth)
+    const char* name;
+    int minInliers;
+    double maxSigmaM;
+    bool expectFallback;
+  };
+  for (const TCase c :
+       {TCase{"min_roi_inliers", 100000, 0.0, true}, TCase{"max_roi_sigma_m", 0, 1e-9, true},
+        TCase{"off", 0, 0.0, false}})
+  {
+    SCOPED_TRACE(c.name);
+    auto o = orb(EFrontEndMode::RoiBig);
+    o.min_roi_inliers = c.minInliers;
+    o.max_roi_sigma_m = c.maxSigmaM;
+    const auto s = runOdometry(dir, o);
+    std::size_t partial = 0, roiTracked = 0;
+    for (std::size_t k = 1; k < s.results.size(); ++k)
     {
-      ++partial;
-      EXPECT_EQ(r.method, ETrackingMethod::FullImageFallback) << "frame " << k;
-      EXPECT_EQ(r.trackingFeatures, r.featuresWithDepth) << "frame " << k;
+      const auto& r = s.results[k];
+      if (r.method != ETrackingMethod::RoiFeatures &&
+          r.method != ETrackingMethod::FullImageFallback)
+        continue;
+      if (r.roiFeatures < r.featuresWithDepth &&
+          static_cast<int>(r.roiFeatures) >= o.min_roi_features)
+      {
+        ++partial;
+        if (r.method == ETrackingMethod::RoiFeatures)
+          ++roiTracked;
+        if (c.expectFallback)
+        {
+          EXPECT_EQ(r.method, ETrackingMethod::FullImageFallback) << "frame " << k;
+          EXPECT_EQ(r.trackingFeatures, r.featuresWithDepth) << "frame " << k;
+        }
+      }
     }
+    EXPECT_GT(partial, s.results.size() / 2);
+    if (!c.expectFallback)
+    {
+      EXPECT_GT(roiTracked, partial / 2);
+    }
+    EXPECT_EQ(s.stats.lost, 0u);
+    ASSERT_TRUE(s.ate.has_value());
+    EXPECT_LT(*s.ate, 0.05);
   }
-  EXPECT_GT(partial, s.results.size() / 2);
-  EXPECT_EQ(s.stats.lost, 0u);
-  ASSERT_TRUE(s.ate.has_value());
-  EXPECT_LT(*s.ate, 0.05);
 }
 
 TEST(OdometrySynthetic, FeaturelessTrackedFromDepth)

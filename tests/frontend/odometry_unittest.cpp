@@ -89,6 +89,28 @@ TEST(RgbdOdometry, TracksTexturedRoomWithFeatures)
   EXPECT_THROW(odo.keyframe(1000), std::out_of_range);
 }
 
+TEST(RgbdOdometry, PoorlyDeterminedRegistrationsAreCombinedWithDepthIcp)
+{
+  // Gate below any registration's uncertainty: every feature registration is
+  // combined with ICP and must stay as accurate; gate off: none is.
+  for (const double gate : {1e-9, 0.0})
+  {
+    SCOPED_TRACE(gate);
+    auto o = baseOptions();
+    o.icp_refine_sigma_m = gate;
+    CRgbdOdometry odo(o);
+    const auto res = run(odo, 100, 10);
+    for (std::size_t k = 1; k < res.size(); ++k)
+    {
+      ASSERT_EQ(res[k].method, ETrackingMethod::Features) << "frame " << k;
+      EXPECT_EQ(res[k].icpRefined, gate > 0) << "frame " << k;
+      EXPECT_LT(transErr(*res[k].pose, trajectoryPose(k)), 0.02) << "frame " << k;
+      EXPECT_LT(rotErrDeg(*res[k].pose, trajectoryPose(k)), 0.5) << "frame " << k;
+    }
+    EXPECT_EQ(odo.stats().icpRefined, gate > 0 ? res.size() - 1 : 0u);
+  }
+}
+
 TEST(RgbdOdometry, RegisterKeyframesAndSetKeyframePose)
 {
   auto o = baseOptions();
@@ -242,6 +264,9 @@ TEST(RgbdOdometry, OptionsIniRoundTripAndErrors)
   o.keyframe_translation_m = 0.2;
   o.recent_keyframes = 1;
   o.min_roi_inliers = 35;
+  o.max_roi_sigma_m = 0.004;
+  o.max_roi_sigma_deg = 0.3;
+  o.icp_refine_sigma_m = 0.02;
   o.keyframe_full_features = false;
   o.keyframe_full_registration = false;
   mrpt::config::CConfigFileMemory cfg;
@@ -252,6 +277,9 @@ TEST(RgbdOdometry, OptionsIniRoundTripAndErrors)
   EXPECT_DOUBLE_EQ(l.keyframe_translation_m, 0.2);
   EXPECT_EQ(l.recent_keyframes, 1);
   EXPECT_EQ(l.min_roi_inliers, 35);
+  EXPECT_DOUBLE_EQ(l.max_roi_sigma_m, 0.004);
+  EXPECT_DOUBLE_EQ(l.max_roi_sigma_deg, 0.3);
+  EXPECT_DOUBLE_EQ(l.icp_refine_sigma_m, 0.02);
   EXPECT_FALSE(l.keyframe_full_features);
   EXPECT_FALSE(l.keyframe_full_registration);
   EXPECT_EQ(l.extractor.max_features, 500);
@@ -272,6 +300,22 @@ TEST(RgbdOdometry, OptionsIniRoundTripAndErrors)
   bad2.write("FrontEnd", "ransac_threshold_m", -1.0);
   CRgbdOdometry::TOptions b2;
   EXPECT_THROW(b2.loadFromConfigFile(bad2, "FrontEnd"), std::invalid_argument);
+  for (const char* key : {"max_roi_sigma_m", "max_roi_sigma_deg", "icp_refine_sigma_m"})
+  {
+    mrpt::config::CConfigFileMemory bad3;
+    bad3.write("FrontEnd", key, -0.1);
+    try
+    {
+      CRgbdOdometry::TOptions b3;
+      b3.loadFromConfigFile(bad3, "FrontEnd");
+      FAIL() << "expected an exception for " << key;
+    }
+    catch (const std::invalid_argument& e)
+    {
+      EXPECT_NE(std::string(e.what()).find(std::string("[FrontEnd] ") + key), std::string::npos)
+          << e.what();
+    }
+  }
 
   CRgbdOdometry odo;
   roislam::io::TRGBDFrame empty;

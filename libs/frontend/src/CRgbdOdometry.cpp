@@ -2,6 +2,7 @@
 
 #include <mrpt/config/CConfigFileBase.h>
 #include <roislam/common/IniErrors.h>
+#include <roislam/frontend/PoseUncertainty.h>
 #include <roislam/matching/CRigidTransformRansac.h>
 
 #include <algorithm>
@@ -86,6 +87,29 @@ ETrackingMethod featureMethod(EFrontEndMode mode, bool fallback)
   if (!isRoiMode(mode))
     return ETrackingMethod::Features;
   return fallback ? ETrackingMethod::FullImageFallback : ETrackingMethod::RoiFeatures;
+}
+
+bool isWeakRoiRegistration(const TRegistration& r, const CRgbdOdometry::TOptions& o)
+{
+  if (static_cast<int>(r.inliers) < o.min_roi_inliers)
+    return true;
+  if (o.max_roi_sigma_m <= 0 && o.max_roi_sigma_deg <= 0)
+    return false;
+  const auto s = worstSigmas(toMrptEstimate(r).second);
+  if (!s)
+    return true;
+  return (o.max_roi_sigma_m > 0 && s->translation_m > o.max_roi_sigma_m) ||
+         (o.max_roi_sigma_deg > 0 && s->rotation_rad * 180.0 / M_PI > o.max_roi_sigma_deg);
+}
+
+/** a's worst translation direction is less determined than b's. */
+bool lessDetermined(const TRegistration& a, const TRegistration& b)
+{
+  const auto sa = worstSigmas(toMrptEstimate(a).second);
+  const auto sb = worstSigmas(toMrptEstimate(b).second);
+  if (!sa || !sb)
+    return !sa && sb;
+  return sa->translation_m > sb->translation_m;
 }
 
 bool isFeatureMethod(ETrackingMethod m)
@@ -338,6 +362,8 @@ TFrameResult CRgbdOdometry::process(
   auto finish = [&]()
   {
     res.times.total_ms = msSince(tStart);
+    if (res.icpRefined)
+      ++m_stats.icpRefined;
     switch (res.method)
     {
       case ETrackingMethod::Initial:
@@ -444,9 +470,9 @@ TFrameResult CRgbdOdometry::process(
     }
   };
   track(cur);
-  // A ROI registration on few inliers is kept only when nothing better exists.
-  const bool weakRoi =
-      reg && isRoiMode(o.mode) && !fallback && static_cast<int>(reg->inliers) < o.min_roi_inliers;
+  // A ROI registration on few inliers, or one that leaves the pose poorly
+  // determined, is kept only when nothing better exists.
+  const bool weakRoi = reg && isRoiMode(o.mode) && !fallback && isWeakRoiRegistration(*reg, o);
   if ((!reg || weakRoi) && isRoiMode(o.mode) && !o.strict_roi && !fallback &&
       full.features.size() > cur.features.size())
   {
@@ -455,7 +481,10 @@ TFrameResult CRgbdOdometry::process(
     const std::size_t roiRef = ref;
     const std::size_t roiMatches = res.matches;
     track(full);
-    if (!reg)
+    // Kept when the whole image does not register, or registers but leaves
+    // the pose even less determined (a blurred frame's few full-image
+    // inliers can be worse than a sharp ROI's).
+    if (!reg || (roiReg && lessDetermined(*reg, *roiReg)))
     {
       reg = roiReg;
       ref = roiRef;
@@ -470,6 +499,26 @@ TFrameResult CRgbdOdometry::process(
     }
   }
 
+  if (reg && o.icp_refine_sigma_m > 0 && I.icpMaps.count(ref))
+  {
+    // A feature registration that leaves the pose poorly determined (blur,
+    // few inliers, features crowded in one region) is combined with depth
+    // ICP against the same keyframe, started from it: the depth geometry
+    // constrains exactly the directions the few features do not.
+    const auto sg = worstSigmas(toMrptEstimate(*reg).second);
+    if (!sg || sg->translation_m > o.icp_refine_sigma_m)
+    {
+      const auto ti = Clock::now();
+      const auto ir = I.icp->align(I.icpMaps[ref], I.icp->buildMap(depth), reg->T);
+      if (ir)
+      {
+        reg->T = detail::fuseLeft(reg->T, reg->information, ir->T, ir->information);
+        reg->information += ir->information;
+        res.icpRefined = true;
+      }
+      res.times.icp_ms += msSince(ti);
+    }
+  }
   if (reg)
   {
     res.method = featureMethod(o.mode, fallback);

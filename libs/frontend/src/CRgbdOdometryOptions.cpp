@@ -76,6 +76,8 @@ void CRgbdOdometry::TOptions::loadFromConfigFile(
   strict_roi = c.read_bool(s, "strict_roi", strict_roi);
   min_roi_features = c.read_int(s, "min_roi_features", min_roi_features);
   min_roi_inliers = c.read_int(s, "min_roi_inliers", min_roi_inliers);
+  max_roi_sigma_m = c.read_double(s, "max_roi_sigma_m", max_roi_sigma_m);
+  max_roi_sigma_deg = c.read_double(s, "max_roi_sigma_deg", max_roi_sigma_deg);
   roi_feature_cap = c.read_string(s, "roi_feature_cap", roi_feature_cap);
   min_inliers = c.read_int(s, "min_inliers", min_inliers);
   keyframe_translation_m = c.read_double(s, "keyframe_translation_m", keyframe_translation_m);
@@ -93,6 +95,7 @@ void CRgbdOdometry::TOptions::loadFromConfigFile(
   max_depth_m = c.read_double(s, "max_depth_m", max_depth_m);
   depth_discontinuity_m = c.read_double(s, "depth_discontinuity_m", depth_discontinuity_m);
   icp_fallback = c.read_bool(s, "icp_fallback", icp_fallback);
+  icp_refine_sigma_m = c.read_double(s, "icp_refine_sigma_m", icp_refine_sigma_m);
   icp_decimation = c.read_int(s, "icp_decimation", icp_decimation);
   icp_max_iterations = c.read_int(s, "icp_max_iterations", icp_max_iterations);
   icp_max_distance_m = c.read_double(s, "icp_max_distance_m", icp_max_distance_m);
@@ -116,6 +119,8 @@ void CRgbdOdometry::TOptions::saveToConfigFile(
   c.write(s, "strict_roi", strict_roi);
   c.write(s, "min_roi_features", min_roi_features);
   c.write(s, "min_roi_inliers", min_roi_inliers);
+  c.write(s, "max_roi_sigma_m", max_roi_sigma_m);
+  c.write(s, "max_roi_sigma_deg", max_roi_sigma_deg);
   c.write(s, "roi_feature_cap", roi_feature_cap);
   c.write(s, "min_inliers", min_inliers);
   c.write(s, "keyframe_translation_m", keyframe_translation_m);
@@ -132,6 +137,7 @@ void CRgbdOdometry::TOptions::saveToConfigFile(
   c.write(s, "max_depth_m", max_depth_m);
   c.write(s, "depth_discontinuity_m", depth_discontinuity_m);
   c.write(s, "icp_fallback", icp_fallback);
+  c.write(s, "icp_refine_sigma_m", icp_refine_sigma_m);
   c.write(s, "icp_decimation", icp_decimation);
   c.write(s, "icp_max_iterations", icp_max_iterations);
   c.write(s, "icp_max_distance_m", icp_max_distance_m);
@@ -151,6 +157,10 @@ void CRgbdOdometry::TOptions::validate() const
     common::throwBadIniKey(s, "min_roi_features", "must be >= 3");
   if (min_roi_inliers < 0)
     common::throwBadIniKey(s, "min_roi_inliers", "must be >= 0");
+  if (!(max_roi_sigma_m >= 0))
+    common::throwBadIniKey(s, "max_roi_sigma_m", "must be >= 0");
+  if (!(max_roi_sigma_deg >= 0))
+    common::throwBadIniKey(s, "max_roi_sigma_deg", "must be >= 0");
   if (roi_feature_cap != "image" && roi_feature_cap != "roi")
     common::throwBadIniKey(
         s, "roi_feature_cap", "unknown value '" + roi_feature_cap + "' (expected image or roi)");
@@ -180,6 +190,8 @@ void CRgbdOdometry::TOptions::validate() const
     common::throwBadIniKey(s, "max_depth_m", "must be > min_depth_m");
   if (!(depth_discontinuity_m >= 0))
     common::throwBadIniKey(s, "depth_discontinuity_m", "must be >= 0");
+  if (!(icp_refine_sigma_m >= 0))
+    common::throwBadIniKey(s, "icp_refine_sigma_m", "must be >= 0");
   if (icp_decimation < 1)
     common::throwBadIniKey(s, "icp_decimation", "must be >= 1");
   if (icp_max_iterations < 1)

@@ -67,4 +67,17 @@ Matrix6d tangentInfoToYpr(const Matrix6d& H, const mrpt::poses::CPose3D& T)
   Matrix6d I = A.transpose() * H * A;
   return 0.5 * (I + I.transpose());
 }
+TRigid fuseLeft(const TRigid& a, const Matrix6d& Ha, const TRigid& b, const Matrix6d& Hb)
+{
+  // b = exp(d) a with d = (v, w): Exp(w) = Rb Ra^T, v = tb - Exp(w) ta.
+  const Eigen::Matrix3d dR = b.R * a.R.transpose();
+  const Eigen::AngleAxisd aa(dR);
+  Vector6d d;
+  d.head<3>() = b.t - dR * a.t;
+  d.tail<3>() = aa.angle() * aa.axis();
+  const Vector6d f = (Ha + Hb).ldlt().solve(Hb * d);
+  if (!f.allFinite())
+    return a;
+  return applyLeft(f, a);
+}
 }  // namespace roislam::frontend::detail

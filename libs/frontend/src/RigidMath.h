@@ -37,6 +37,10 @@ mrpt::poses::CPose3D toPose(const TRigid& T);
  *  derivative at delta = 0 is [I, -[x']_x]. */
 TRigid applyLeft(const Vector6d& delta, const TRigid& T);
 
+/** Information-weighted mean of two estimates of one motion, in the left
+ *  perturbation around `a`: delta = (Ha + Hb)^-1 Hb log(b a^-1). */
+TRigid fuseLeft(const TRigid& a, const Matrix6d& Ha, const TRigid& b, const Matrix6d& Hb);
+
 /** Information H of delta (left perturbation of T, as in applyLeft) ->
  *  information of (x, y, z, yaw, pitch, roll) of T (CPose3DPDFGaussianInf). */
 Matrix6d tangentInfoToYpr(const Matrix6d& H, const mrpt::poses::CPose3D& T);

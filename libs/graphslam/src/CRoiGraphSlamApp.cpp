@@ -2,6 +2,7 @@
 #include <mrpt/system/CTicTac.h>
 #include <octomap/OcTree.h>
 #include <roislam/evaluation/CTrajectoryEvaluator.h>
+#include <roislam/frontend/PoseUncertainty.h>
 #include <roislam/graphslam/CKeyframeERD.h>
 #include <roislam/graphslam/CKeyframeNRD.h>
 #include <roislam/graphslam/CRoiGraphSlamApp.h>
@@ -303,7 +304,8 @@ CRoiGraphSlamApp::TSummary CRoiGraphSlamApp::run()
     std::ostringstream csv;
     csv << "index,timestamp,method,features,features_with_depth,roi_features,tracking_features,"
            "matches,inliers,roi_x,roi_y,roi_w,roi_h,keyframe,reference_keyframe,roi_ms,"
-           "extract_ms,lift_ms,match_ms,ransac_ms,icp_ms,keyframe_ms,frontend_ms,backend_ms\n";
+           "extract_ms,lift_ms,match_ms,ransac_ms,icp_ms,keyframe_ms,frontend_ms,backend_ms,"
+           "sigma_t_mm,sigma_r_deg,icp_refined\n";
     csv << std::setprecision(6) << std::fixed;
     for (const auto& r : records)
     {
@@ -319,7 +321,16 @@ CRoiGraphSlamApp::TSummary CRoiGraphSlamApp::run()
       csv << (f.isNewKeyframe ? std::to_string(f.newKeyframeId) : std::string()) << ","
           << f.referenceKeyframe << "," << t.roi_ms << "," << t.extract_ms << "," << t.lift_ms
           << "," << t.match_ms << "," << t.ransac_ms << "," << t.icp_ms << "," << t.keyframe_ms
-          << "," << t.total_ms << "," << r.backendMs << "\n";
+          << "," << t.total_ms << "," << r.backendMs << ",";
+      // The registration's worst-case 1-sigma (largest axis of the marginal
+      // covariance): shows how well a (small) ROI constrains the pose.
+      const auto sd = frontend::worstSigmas(f.relativeInformation);
+      if (sd && f.method != frontend::ETrackingMethod::Initial &&
+          f.method != frontend::ETrackingMethod::Lost)
+        csv << 1e3 * sd->translation_m << "," << sd->rotation_rad * 180.0 / M_PI << ",";
+      else
+        csv << ",,";
+      csv << (f.icpRefined ? 1 : 0) << "\n";
     }
     writeTextFile(out + "frames.csv", csv.str());
   }
@@ -419,10 +430,16 @@ CRoiGraphSlamApp::TSummary CRoiGraphSlamApp::run()
   j["tracked_frames"] = s.trackedFrames;
   j["fallback_frames"] = s.fallbackFrames;
   j["lost_frames"] = s.lostFrames;
-  j["tracking"] = {{"initial", st.initial},    {"features", st.features},
-                   {"roi", st.roiFeatures},    {"full_image_fallback", st.fullImageFallback},
-                   {"depth_icp", st.depthIcp}, {"constant_velocity", st.constantVelocity},
-                   {"lost", st.lost},          {"no_roi", st.noRoi}};
+  j["tracking"] = {
+      {"initial", st.initial},
+      {"features", st.features},
+      {"roi", st.roiFeatures},
+      {"full_image_fallback", st.fullImageFallback},
+      {"depth_icp", st.depthIcp},
+      {"constant_velocity", st.constantVelocity},
+      {"lost", st.lost},
+      {"no_roi", st.noRoi},
+      {"icp_refined", st.icpRefined}};
   j["failed"] = s.failed;
   j["wall_s"] = s.wallS;
   j["fps"] = s.fps;

@@ -39,6 +39,16 @@
  *  - min_roi_inliers          int >= 0 (0 = off): a ROI registration with
  *                             fewer inliers is replaced by a whole-image one
  *                             when that registers (counted as fallback)
+ *  - max_roi_sigma_m          [m] >= 0 (0.005; 0 = off): a ROI registration
+ *                             whose worst-determined translation direction
+ *                             has a larger 1-sigma (PoseUncertainty.h) is
+ *                             replaced by a whole-image one when that
+ *                             registers (counted as fallback). Features
+ *                             crowded in a small ROI leave a rotation/
+ *                             translation ambiguity that many inliers do not
+ *                             reveal; 5 mm keeps a frame's 3-sigma within the
+ *                             1.5 cm ATE aimed at
+ *  - max_roi_sigma_deg        [deg] >= 0 (0 = off): the same on rotation
  *  - roi_feature_cap          image|roi (image): ROI modes, what
  *                             [FeatureExtractor] max_features caps. image: the
  *                             N strongest of the whole image, the ROI uses
@@ -66,6 +76,11 @@
  *  - depth_discontinuity_m    [m] >= 0 (0.05): skip keypoints whose 3x3 depth
  *                             neighbourhood spans more than this * depth (0 = off)
  *  - icp_fallback             bool (true): depth ICP when features fail
+ *  - icp_refine_sigma_m       [m] >= 0 (0.01; 0 = off): a feature
+ *                             registration whose worst translation 1-sigma
+ *                             (PoseUncertainty.h) exceeds this is combined
+ *                             (information-weighted) with depth ICP against
+ *                             the same keyframe, started from it
  *  - icp_decimation           int >= 1 (4): ICP uses every n-th pixel/row
  *  - icp_max_iterations       int >= 1 (15)
  *  - icp_max_distance_m       [m] > 0 (0.10): correspondence gate
@@ -142,6 +157,8 @@ class CRgbdOdometry : public mrpt::system::COutputLogger
     bool strict_roi = false;
     int min_roi_features = 20;
     int min_roi_inliers = 0;
+    double max_roi_sigma_m = 0.005;
+    double max_roi_sigma_deg = 0;
     std::string roi_feature_cap = "image";
     int min_inliers = 15;
     double keyframe_translation_m = 0.10;
@@ -158,6 +175,7 @@ class CRgbdOdometry : public mrpt::system::COutputLogger
     double max_depth_m = 4.0;
     double depth_discontinuity_m = 0.05;
     bool icp_fallback = true;
+    double icp_refine_sigma_m = 0.01;
     int icp_decimation = 4;
     int icp_max_iterations = 15;
     double icp_max_distance_m = 0.10;
@@ -191,6 +209,8 @@ class CRgbdOdometry : public mrpt::system::COutputLogger
     std::size_t keyframes = 0;
     /** Frames of a ROI mode in which no ROI was detected at all. */
     std::size_t noRoi = 0;
+    /** Feature-tracked frames also combined with depth ICP (icp_refine_sigma_m). */
+    std::size_t icpRefined = 0;
   };
 
   CRgbdOdometry();

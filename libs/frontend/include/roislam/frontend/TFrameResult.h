@@ -120,6 +120,9 @@ struct TFrameResult
 
   /** This frame became a keyframe (id newKeyframeId). */
   bool isNewKeyframe = false;
+  /** A feature registration combined with depth ICP because it left the pose
+   *  poorly determined (TOptions::icp_refine_sigma_m). */
+  bool icpRefined = false;
   std::size_t newKeyframeId = 0;
   /** For a new keyframe (except the first): constraints from the recent
    *  keyframes to it. The first entry is always from referenceKeyframe (the
