@@ -51,11 +51,15 @@
  * Select stages with --benchmark_filter (e.g. 'FrontEnd', 'Extract/orb').
  */
 #include <benchmark/benchmark.h>
+#include <mrpt/config/CConfigFile.h>
 #include <roislam/common/ProcessTuning.h>
+#include <roislam/evaluation/CTrajectoryEvaluator.h>
 #include <roislam/features/CFeatureExtractor.h>
 #include <roislam/frontend/CRgbdOdometry.h>
+#include <roislam/graphslam/CSlamPipeline.h>
 #include <roislam/io/CFrameSource.h>
 #include <roislam/io/CameraPresets.h>
+#include <roislam/io/TumTrajectory.h>
 #include <roislam/matching/CFeatureMatcher.h>
 #include <roislam/matching/CHomographyLocator.h>
 #include <roislam/roi/CRoiDetector.h>
@@ -107,6 +111,7 @@ constexpr int kMatchCap = 600;  // the experiments' feature cap
 struct TBenchData
 {
   std::string source;  // description for the context / table
+  std::string path;    // TUM folder or rawlog the frames came from (empty: synthetic)
   bool synthetic = false;
   std::vector<TRGBDFrame> frames;
   std::vector<cv::Mat> grey;
@@ -158,6 +163,7 @@ void loadRealFrames(TBenchData& d, const std::string& path, std::size_t n)
       throw std::runtime_error(path + ": frames are not 640x480");
     d.frames.push_back(std::move(*f));
   }
+  d.path = path;
   if (d.frames.size() < 2)
     throw std::runtime_error(path + ": fewer than 2 frames");
   d.source = path;
@@ -701,6 +707,130 @@ void printPairedTable(const CCollectingReporter& rep, int passes)
   std::cout << "ratio = cost(traditional) / cost(mode): > 1 means the ROI mode is faster.\n";
 }
 
+/** Paired end-to-end comparison, what roi-graphslam's fps measures: one
+ *  CSlamPipeline per mode, configured by the shipped config/<mode>.ini (600
+ *  features of the benchmarked type), each decoding its own copy of the
+ *  sequence (and in ROI modes detecting the ROI) one frame ahead on a second
+ *  thread, stepped in turn frame by frame (order rotated), timing each step
+ *  plus the wait for its next frame, and the final optimisation. Prints wall
+ *  and process-CPU cost per frame and the cost ratio mode / traditional. */
+void printPairedSlamTable(const CCollectingReporter& rep, int passes)
+{
+  if (rep.frontEnd.empty() || passes <= 0)
+    return;
+  const TBenchData& d = data();
+  if (d.path.empty())
+  {
+    std::cout << "\nPaired end-to-end SLAM cost: skipped (needs a TUM folder or rawlog, not "
+                 "synthetic frames)\n";
+    return;
+  }
+  const EFrontEndMode modes[] = {
+      EFrontEndMode::Traditional, EFrontEndMode::RoiSmall, EFrontEndMode::RoiBig};
+  std::cout << "\nPaired end-to-end SLAM cost (decode + ROI ahead + front end + back end, "
+               "config/<mode>.ini, modes interleaved frame by frame, "
+            << passes << " x " << d.frames.size() << " frames)\n"
+            << std::left << std::setw(12) << "mode" << std::setw(8) << "feature" << std::right
+            << std::setw(8) << "fps" << std::setw(14) << "ms_per_frame" << std::setw(16)
+            << "cost_vs_trad" << std::setw(18) << "cpu_ms_per_frame" << std::setw(20)
+            << "cpu_cost_vs_trad" << std::setw(8) << "ATE_m"
+            << "\n";
+  for (const auto type : {EFeatureType::ORB, EFeatureType::SIFT, EFeatureType::SURF})
+  {
+    std::vector<std::size_t> used;
+    for (std::size_t m = 0; m < 3; ++m)
+      if (rep.frontEnd.count(roislam::frontend::toString(modes[m]) + "/" + toString(type)))
+        used.push_back(m);
+    if (used.empty())
+      continue;
+    double wallMs[3] = {0, 0, 0}, cpuMs[3] = {0, 0, 0};
+    std::size_t frames[3] = {0, 0, 0};
+    std::optional<double> ate[3];
+    for (int pass = 0; pass < passes; ++pass)
+    {
+      std::vector<std::unique_ptr<roislam::graphslam::CSlamPipeline>> pipe(3);
+      for (const std::size_t m : used)
+      {
+        const std::string ini =
+            std::string(ROISLAM_CONFIG_DIR) + "/" + roislam::frontend::toString(modes[m]) + ".ini";
+        if (!fs::exists(ini))
+          throw std::runtime_error(ini + ": no such config");
+        auto cfg =
+            roislam::graphslam::CSlamContext::loadConfig(mrpt::config::CConfigFile(ini), ini);
+        cfg.frontEnd.extractor.feature_type = type;
+        cfg.frontEnd.extractor.max_features = kMatchCap;
+        pipe[m] = std::make_unique<roislam::graphslam::CSlamPipeline>(
+            cfg, roislam::io::CFrameSource::open(d.path));
+        pipe[m]->waitForPrefetch();
+      }
+      bool more = true;
+      for (std::size_t k = 0; more && k < d.frames.size(); ++k)
+        for (std::size_t j = 0; j < used.size(); ++j)
+        {
+          const std::size_t m = used[(j + k) % used.size()];
+          const double cpu0 = processCpuMs();
+          const auto t0 = std::chrono::steady_clock::now();
+          more = pipe[m]->step() && more;
+          pipe[m]->waitForPrefetch();
+          wallMs[m] +=
+              std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0)
+                  .count();
+          cpuMs[m] += processCpuMs() - cpu0;
+        }
+      for (const std::size_t m : used)
+      {
+        const double cpu0 = processCpuMs();
+        const auto t0 = std::chrono::steady_clock::now();
+        pipe[m]->finish();
+        wallMs[m] +=
+            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0)
+                .count();
+        cpuMs[m] += processCpuMs() - cpu0;
+        frames[m] += pipe[m]->records().size();
+        // Same figure as roi-graphslam's: the runs are the app's runs.
+        const auto gt = pipe[m]->source().groundTruthFile();
+        if (gt && fs::exists(*gt))
+        {
+          try
+          {
+            ate[m] = roislam::evaluation::CTrajectoryEvaluator()
+                         .evaluate(roislam::io::loadTumTrajectory(*gt), pipe[m]->trajectory())
+                         .ate.rmse;
+          }
+          catch (const std::exception&)
+          {
+            ate[m].reset();  // too short for the evaluation: no figure
+          }
+        }
+      }
+    }
+    const bool haveTrad = used.front() == 0;
+    for (const std::size_t m : used)
+    {
+      const double n = static_cast<double>(std::max<std::size_t>(frames[m], 1));
+      std::cout << std::left << std::setw(12) << roislam::frontend::toString(modes[m])
+                << std::setw(8) << toString(type) << std::right << std::fixed
+                << std::setprecision(1) << std::setw(8) << 1e3 * n / wallMs[m]
+                << std::setprecision(2) << std::setw(14) << wallMs[m] / n;
+      if (haveTrad)
+        std::cout << std::setw(16) << wallMs[m] / wallMs[0];
+      else
+        std::cout << std::setw(16) << "n/a";
+      std::cout << std::setw(18) << cpuMs[m] / n;
+      if (haveTrad)
+        std::cout << std::setw(20) << cpuMs[m] / cpuMs[0];
+      else
+        std::cout << std::setw(20) << "n/a";
+      if (ate[m])
+        std::cout << std::setprecision(4) << std::setw(8) << *ate[m];
+      else
+        std::cout << std::setw(8) << "n/a";
+      std::cout << "\n";
+    }
+  }
+  std::cout << "cost_vs_trad = cost(mode) / cost(traditional): the ROI modes' target is <= 1.05.\n";
+}
+
 void registerBenchmarks()
 {
   using benchmark::RegisterBenchmark;
@@ -738,12 +868,14 @@ void registerBenchmarks()
 void printUsage()
 {
   benchmark::PrintDefaultHelp();
-  std::cout << "roislam-stage-bench options:\n"
-               "  [--data <TUM folder or .rawlog>]  (default: the shared TUM sequence)\n"
-               "  [--synthetic]                     synthetic frames even if real data exist\n"
-               "  [--frames <n>]                    frames loaded / run (default 20)\n"
-               "  [--cv-threads <n>]                cv::setNumThreads (default OpenCV's)\n"
-               "  [--paired-passes <n>]             paired front-end comparison (default 1)\n";
+  std::cout
+      << "roislam-stage-bench options:\n"
+         "  [--data <TUM folder or .rawlog>]  (default: the shared TUM sequence)\n"
+         "  [--synthetic]                     synthetic frames even if real data exist\n"
+         "  [--frames <n>]                    frames loaded / run (default 20)\n"
+         "  [--cv-threads <n>]                cv::setNumThreads (default OpenCV's)\n"
+         "  [--paired-passes <n>]             paired front-end comparison (default 1)\n"
+         "  [--paired-slam-passes <n>]        paired end-to-end SLAM comparison (default 0)\n";
 }
 }  // namespace
 
@@ -760,6 +892,7 @@ int main(int argc, char** argv)
     std::size_t frames = 20;
     int cvThreads = -1;
     int pairedPasses = 1;
+    int pairedSlamPasses = 0;
     app.add_option("--data", dataPath, "TUM folder or .rawlog (default: the shared TUM sequence)");
     app.add_flag("--synthetic", synthetic, "use synthetic frames even when real data exist");
     app.add_option("--frames", frames, "frames loaded and run through the front end")
@@ -768,6 +901,10 @@ int main(int argc, char** argv)
     app.add_option(
            "--paired-passes", pairedPasses,
            "passes of the interleaved front-end comparison after the benchmarks (0 = off)")
+        ->check(CLI::Range(0, 100));
+    app.add_option(
+           "--paired-slam-passes", pairedSlamPasses,
+           "passes of the interleaved end-to-end SLAM comparison (0 = off)")
         ->check(CLI::Range(0, 100));
     try
     {
@@ -795,6 +932,7 @@ int main(int argc, char** argv)
 
     printFrontEndTable(reporter);
     printPairedTable(reporter, pairedPasses);
+    printPairedSlamTable(reporter, pairedSlamPasses);
     rusage usage{};
     getrusage(RUSAGE_SELF, &usage);
     std::cout << "\npeak memory (ru_maxrss): " << std::fixed << std::setprecision(1)

@@ -7,6 +7,7 @@
 #include <roislam/graphslam/CKeyframeNRD.h>
 #include <roislam/graphslam/CRoiGraphSlamApp.h>
 #include <roislam/graphslam/CRoislamOptionsChecker.h>
+#include <roislam/graphslam/CSlamPipeline.h>
 #include <roislam/io/CFrameSource.h>
 #include <roislam/io/TumTrajectory.h>
 #include <roislam/viz/CSlamSceneBuilder.h>
@@ -29,13 +30,6 @@ namespace roislam::graphslam
 {
 namespace
 {
-/** What frames.csv and the trajectory need of each frame. */
-struct TFrameRecord
-{
-  frontend::TFrameResult result;
-  double backendMs = 0;
-};
-
 std::string firstLine(const std::string& s)
 {
   return s.substr(0, s.find('\n'));
@@ -168,87 +162,29 @@ CRoiGraphSlamApp::TSummary CRoiGraphSlamApp::run()
       features::toString(m_config.frontEnd.extractor.feature_type));
 
   mrpt::system::CTicTac wall;
-  auto ctx = std::make_shared<CSlamContext>(m_config);
-  TGraph graph;
-  CKeyframeNRD nrd(ctx);
-  CKeyframeERD erd(ctx);
-  nrd.setGraphPtr(&graph);
-  erd.setGraphPtr(&graph);
-
-  std::vector<TFrameRecord> records;
-  records.reserve(source->size());
-  std::size_t optimizations = 0;
-  // Decode frame i+1 while frame i is processed; in ROI modes that thread
-  // also detects its ROI (stage 1 then costs the tracking thread nothing).
-  using TRoiHint = frontend::CRgbdOdometry::TRoiHint;
-  const bool roiAhead = frontend::isRoiMode(m_config.frontEnd.mode);
-  auto fetch = [&source, &ctx, roiAhead]()
-  {
-    std::pair<std::optional<io::TRGBDFrame>, std::optional<TRoiHint>> out;
-    out.first = source->next();
-    if (out.first && roiAhead)
-      out.second = ctx->odometry().detectRoiAhead(*out.first);
-    return out;
-  };
-  auto next = std::async(std::launch::async, fetch);
-  for (;;)
-  {
-    auto [frame, hint] = next.get();
-    if (!frame || (m_args.maxFrames && records.size() >= m_args.maxFrames))
-      break;
-    next = std::async(std::launch::async, fetch);
-
-    ctx->setRoiHint(std::move(hint));
-    const bool registered = nrd.processFrame(*frame);
-    mrpt::system::CTicTac be;
-    TFrameRecord rec;
-    rec.result = *ctx->lastResult();
-    if (registered)
-    {
-      const auto rep = erd.processNewKeyframe(rec.result.newKeyframeId);
-      if (rep.loopClosures > 0)
-      {
-        ctx->optimize(graph);
-        ++optimizations;
-      }
-    }
-    rec.backendMs = be.Tac() * 1e3;
-    records.push_back(std::move(rec));
+  const std::size_t total = source->size();
+  CSlamPipeline pipeline(m_config, std::move(source));
+  const auto& records = pipeline.records();
+  while ((!m_args.maxFrames || records.size() < m_args.maxFrames) && pipeline.step())
     if (records.size() % 50 == 0)
       progress(
-          "  frame " + std::to_string(records.size()) + "/" + std::to_string(source->size()) +
-          ", keyframes " + std::to_string(ctx->odometry().keyframes().size()) + ", loops " +
-          std::to_string(ctx->loopClosures().size()));
-  }
-  // Drain a pending prefetch before the source goes away.
-  if (next.valid())
-    next.wait();
+          "  frame " + std::to_string(records.size()) + "/" + std::to_string(total) +
+          ", keyframes " + std::to_string(pipeline.context().odometry().keyframes().size()) +
+          ", loops " + std::to_string(pipeline.context().loopClosures().size()));
   if (records.empty())
     throw std::runtime_error(m_args.input + ": no frames");
-  const auto finalReport = ctx->optimize(graph);
-  ++optimizations;
+  const auto finalReport = pipeline.finish();
+  const std::size_t optimizations = pipeline.optimizations();
+  const CSlamContext* ctx = &pipeline.context();
+  const TGraph& graph = pipeline.graph();
+  const io::CFrameSource* src = &pipeline.source();
 
-  // Every tracked frame: optimised keyframe pose (+) its relative pose.
   const auto& odo = ctx->odometry();
-  auto keyframePose = [&](std::size_t id)
-  {
-    const auto it = graph.nodes.find(id);
-    return it != graph.nodes.end() ? it->second : odo.keyframe(id).pose;
-  };
-  io::TTrajectory estimate, odometryOnly;
+  const io::TTrajectory estimate = pipeline.trajectory();
+  io::TTrajectory odometryOnly;
   for (const auto& r : records)
-  {
     if (r.result.pose)
       odometryOnly.push_back({r.result.timestamp, *r.result.pose});
-    const auto& fr = r.result;
-    if (!fr.pose)
-      continue;
-    io::TPoseStamped p;
-    p.timestamp = fr.timestamp;
-    p.pose = fr.isNewKeyframe ? keyframePose(fr.newKeyframeId)
-                              : keyframePose(fr.referenceKeyframe) + fr.relativePose;
-    estimate.push_back(p);
-  }
   const double wallS = wall.Tac();
 
   TSummary s;
@@ -267,7 +203,7 @@ CRoiGraphSlamApp::TSummary CRoiGraphSlamApp::run()
   std::optional<evaluation::TEvaluationResult> eval;
   std::optional<double> odometryAte;
   std::string evalError;
-  if (const auto gtFile = source->groundTruthFile(); gtFile && fs::exists(*gtFile))
+  if (const auto gtFile = src->groundTruthFile(); gtFile && fs::exists(*gtFile))
   {
     try
     {
@@ -290,7 +226,7 @@ CRoiGraphSlamApp::TSummary CRoiGraphSlamApp::run()
   // Trajectory, graph, per-frame log.
   io::saveTumTrajectory(
       out + "trajectory.txt", estimate,
-      "roi-graphslam " + source->name() + " mode " + frontend::toString(m_config.frontEnd.mode));
+      "roi-graphslam " + src->name() + " mode " + frontend::toString(m_config.frontEnd.mode));
   try
   {
     graph.saveToTextFile(out + "graph.graph.tmp");
@@ -348,7 +284,7 @@ CRoiGraphSlamApp::TSummary CRoiGraphSlamApp::run()
     std::size_t counter = 0;
     for (std::size_t k = 0; k < clouds.size(); ++k)
     {
-      const auto pose = keyframePose(k);
+      const auto pose = pipeline.keyframePose(k);
       octomap::Pointcloud pc;
       pc.reserve(clouds[k].size());
       for (std::size_t i = 0; i < clouds[k].size(); ++i)
@@ -380,7 +316,7 @@ CRoiGraphSlamApp::TSummary CRoiGraphSlamApp::run()
   {
     // Ground truth shown in the estimate's frame.
     const auto toEstimate = -eval->ate.alignment;
-    for (const auto& p : io::loadTumTrajectory(*source->groundTruthFile()))
+    for (const auto& p : io::loadTumTrajectory(*src->groundTruthFile()))
       content.groundTruth.push_back((toEstimate + p.pose).translation());
   }
   auto scene = viz::CSlamSceneBuilder().build(content);
@@ -402,14 +338,14 @@ CRoiGraphSlamApp::TSummary CRoiGraphSlamApp::run()
   s.peakRssMb = peakRssMb();
 
   nlohmann::json j;
-  j["sequence"] = source->name();
+  j["sequence"] = src->name();
   j["input"] = m_args.input;
   j["mode"] = frontend::toString(m_config.frontEnd.mode);
   j["feature"] = features::toString(m_config.frontEnd.extractor.feature_type);
   j["max_features"] = m_config.frontEnd.extractor.max_features;
   j["strict_roi"] = m_config.frontEnd.strict_roi;
   j["frames"] = s.frames;
-  j["skipped_frames"] = source->skippedFrames();
+  j["skipped_frames"] = src->skippedFrames();
   j["keyframes"] = s.keyframes;
   j["loop_closures"] = s.loopClosures;
   std::size_t lmLoops = 0;

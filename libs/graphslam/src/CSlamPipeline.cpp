@@ -1,0 +1,106 @@
+#include "roislam/graphslam/CSlamPipeline.h"
+
+#include <mrpt/system/CTicTac.h>
+
+#include <stdexcept>
+
+namespace roislam::graphslam
+{
+CSlamPipeline::CSlamPipeline(
+    const CSlamContext::TConfig& config, std::unique_ptr<io::CFrameSource> source)
+    : m_source(std::move(source)),
+      m_ctx(std::make_shared<CSlamContext>(config)),
+      m_nrd(m_ctx),
+      m_erd(m_ctx)
+{
+  if (!m_source)
+    throw std::invalid_argument("CSlamPipeline: no frame source");
+  m_nrd.setGraphPtr(&m_graph);
+  m_erd.setGraphPtr(&m_graph);
+  m_records.reserve(m_source->size());
+  startFetch();
+}
+
+CSlamPipeline::~CSlamPipeline()
+{
+  // The decoding thread uses the source and the context: let it finish.
+  if (m_next.valid())
+    m_next.wait();
+}
+
+void CSlamPipeline::startFetch()
+{
+  const bool roiAhead = frontend::isRoiMode(m_ctx->config().frontEnd.mode);
+  // Only const members of the odometry are used on this thread
+  // (detectRoiAhead), while step() runs process() on the caller's.
+  const frontend::CRgbdOdometry& odo = m_ctx->odometry();
+  io::CFrameSource* src = m_source.get();
+  m_next = std::async(
+      std::launch::async,
+      [src, &odo, roiAhead]()
+      {
+        TFetched out;
+        out.first = src->next();
+        if (out.first && roiAhead)
+          out.second = odo.detectRoiAhead(*out.first);
+        return out;
+      });
+}
+
+bool CSlamPipeline::step()
+{
+  if (!m_next.valid())
+    return false;
+  auto [frame, hint] = m_next.get();
+  if (!frame)
+    return false;
+  startFetch();
+
+  m_ctx->setRoiHint(std::move(hint));
+  const bool registered = m_nrd.processFrame(*frame);
+  mrpt::system::CTicTac be;
+  TFrameRecord rec;
+  rec.result = *m_ctx->lastResult();
+  if (registered)
+  {
+    const auto rep = m_erd.processNewKeyframe(rec.result.newKeyframeId);
+    if (rep.loopClosures > 0)
+    {
+      m_ctx->optimize(m_graph);
+      ++m_optimizations;
+    }
+  }
+  rec.backendMs = be.Tac() * 1e3;
+  m_records.push_back(std::move(rec));
+  return true;
+}
+
+TOptimizationReport CSlamPipeline::finish()
+{
+  const auto report = m_ctx->optimize(m_graph);
+  ++m_optimizations;
+  return report;
+}
+mrpt::poses::CPose3D CSlamPipeline::keyframePose(std::size_t id) const
+{
+  const auto it = m_graph.nodes.find(id);
+  return it != m_graph.nodes.end() ? it->second : m_ctx->odometry().keyframe(id).pose;
+}
+
+io::TTrajectory CSlamPipeline::trajectory() const
+{
+  io::TTrajectory estimate;
+  for (const auto& r : m_records)
+  {
+    const auto& fr = r.result;
+    if (!fr.pose)
+      continue;
+    io::TPoseStamped p;
+    p.timestamp = fr.timestamp;
+    p.pose = fr.isNewKeyframe ? keyframePose(fr.newKeyframeId)
+                              : keyframePose(fr.referenceKeyframe) + fr.relativePose;
+    estimate.push_back(p);
+  }
+  return estimate;
+}
+}  // namespace roislam::graphslam
