@@ -24,7 +24,12 @@
  * FrontEnd runs; then, for the same modes and features, a paired comparison
  * (the three modes' odometries fed each frame in turn, so machine load hits
  * them alike: the ratio to trust on a shared machine); then the peak resident
- * memory (getrusage ru_maxrss).
+ * memory (getrusage ru_maxrss). With --paired-slam-passes n, also the paired
+ * end-to-end comparison of roi-graphslam's timed loop (CSlamPipeline: decoding
+ * and the ROI one frame ahead, front end, back end, final optimisation; the
+ * shipped config/<mode>.ini with 600 features): fps, cost ratio
+ * mode / traditional (the ROI modes' <= 1.05 target) and ATE per mode. The
+ * peak memory then covers all the pipelines held at once.
  *
  * Frames: the first --frames colour/depth pairs of the shared TUM sequence
  * (ROISLAM_SHARED_DATA_DIR/tum/rgbd_dataset_freiburg1_rpy_first250, or --data
@@ -48,6 +53,8 @@
  *   --frames <n>      frames loaded / run through the front end (default 20)
  *   --cv-threads <n>  cv::setNumThreads (default: OpenCV's own choice)
  *   --paired-passes <n>  passes of the paired comparison (default 1, 0 = off)
+ *   --paired-slam-passes <n>  passes of the end-to-end one (default 0 = off;
+ *                     needs real frames: skipped with --synthetic)
  * Select stages with --benchmark_filter (e.g. 'FrontEnd', 'Extract/orb').
  */
 #include <benchmark/benchmark.h>
