@@ -62,7 +62,13 @@ CRgbdOdometry::TRoiHint detectTimed(
   CRgbdOdometry::TRoiHint h;
   h.frameIndex = frame.index;
   h.timestamp = frame.timestamp;
-  h.roi = detector.detect(image);
+  if (image.channels() == 3)
+  {
+    cv::cvtColor(image, h.grey, cv::COLOR_BGR2GRAY);
+    h.roi = detector.detect(h.grey);
+  }
+  else
+    h.roi = detector.detect(image);
   h.ms = msSince(t0);
   return h;
 }
@@ -279,9 +285,6 @@ TFrameResult CRgbdOdometry::process(
   res.timestamp = frame.timestamp;
   ++m_stats.frames;
 
-  cv::Mat grey;
-  cv::cvtColor(frame.rgb, grey, cv::COLOR_BGR2GRAY);
-
   // Stages 1 and 2 are independent (both read the grey image): the ROI is
   // detected on a second thread while the features are extracted, so that on
   // a multi-core CPU the ROI costs no wall time. Features are extracted once,
@@ -289,6 +292,12 @@ TFrameResult CRgbdOdometry::process(
   std::future<TRoiHint> roiJob;
   const bool useHint = isRoiMode(o.mode) && roiHint && roiHint->frameIndex == frame.index &&
                        roiHint->timestamp == frame.timestamp;
+  // The hint's grey image is this frame's, converted on the thread ahead.
+  cv::Mat grey;
+  if (useHint && roiHint->grey.size() == frame.rgb.size() && roiHint->grey.type() == CV_8UC1)
+    grey = roiHint->grey;
+  else
+    cv::cvtColor(frame.rgb, grey, cv::COLOR_BGR2GRAY);
   if (isRoiMode(o.mode) && !useHint)
     roiJob = std::async(
         std::launch::async,

@@ -229,6 +229,9 @@ class CRgbdOdometry : public mrpt::system::COutputLogger
     double timestamp = 0;
     std::optional<roi::TRoi> roi;
     double ms = 0;
+    /** The frame's grey image, converted once for the detector and reused
+     *  by process() (empty when the frame was grey already). */
+    cv::Mat grey;
   };
 
   /** Stage 1 for a frame that process() will receive later; const and safe to
