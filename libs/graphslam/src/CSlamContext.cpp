@@ -40,6 +40,9 @@ void CSlamContext::TOptions::loadFromConfigFile(
   loop_min_inliers = c.read_int(s, "loop_min_inliers", loop_min_inliers);
   loop_max_discrepancy_m = c.read_double(s, "loop_max_discrepancy_m", loop_max_discrepancy_m);
   optimizer_max_iterations = c.read_int(s, "optimizer_max_iterations", optimizer_max_iterations);
+  loop_outlier_chi2 = c.read_double(s, "loop_outlier_chi2", loop_outlier_chi2);
+  optimize_min_chi2 = c.read_double(s, "optimize_min_chi2", optimize_min_chi2);
+  optimize_every_keyframes = c.read_int(s, "optimize_every_keyframes", optimize_every_keyframes);
   map_decimation = c.read_int(s, "map_decimation", map_decimation);
   map_max_depth_m = c.read_double(s, "map_max_depth_m", map_max_depth_m);
   edge_information = c.read_string(s, "edge_information", edge_information);
@@ -61,6 +64,8 @@ void CSlamContext::TOptions::saveToConfigFile(
   c.write(s, "loop_max_discrepancy_m", loop_max_discrepancy_m);
   c.write(s, "optimizer_max_iterations", optimizer_max_iterations);
   c.write(s, "loop_outlier_chi2", loop_outlier_chi2);
+  c.write(s, "optimize_min_chi2", optimize_min_chi2);
+  c.write(s, "optimize_every_keyframes", optimize_every_keyframes);
   c.write(s, "map_decimation", map_decimation);
   c.write(s, "map_max_depth_m", map_max_depth_m);
   c.write(s, "edge_information", edge_information);
@@ -86,6 +91,10 @@ void CSlamContext::TOptions::validate() const
     badKey("optimizer_max_iterations", "must be >= 1");
   if (!(loop_outlier_chi2 > 0))
     badKey("loop_outlier_chi2", "must be > 0");
+  if (!(optimize_min_chi2 >= 0))
+    badKey("optimize_min_chi2", "must be >= 0");
+  if (optimize_every_keyframes < 1)
+    badKey("optimize_every_keyframes", "must be >= 1");
   if (map_decimation < 1)
     badKey("map_decimation", "must be >= 1");
   if (!(map_max_depth_m > 0))

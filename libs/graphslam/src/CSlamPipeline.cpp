@@ -1,7 +1,10 @@
 #include "roislam/graphslam/CSlamPipeline.h"
 
+#include <mrpt/math/CMatrixFixed.h>
 #include <mrpt/system/CTicTac.h>
 
+#include <Eigen/Dense>
+#include <algorithm>
 #include <stdexcept>
 
 namespace roislam::graphslam
@@ -63,11 +66,40 @@ bool CSlamPipeline::step()
   rec.result = *m_ctx->lastResult();
   if (registered)
   {
+    const std::size_t loopsBefore = m_ctx->loopClosures().size();
     const auto rep = m_erd.processNewKeyframe(rec.result.newKeyframeId);
     if (rep.loopClosures > 0)
     {
-      m_ctx->optimize(m_graph);
-      ++m_optimizations;
+      // Optimise at once when a new closure disagrees with the current
+      // estimate; consistent ones wait for a few more keyframes (the whole
+      // graph is solved each time, and its cost grows with the graph).
+      const auto& opt = m_ctx->config().backEnd;
+      ++m_pendingLoopKeyframes;
+      double worst = 0;
+      const auto& loops = m_ctx->loopClosures();
+      for (std::size_t i = loopsBefore; i < loops.size(); ++i)
+      {
+        const auto it = m_graph.edges.find(std::make_pair(
+            static_cast<mrpt::graphs::TNodeID>(loops[i].fromKeyframe),
+            static_cast<mrpt::graphs::TNodeID>(loops[i].toKeyframe)));
+        if (it != m_graph.edges.end())
+          worst = std::max(worst, m_graph.getEdgeSquareError(it, false));
+      }
+      // Each optimisation solves the whole graph, at a cost that grows with
+      // it: the spacing grows with it too (nodes / 50 for inconsistent
+      // closures, nodes / 10 otherwise), which keeps the back end's cost
+      // per frame flat on long sequences.
+      const std::size_t nodes = m_graph.nodes.size();
+      const std::size_t every =
+          std::max(static_cast<std::size_t>(opt.optimize_every_keyframes), nodes / 10);
+      if ((worst > opt.optimize_min_chi2 &&
+           m_pendingLoopKeyframes >= std::max<std::size_t>(1, nodes / 50)) ||
+          m_pendingLoopKeyframes >= every)
+      {
+        m_ctx->optimize(m_graph);
+        ++m_optimizations;
+        m_pendingLoopKeyframes = 0;
+      }
     }
   }
   rec.backendMs = be.Tac() * 1e3;

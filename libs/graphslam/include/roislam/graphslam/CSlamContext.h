@@ -22,6 +22,21 @@
  *                              edge whose squared Mahalanobis error exceeds
  *                              this is removed as a false closure and the
  *                              graph re-optimised (at most 3 rounds)
+ *  - optimize_min_chi2         double >= 0 (30, as loop_outlier_chi2): a
+ *                              keyframe whose new loop closure disagrees with
+ *                              the current estimate by more (squared
+ *                              Mahalanobis error) is optimised at once (once
+ *                              graph nodes / 50 keyframes with closures are
+ *                              pending); 0 = at every loop closure
+ *  - optimize_every_keyframes  int >= 1 (10): other closures are optimised
+ *                              together once max(this, graph nodes / 10)
+ *                              keyframes brought some (and always at the
+ *                              end). Each optimisation solves the whole
+ *                              graph, so its cost grows with it: optimising
+ *                              at every closure cost 35 ms a frame after 750
+ *                              frames (fr1/rpy there and back, 229 nodes);
+ *                              spacing that grows with the graph keeps the
+ *                              cost per frame flat
  *  - optimizer_max_iterations  int >= 1 (50): Levenberg-Marquardt (SPA) limit
  *  - map_decimation            int >= 1 (8): every n-th pixel/row of a
  *                              keyframe's depth goes into the map cloud
@@ -93,6 +108,8 @@ class CSlamContext
     double loop_max_discrepancy_m = 0.5;
     int optimizer_max_iterations = 50;
     double loop_outlier_chi2 = 30;
+    double optimize_min_chi2 = 30;
+    int optimize_every_keyframes = 10;
     int map_decimation = 8;
     double map_max_depth_m = 4.0;
     std::string edge_information = "diagonal";

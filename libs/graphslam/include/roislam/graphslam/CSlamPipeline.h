@@ -3,7 +3,9 @@
  * also detects its ROI (CRgbdOdometry::detectRoiAhead), so stage 1 costs the
  * tracking thread nothing. Per frame: CKeyframeNRD (front end, new keyframe
  * node), CKeyframeERD (keyframe edges and verified loop closures), and an
- * SPA optimisation whenever a loop closed; finish() runs the final one.
+ * SPA optimisation when a new closure disagrees with the current estimate
+ * or every few loop-closing keyframes ([GraphSlam] optimize_min_chi2,
+ * optimize_every_keyframes); finish() runs the final one.
  *
  * Drives our deciders directly rather than through CGraphSlamEngine, whose
  * 2.5 version resets optimised 3-D poses from the spanning tree after every
@@ -94,5 +96,7 @@ class CSlamPipeline
   std::future<TFetched> m_next;
   std::vector<TFrameRecord> m_records;
   std::size_t m_optimizations = 0;
+  /** Keyframes that brought loop closures since the last optimisation. */
+  std::size_t m_pendingLoopKeyframes = 0;
 };
 }  // namespace roislam::graphslam

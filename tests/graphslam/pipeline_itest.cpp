@@ -1,0 +1,100 @@
+/* CSlamPipeline on the synthetic textured loop of the ctest fixture: every
+ * frame gets a record and a pose; the optimisation policy ([GraphSlam]
+ * optimize_min_chi2 / optimize_every_keyframes) optimises at every
+ * loop-closing keyframe when both gates are at their minimum and only at the
+ * end when they cannot trigger, with the same accuracy; and the ini keys of
+ * the back end are read (loop_outlier_chi2 was once written but never read). */
+#include <gtest/gtest.h>
+#include <mrpt/config/CConfigFileMemory.h>
+#include <roislam/evaluation/CTrajectoryEvaluator.h>
+#include <roislam/graphslam/CSlamPipeline.h>
+#include <roislam/io/TumTrajectory.h>
+#include <roislam/testing/TestData.h>
+
+#include <cstdio>
+#include <limits>
+
+namespace graphslam = roislam::graphslam;
+
+namespace
+{
+struct TOutcome
+{
+  std::size_t frames = 0, posed = 0, loopKeyframes = 0, optimizations = 0;
+  double ate = 0;
+};
+
+TOutcome run(const std::string& seq, double minChi2, int every)
+{
+  graphslam::CSlamContext::TConfig cfg;
+  cfg.frontEnd.extractor.feature_type = roislam::features::EFeatureType::ORB;
+  cfg.frontEnd.extractor.max_features = 600;
+  cfg.backEnd.optimize_min_chi2 = minChi2;
+  cfg.backEnd.optimize_every_keyframes = every;
+  auto source = roislam::io::CFrameSource::open(seq);
+  const std::string gt = *source->groundTruthFile();
+  graphslam::CSlamPipeline p(cfg, std::move(source));
+  std::size_t loopsSeen = 0;
+  TOutcome o;
+  while (p.step())
+  {
+    if (p.context().loopClosures().size() > loopsSeen)
+      ++o.loopKeyframes;
+    loopsSeen = p.context().loopClosures().size();
+  }
+  p.finish();
+  o.frames = p.records().size();
+  const auto traj = p.trajectory();
+  o.posed = traj.size();
+  o.optimizations = p.optimizations();
+  o.ate = roislam::evaluation::CTrajectoryEvaluator()
+              .evaluate(roislam::io::loadTumTrajectory(gt), traj)
+              .ate.rmse;
+  return o;
+}
+}  // namespace
+
+TEST(SlamPipeline, OptimisationPolicyOnTheTexturedLoop)
+{
+  ROISLAM_REQUIRE_SYNTHETIC(seq, "textured");
+  // Every loop-closing keyframe optimised (the graph here is far smaller
+  // than 50 nodes, so no spacing applies), plus the final optimisation.
+  const auto eager = run(seq, 0.0, 1);
+  // Gates that never trigger: only the final optimisation.
+  const auto lazy = run(seq, std::numeric_limits<double>::max(), 1000000);
+  for (const auto* o : {&eager, &lazy})
+  {
+    EXPECT_EQ(o->posed, o->frames);
+    EXPECT_LT(o->ate, 0.01);
+  }
+  std::printf(
+      "eager: %zu loop-closing keyframes, %zu optimisations, ATE %.4f; lazy: %zu, ATE %.4f\n",
+      eager.loopKeyframes, eager.optimizations, eager.ate, lazy.optimizations, lazy.ate);
+  ASSERT_GT(eager.loopKeyframes, 0u);
+  EXPECT_EQ(eager.optimizations, eager.loopKeyframes + 1);
+  EXPECT_EQ(lazy.optimizations, 1u);
+}
+
+TEST(SlamPipeline, BackEndOptionsAreReadFromTheIni)
+{
+  mrpt::config::CConfigFileMemory ini;
+  ini.write("GraphSlam", "loop_outlier_chi2", 12.5);
+  ini.write("GraphSlam", "optimize_min_chi2", 7.0);
+  ini.write("GraphSlam", "optimize_every_keyframes", 4);
+  const auto c = graphslam::CSlamContext::loadConfig(ini, "test.ini");
+  EXPECT_DOUBLE_EQ(c.backEnd.loop_outlier_chi2, 12.5);
+  EXPECT_DOUBLE_EQ(c.backEnd.optimize_min_chi2, 7.0);
+  EXPECT_EQ(c.backEnd.optimize_every_keyframes, 4);
+  mrpt::config::CConfigFileMemory bad;
+  bad.write("GraphSlam", "optimize_every_keyframes", 0);
+  try
+  {
+    graphslam::CSlamContext::loadConfig(bad, "bad.ini");
+    FAIL() << "expected an exception";
+  }
+  catch (const std::exception& e)
+  {
+    EXPECT_NE(std::string(e.what()).find("[GraphSlam] optimize_every_keyframes"), std::string::npos)
+        << e.what();
+  }
+}
