@@ -85,16 +85,22 @@ TEST(SlamPipeline, BackEndOptionsAreReadFromTheIni)
   EXPECT_DOUBLE_EQ(c.backEnd.loop_outlier_chi2, 12.5);
   EXPECT_DOUBLE_EQ(c.backEnd.optimize_min_chi2, 7.0);
   EXPECT_EQ(c.backEnd.optimize_every_keyframes, 4);
-  mrpt::config::CConfigFileMemory bad;
-  bad.write("GraphSlam", "optimize_every_keyframes", 0);
-  try
+  const std::pair<std::string, std::string> bads[] = {
+      {"optimize_every_keyframes", "0"},
+      {"optimize_min_chi2", "-1"},
+      {"edge_information", "isotropic"}};
+  for (const auto& [key, value] : bads)
   {
-    graphslam::CSlamContext::loadConfig(bad, "bad.ini");
-    FAIL() << "expected an exception";
-  }
-  catch (const std::exception& e)
-  {
-    EXPECT_NE(std::string(e.what()).find("[GraphSlam] optimize_every_keyframes"), std::string::npos)
-        << e.what();
+    mrpt::config::CConfigFileMemory bad;
+    bad.write("GraphSlam", key, value);
+    try
+    {
+      graphslam::CSlamContext::loadConfig(bad, "bad.ini");
+      FAIL() << "expected an exception for " << key;
+    }
+    catch (const std::exception& e)
+    {
+      EXPECT_NE(std::string(e.what()).find("[GraphSlam] " + key), std::string::npos) << e.what();
+    }
   }
 }

@@ -95,6 +95,10 @@ void CSlamContext::TOptions::validate() const
     badKey("optimize_min_chi2", "must be >= 0");
   if (optimize_every_keyframes < 1)
     badKey("optimize_every_keyframes", "must be >= 1");
+  if (edge_information != "frontend" && edge_information != "diagonal")
+    badKey(
+        "edge_information",
+        "unknown value '" + edge_information + "' (expected frontend or diagonal)");
   if (map_decimation < 1)
     badKey("map_decimation", "must be >= 1");
   if (!(map_max_depth_m > 0))
