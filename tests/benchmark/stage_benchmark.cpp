@@ -639,6 +639,21 @@ void printFrontEndTable(const CCollectingReporter& rep)
                "faster.\n";
 }
 
+/** The modes of the paired comparisons, traditional first. */
+const EFrontEndMode kPairedModes[] = {
+    EFrontEndMode::Traditional, EFrontEndMode::RoiSmall, EFrontEndMode::RoiBig};
+
+/** Indices into kPairedModes of the modes whose FrontEnd benchmark ran for
+ *  `type` (so the paired tables honour --benchmark_filter). */
+std::vector<std::size_t> modesRun(const CCollectingReporter& rep, EFeatureType type)
+{
+  std::vector<std::size_t> used;
+  for (std::size_t m = 0; m < 3; ++m)
+    if (rep.frontEnd.count(roislam::frontend::toString(kPairedModes[m]) + "/" + toString(type)))
+      used.push_back(m);
+  return used;
+}
+
 /** Paired comparison that contention on a shared machine cannot bias: for each
  *  feature type benchmarked, one odometry per mode, fed the same frame in turn
  *  (mode order rotated per frame), timing each process() call. Prints per-frame
@@ -648,8 +663,7 @@ void printPairedTable(const CCollectingReporter& rep, int passes)
   if (rep.frontEnd.empty() || passes <= 0)
     return;
   const TBenchData& d = data();
-  const EFrontEndMode modes[] = {
-      EFrontEndMode::Traditional, EFrontEndMode::RoiSmall, EFrontEndMode::RoiBig};
+  const auto& modes = kPairedModes;
   std::cout << "\nPaired front-end cost (modes interleaved frame by frame, " << passes << " x "
             << d.frames.size() << " frames)\n"
             << std::left << std::setw(12) << "mode" << std::setw(8) << "feature" << std::right
@@ -658,11 +672,7 @@ void printPairedTable(const CCollectingReporter& rep, int passes)
             << "\n";
   for (const auto type : {EFeatureType::ORB, EFeatureType::SIFT, EFeatureType::SURF})
   {
-    // Only the modes whose FrontEnd benchmark ran (honours --benchmark_filter).
-    std::vector<std::size_t> used;
-    for (std::size_t m = 0; m < 3; ++m)
-      if (rep.frontEnd.count(roislam::frontend::toString(modes[m]) + "/" + toString(type)))
-        used.push_back(m);
+    const std::vector<std::size_t> used = modesRun(rep, type);
     if (used.empty())
       continue;
     double wallMs[3] = {0, 0, 0}, cpuMs[3] = {0, 0, 0};
@@ -732,8 +742,7 @@ void printPairedSlamTable(const CCollectingReporter& rep, int passes)
                  "synthetic frames)\n";
     return;
   }
-  const EFrontEndMode modes[] = {
-      EFrontEndMode::Traditional, EFrontEndMode::RoiSmall, EFrontEndMode::RoiBig};
+  const auto& modes = kPairedModes;
   std::cout << "\nPaired end-to-end SLAM cost (decode + ROI ahead + front end + back end, "
                "config/<mode>.ini, modes interleaved frame by frame, "
             << passes << " x " << d.frames.size() << " frames)\n"
@@ -744,10 +753,7 @@ void printPairedSlamTable(const CCollectingReporter& rep, int passes)
             << "\n";
   for (const auto type : {EFeatureType::ORB, EFeatureType::SIFT, EFeatureType::SURF})
   {
-    std::vector<std::size_t> used;
-    for (std::size_t m = 0; m < 3; ++m)
-      if (rep.frontEnd.count(roislam::frontend::toString(modes[m]) + "/" + toString(type)))
-        used.push_back(m);
+    const std::vector<std::size_t> used = modesRun(rep, type);
     if (used.empty())
       continue;
     double wallMs[3] = {0, 0, 0}, cpuMs[3] = {0, 0, 0};

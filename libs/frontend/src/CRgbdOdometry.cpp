@@ -25,34 +25,19 @@
 namespace roislam::frontend
 {
 using detail::Matrix6d;
+using detail::rotationAngle;
 using detail::TRigid;
 
 using detail::Clock;
+using detail::isWeakRoiRegistration;
+using detail::lessDetermined;
 using detail::msSince;
 using detail::registerSets;
+using detail::toMrptEstimate;
 using detail::TRegistration;
 
 namespace
 {
-
-TInformation66 toMrpt(const Matrix6d& m)
-{
-  TInformation66 o;
-  for (int r = 0; r < 6; ++r)
-    for (int c = 0; c < 6; ++c)
-      o(r, c) = m(r, c);
-  return o;
-}
-
-/** A registration (features or ICP; T maps the current frame into the
- *  reference) as an MRPT relative pose and its information in MRPT's
- *  (x, y, z, yaw, pitch, roll) order. */
-template <class TResult>
-std::pair<mrpt::poses::CPose3D, TInformation66> toMrptEstimate(const TResult& r)
-{
-  const mrpt::poses::CPose3D pose = detail::toPose(r.T);
-  return {pose, toMrpt(detail::tangentInfoToYpr(r.information, pose))};
-}
 
 /** Stage 1 on one image of a frame, timed (CRgbdOdometry::TRoiHint). */
 CRgbdOdometry::TRoiHint detectTimed(
@@ -82,40 +67,11 @@ TInformation66 scaledIdentity(double s)
   return o;
 }
 
-double rotationAngle(const mrpt::poses::CPose3D& p)
-{
-  const Eigen::Matrix3d R = p.getRotationMatrix().asEigen();
-  return Eigen::AngleAxisd(R).angle();
-}
-
 ETrackingMethod featureMethod(EFrontEndMode mode, bool fallback)
 {
   if (!isRoiMode(mode))
     return ETrackingMethod::Features;
   return fallback ? ETrackingMethod::FullImageFallback : ETrackingMethod::RoiFeatures;
-}
-
-bool isWeakRoiRegistration(const TRegistration& r, const CRgbdOdometry::TOptions& o)
-{
-  if (static_cast<int>(r.inliers) < o.min_roi_inliers)
-    return true;
-  if (o.max_roi_sigma_m <= 0 && o.max_roi_sigma_deg <= 0)
-    return false;
-  const auto s = worstSigmas(toMrptEstimate(r).second);
-  if (!s)
-    return true;
-  return (o.max_roi_sigma_m > 0 && s->translation_m > o.max_roi_sigma_m) ||
-         (o.max_roi_sigma_deg > 0 && s->rotation_rad * 180.0 / M_PI > o.max_roi_sigma_deg);
-}
-
-/** a's worst translation direction is less determined than b's. */
-bool lessDetermined(const TRegistration& a, const TRegistration& b)
-{
-  const auto sa = worstSigmas(toMrptEstimate(a).second);
-  const auto sb = worstSigmas(toMrptEstimate(b).second);
-  if (!sa || !sb)
-    return !sa && sb;
-  return sa->translation_m > sb->translation_m;
 }
 
 bool isFeatureMethod(ETrackingMethod m)

@@ -1,6 +1,9 @@
 #include "KeyframeRegistration.h"
 
+#include <roislam/frontend/PoseUncertainty.h>
+
 #include <algorithm>
+#include <cmath>
 #include <vector>
 
 #include "Timing.h"
@@ -84,5 +87,36 @@ std::optional<TRegistration> registerSets(
   out.rmse3d = rr.rmse3d;
   out.rmsePx = rr.rmsePx;
   return out;
+}
+
+TInformation66 toMrpt(const Matrix6d& m)
+{
+  TInformation66 o;
+  for (int r = 0; r < 6; ++r)
+    for (int c = 0; c < 6; ++c)
+      o(r, c) = m(r, c);
+  return o;
+}
+
+bool isWeakRoiRegistration(const TRegistration& r, const CRgbdOdometry::TOptions& o)
+{
+  if (static_cast<int>(r.inliers) < o.min_roi_inliers)
+    return true;
+  if (o.max_roi_sigma_m <= 0 && o.max_roi_sigma_deg <= 0)
+    return false;
+  const auto s = worstSigmas(toMrptEstimate(r).second);
+  if (!s)
+    return true;
+  return (o.max_roi_sigma_m > 0 && s->translation_m > o.max_roi_sigma_m) ||
+         (o.max_roi_sigma_deg > 0 && s->rotation_rad * 180.0 / M_PI > o.max_roi_sigma_deg);
+}
+
+bool lessDetermined(const TRegistration& a, const TRegistration& b)
+{
+  const auto sa = worstSigmas(toMrptEstimate(a).second);
+  const auto sb = worstSigmas(toMrptEstimate(b).second);
+  if (!sa || !sb)
+    return !sa && sb;
+  return sa->translation_m > sb->translation_m;
 }
 }  // namespace roislam::frontend::detail

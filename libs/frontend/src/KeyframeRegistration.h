@@ -12,6 +12,7 @@
 
 #include <cstddef>
 #include <optional>
+#include <utility>
 
 #include "ReprojectionRefinement.h"
 #include "RigidMath.h"
@@ -34,4 +35,25 @@ std::optional<TRegistration> registerSets(
     const TKeyframe& ref, const TKeyframe& cur, const matching::CFeatureMatcher& matcher,
     const matching::CRigidTransformRansac& ransac, const TPinhole& cam,
     const CRgbdOdometry::TOptions& o, std::size_t* matchesOut, double* matchMs, double* ransacMs);
+
+/** A 6x6 Eigen matrix as MRPT's fixed-size one. */
+TInformation66 toMrpt(const Matrix6d& m);
+
+/** A registration (features or ICP; T maps the current frame into the
+ *  reference) as an MRPT relative pose and its information in MRPT's
+ *  (x, y, z, yaw, pitch, roll) order. */
+template <class TResult>
+std::pair<mrpt::poses::CPose3D, TInformation66> toMrptEstimate(const TResult& r)
+{
+  const mrpt::poses::CPose3D pose = toPose(r.T);
+  return {pose, toMrpt(tangentInfoToYpr(r.information, pose))};
+}
+
+/** A ROI registration to replace by a whole-image one when that registers:
+ *  fewer inliers than min_roi_inliers, or its worst-determined direction
+ *  beyond max_roi_sigma_m / max_roi_sigma_deg (PoseUncertainty.h). */
+bool isWeakRoiRegistration(const TRegistration& r, const CRgbdOdometry::TOptions& o);
+
+/** a's worst translation direction is less determined than b's. */
+bool lessDetermined(const TRegistration& a, const TRegistration& b);
 }  // namespace roislam::frontend::detail

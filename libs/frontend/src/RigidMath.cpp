@@ -20,6 +20,12 @@ mrpt::poses::CPose3D toPose(const TRigid& T)
   return mrpt::poses::CPose3D::FromRotationAndTranslation(R, T.t);
 }
 
+double rotationAngle(const mrpt::poses::CPose3D& p)
+{
+  const Eigen::Matrix3d R = p.getRotationMatrix().asEigen();
+  return Eigen::AngleAxisd(R).angle();
+}
+
 TRigid applyLeft(const Vector6d& delta, const TRigid& T)
 {
   const Eigen::Vector3d w = delta.tail<3>();

@@ -31,6 +31,8 @@ struct TRigid
 };
 
 TRigid fromPose(const mrpt::poses::CPose3D& p);
+/** Rotation angle of a pose, radians. */
+double rotationAngle(const mrpt::poses::CPose3D& p);
 mrpt::poses::CPose3D toPose(const TRigid& T);
 
 /** exp(delta) * T with delta = (v, w): x' = Exp(w) (R x + t) + v, whose
