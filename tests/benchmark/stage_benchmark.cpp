@@ -488,6 +488,18 @@ double processCpuMs()
   return static_cast<double>(t.tv_sec) * 1e3 + static_cast<double>(t.tv_nsec) * 1e-6;
 }
 
+/** Runs f, adding its wall-clock and process-CPU milliseconds to the sums. */
+template <class F>
+void timed(F&& f, double& wallMs, double& cpuMs)
+{
+  const double cpu0 = processCpuMs();
+  const auto t0 = std::chrono::steady_clock::now();
+  f();
+  wallMs +=
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  cpuMs += processCpuMs() - cpu0;
+}
+
 void bmFrontEnd(benchmark::State& state, EFrontEndMode mode, EFeatureType type)
 {
   guarded(
@@ -693,13 +705,9 @@ void printPairedTable(const CCollectingReporter& rep, int passes)
         for (std::size_t j = 0; j < used.size(); ++j)
         {
           const std::size_t m = used[(j + k) % used.size()];
-          const double cpu0 = processCpuMs();
-          const auto t0 = std::chrono::steady_clock::now();
-          benchmark::DoNotOptimize(odo[m]->process(d.frames[k]).inliers);
-          wallMs[m] +=
-              std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0)
-                  .count();
-          cpuMs[m] += processCpuMs() - cpu0;
+          timed(
+              [&] { benchmark::DoNotOptimize(odo[m]->process(d.frames[k]).inliers); }, wallMs[m],
+              cpuMs[m]);
         }
     }
     const bool haveTrad = used.front() == 0;
@@ -781,24 +789,17 @@ void printPairedSlamTable(const CCollectingReporter& rep, int passes)
         for (std::size_t j = 0; j < used.size(); ++j)
         {
           const std::size_t m = used[(j + k) % used.size()];
-          const double cpu0 = processCpuMs();
-          const auto t0 = std::chrono::steady_clock::now();
-          more = pipe[m]->step() && more;
-          pipe[m]->waitForPrefetch();
-          wallMs[m] +=
-              std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0)
-                  .count();
-          cpuMs[m] += processCpuMs() - cpu0;
+          timed(
+              [&]
+              {
+                more = pipe[m]->step() && more;
+                pipe[m]->waitForPrefetch();
+              },
+              wallMs[m], cpuMs[m]);
         }
       for (const std::size_t m : used)
       {
-        const double cpu0 = processCpuMs();
-        const auto t0 = std::chrono::steady_clock::now();
-        pipe[m]->finish();
-        wallMs[m] +=
-            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0)
-                .count();
-        cpuMs[m] += processCpuMs() - cpu0;
+        timed([&] { pipe[m]->finish(); }, wallMs[m], cpuMs[m]);
         frames[m] += pipe[m]->records().size();
         // Same figure as roi-graphslam's: the runs are the app's runs.
         const auto gt = pipe[m]->source().groundTruthFile();
