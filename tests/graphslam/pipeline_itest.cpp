@@ -2,8 +2,10 @@
  * frame gets a record and a pose; the optimisation policy ([GraphSlam]
  * optimize_min_chi2 / optimize_every_keyframes) optimises at every
  * loop-closing keyframe when both gates are at their minimum and only at the
- * end when they cannot trigger, with the same accuracy; and the ini keys of
- * the back end are read (loop_outlier_chi2 was once written but never read). */
+ * end when they cannot trigger, with the same accuracy; windowed
+ * optimisations (optimize_window_keyframes) move only the newest keyframes,
+ * again with the same accuracy; and the ini keys of the back end are read
+ * (loop_outlier_chi2 was once written but never read). */
 #include <gtest/gtest.h>
 #include <mrpt/config/CConfigFileMemory.h>
 #include <roislam/evaluation/CTrajectoryEvaluator.h>
@@ -20,17 +22,18 @@ namespace
 {
 struct TOutcome
 {
-  std::size_t frames = 0, posed = 0, loopKeyframes = 0, optimizations = 0;
+  std::size_t frames = 0, posed = 0, loopKeyframes = 0, optimizations = 0, windowed = 0;
   double ate = 0;
 };
 
-TOutcome run(const std::string& seq, double minChi2, int every)
+TOutcome run(const std::string& seq, double minChi2, int every, int window = 0)
 {
   graphslam::CSlamContext::TConfig cfg;
   cfg.frontEnd.extractor.feature_type = roislam::features::EFeatureType::ORB;
   cfg.frontEnd.extractor.max_features = 600;
   cfg.backEnd.optimize_min_chi2 = minChi2;
   cfg.backEnd.optimize_every_keyframes = every;
+  cfg.backEnd.optimize_window_keyframes = window;
   auto source = roislam::io::CFrameSource::open(seq);
   const std::string gt = *source->groundTruthFile();
   graphslam::CSlamPipeline p(cfg, std::move(source));
@@ -47,6 +50,7 @@ TOutcome run(const std::string& seq, double minChi2, int every)
   const auto traj = p.trajectory();
   o.posed = traj.size();
   o.optimizations = p.optimizations();
+  o.windowed = p.windowedOptimizations();
   o.ate = roislam::evaluation::CTrajectoryEvaluator()
               .evaluate(roislam::io::loadTumTrajectory(gt), traj)
               .ate.rmse;
@@ -75,18 +79,63 @@ TEST(SlamPipeline, OptimisationPolicyOnTheTexturedLoop)
   EXPECT_EQ(lazy.optimizations, 1u);
 }
 
+TEST(SlamPipeline, WindowedOptimisationsMoveOnlyTheNewestKeyframes)
+{
+  ROISLAM_REQUIRE_SYNTHETIC(seq, "textured");
+  graphslam::TGraph g;
+  // A chain of 6 nodes whose last edge disagrees with the others: a window
+  // of 2 may move only nodes 4 and 5.
+  mrpt::math::CMatrixDouble66 inf;
+  inf.setIdentity();
+  inf *= 100;
+  for (mrpt::graphs::TNodeID i = 0; i < 6; ++i)
+    g.nodes[i] = mrpt::poses::CPose3D(0.1 * i, 0, 0, 0, 0, 0);
+  for (mrpt::graphs::TNodeID i = 0; i + 1 < 6; ++i)
+    g.insertEdgeAtEnd(
+        i, i + 1, mrpt::poses::CPose3DPDFGaussianInf(mrpt::poses::CPose3D(0.1, 0, 0, 0, 0, 0), inf));
+  g.insertEdgeAtEnd(
+      0, 5, mrpt::poses::CPose3DPDFGaussianInf(mrpt::poses::CPose3D(0.6, 0, 0, 0, 0, 0), inf));
+  graphslam::CSlamContext ctx;
+  const auto before = g.nodes;
+  const auto r = ctx.optimize(g, 2);
+  EXPECT_EQ(r.freeNodes, 2u);
+  for (mrpt::graphs::TNodeID i = 0; i < 4; ++i)
+    EXPECT_EQ(g.nodes.at(i), before.at(i)) << "node " << i;
+  EXPECT_GT(g.nodes.at(5).x(), 0.5 + 1e-4);
+  EXPECT_LT(r.chi2After, r.chi2Before);
+  // The whole graph moves without a window.
+  const auto full = ctx.optimize(g);
+  EXPECT_EQ(full.freeNodes, 5u);
+  EXPECT_NE(g.nodes.at(2), before.at(2));
+
+  // On the textured loop, windowed optimisations at every inconsistent
+  // closure (window 5 of a graph several times larger) reach the same
+  // accuracy; the whole graph is solved only at the end.
+  const auto windowed = run(seq, 0.0, 1000000, 5);
+  std::printf(
+      "windowed: %zu optimisations (%zu windowed), ATE %.4f\n", windowed.optimizations,
+      windowed.windowed, windowed.ate);
+  EXPECT_EQ(windowed.posed, windowed.frames);
+  EXPECT_LT(windowed.ate, 0.01);
+  EXPECT_GT(windowed.windowed, 0u);
+  EXPECT_EQ(windowed.optimizations, windowed.windowed + 1);
+}
+
 TEST(SlamPipeline, BackEndOptionsAreReadFromTheIni)
 {
   mrpt::config::CConfigFileMemory ini;
   ini.write("GraphSlam", "loop_outlier_chi2", 12.5);
   ini.write("GraphSlam", "optimize_min_chi2", 7.0);
   ini.write("GraphSlam", "optimize_every_keyframes", 4);
+  ini.write("GraphSlam", "optimize_window_keyframes", 0);
   const auto c = graphslam::CSlamContext::loadConfig(ini, "test.ini");
   EXPECT_DOUBLE_EQ(c.backEnd.loop_outlier_chi2, 12.5);
   EXPECT_DOUBLE_EQ(c.backEnd.optimize_min_chi2, 7.0);
   EXPECT_EQ(c.backEnd.optimize_every_keyframes, 4);
+  EXPECT_EQ(c.backEnd.optimize_window_keyframes, 0);
   const std::pair<std::string, std::string> bads[] = {
       {"optimize_every_keyframes", "0"},
+      {"optimize_window_keyframes", "-1"},
       {"optimize_min_chi2", "-1"},
       {"edge_information", "isotropic"}};
   for (const auto& [key, value] : bads)

@@ -175,6 +175,7 @@ CRoiGraphSlamApp::TSummary CRoiGraphSlamApp::run()
     throw std::runtime_error(m_args.input + ": no frames");
   const auto finalReport = pipeline.finish();
   const std::size_t optimizations = pipeline.optimizations();
+  const std::size_t windowedOptimizations = pipeline.windowedOptimizations();
   const CSlamContext* ctx = &pipeline.context();
   const TGraph& graph = pipeline.graph();
   const io::CFrameSource* src = &pipeline.source();
@@ -358,6 +359,7 @@ CRoiGraphSlamApp::TSummary CRoiGraphSlamApp::run()
   j["graph_nodes"] = graph.nodes.size();
   j["graph_edges"] = graph.edges.size();
   j["optimizations"] = optimizations;
+  j["optimizations_windowed"] = windowedOptimizations;
   j["final_optimization"] = {
       {"iterations", finalReport.iterations},
       {"chi2_before", finalReport.chi2Before},

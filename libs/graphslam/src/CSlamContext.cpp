@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <mutex>
+#include <set>
 #include <stdexcept>
 
 namespace roislam::graphslam
@@ -43,6 +44,8 @@ void CSlamContext::TOptions::loadFromConfigFile(
   loop_outlier_chi2 = c.read_double(s, "loop_outlier_chi2", loop_outlier_chi2);
   optimize_min_chi2 = c.read_double(s, "optimize_min_chi2", optimize_min_chi2);
   optimize_every_keyframes = c.read_int(s, "optimize_every_keyframes", optimize_every_keyframes);
+  optimize_window_keyframes =
+      c.read_int(s, "optimize_window_keyframes", optimize_window_keyframes);
   map_decimation = c.read_int(s, "map_decimation", map_decimation);
   map_max_depth_m = c.read_double(s, "map_max_depth_m", map_max_depth_m);
   edge_information = c.read_string(s, "edge_information", edge_information);
@@ -66,6 +69,7 @@ void CSlamContext::TOptions::saveToConfigFile(
   c.write(s, "loop_outlier_chi2", loop_outlier_chi2);
   c.write(s, "optimize_min_chi2", optimize_min_chi2);
   c.write(s, "optimize_every_keyframes", optimize_every_keyframes);
+  c.write(s, "optimize_window_keyframes", optimize_window_keyframes);
   c.write(s, "map_decimation", map_decimation);
   c.write(s, "map_max_depth_m", map_max_depth_m);
   c.write(s, "edge_information", edge_information);
@@ -95,6 +99,8 @@ void CSlamContext::TOptions::validate() const
     badKey("optimize_min_chi2", "must be >= 0");
   if (optimize_every_keyframes < 1)
     badKey("optimize_every_keyframes", "must be >= 1");
+  if (optimize_window_keyframes < 0)
+    badKey("optimize_window_keyframes", "must be >= 0");
   if (edge_information != "frontend" && edge_information != "diagonal")
     badKey(
         "edge_information",
@@ -275,21 +281,38 @@ frontend::TInformation66 CSlamContext::edgeInformation(
   return info;
 }
 
-TOptimizationReport CSlamContext::optimize(TGraph& graph)
+TOptimizationReport CSlamContext::optimize(TGraph& graph, std::size_t window)
 {
   TOptimizationReport r;
   if (graph.nodes.size() < 2 || graph.edges.empty())
     return r;
   mrpt::system::CTicTac timer;
   r.chi2Before = graph.chi2();
+  // A window frees only the newest nodes; the older ones stay where the last
+  // optimisation put them and anchor the new ones (MRPT solves only the free
+  // nodes' block, so the cost no longer grows with the graph).
+  std::set<mrpt::graphs::TNodeID> freeNodes;
+  if (window > 0 && graph.nodes.size() > window + 1)
+  {
+    auto it = graph.nodes.end();
+    for (std::size_t i = 0; i < window; ++i)
+      freeNodes.insert((--it)->first);
+    r.freeNodes = window;
+  }
+  else
+    r.freeNodes = graph.nodes.size() - 1;
+  const std::set<mrpt::graphs::TNodeID>* toOptimize = freeNodes.empty() ? nullptr : &freeNodes;
   mrpt::graphslam::TResultInfoSpaLevMarq info;
   mrpt::containers::yaml params = mrpt::containers::yaml::Map();
   params["max_iterations"] = static_cast<uint64_t>(m_config.backEnd.optimizer_max_iterations);
-  mrpt::graphslam::optimize_graph_spa_levmarq(graph, info, nullptr, params);
+  mrpt::graphslam::optimize_graph_spa_levmarq(graph, info, toOptimize, params);
   r.iterations = info.num_iters;
   // A false closure stays inconsistent with everything else after the
   // optimisation: drop the worst such edges and solve again.
-  for (int round = 0; round < 3; ++round)
+  // Only a whole-graph solution judges closures: with old nodes held fixed,
+  // a good closure to them can still carry the error the window could not
+  // spread.
+  for (int round = 0; round < (toOptimize ? 0 : 3); ++round)
   {
     std::vector<std::size_t> outliers;
     for (std::size_t i = 0; i < m_loops.size(); ++i)
@@ -314,7 +337,7 @@ TOptimizationReport CSlamContext::optimize(TGraph& graph)
       m_loops.erase(m_loops.begin() + static_cast<std::ptrdiff_t>(*k));
       ++m_rejectedLoops;
     }
-    mrpt::graphslam::optimize_graph_spa_levmarq(graph, info, nullptr, params);
+    mrpt::graphslam::optimize_graph_spa_levmarq(graph, info, toOptimize, params);
     r.iterations += info.num_iters;
   }
   r.chi2After = graph.chi2();

@@ -25,9 +25,14 @@
  *  - optimize_min_chi2         double >= 0 (30, as loop_outlier_chi2): a
  *                              keyframe whose new loop closure disagrees with
  *                              the current estimate by more (squared
- *                              Mahalanobis error) is optimised at once (once
- *                              graph nodes / 50 keyframes with closures are
- *                              pending); 0 = at every loop closure
+ *                              Mahalanobis error) is optimised at once;
+ *                              0 = at every loop closure
+ *  - optimize_window_keyframes int >= 0 (50): such an optimisation moves only
+ *                              the newest this many keyframes, the older ones
+ *                              held fixed (its cost stays flat; it does not
+ *                              judge closures, the whole-graph ones do).
+ *                              0 = solve the whole graph, once graph nodes /
+ *                              50 keyframes with closures are pending
  *  - optimize_every_keyframes  int >= 1 (10): other closures are optimised
  *                              together once max(this, graph nodes / 10)
  *                              keyframes brought some (and always at the
@@ -91,6 +96,8 @@ struct TOptimizationReport
   std::size_t iterations = 0;
   double chi2Before = 0, chi2After = 0;
   double seconds = 0;
+  /** Nodes it moved (the others were held fixed). */
+  std::size_t freeNodes = 0;
 };
 
 class CSlamContext
@@ -110,6 +117,7 @@ class CSlamContext
     double loop_outlier_chi2 = 30;
     double optimize_min_chi2 = 30;
     int optimize_every_keyframes = 10;
+    int optimize_window_keyframes = 50;
     int map_decimation = 8;
     double map_max_depth_m = 4.0;
     std::string edge_information = "diagonal";
@@ -190,8 +198,10 @@ class CSlamContext
 
   /** Optimises `graph` (SPA Levenberg-Marquardt, root fixed), removes loop
    *  edges that remain inconsistent (loop_outlier_chi2) and re-optimises, then
-   *  pushes every optimised node pose into the front end as its keyframe pose. */
-  TOptimizationReport optimize(TGraph& graph);
+   *  pushes every optimised node pose into the front end as its keyframe pose.
+   *  window > 0 (and smaller than the graph): only the newest `window` nodes
+   *  move, and no closure is removed. */
+  TOptimizationReport optimize(TGraph& graph, std::size_t window = 0);
 
   /** Keyframe map clouds in each keyframe's optical camera frame. */
   const std::vector<mrpt::maps::CColouredPointsMap>& keyframeClouds() const { return m_clouds; }

@@ -4,7 +4,8 @@
  * tracking thread nothing. Per frame: CKeyframeNRD (front end, new keyframe
  * node), CKeyframeERD (keyframe edges and verified loop closures), and an
  * SPA optimisation when a new closure disagrees with the current estimate
- * or every few loop-closing keyframes ([GraphSlam] optimize_min_chi2,
+ * (over the newest keyframes only) or every few loop-closing keyframes (the
+ * whole graph) ([GraphSlam] optimize_min_chi2, optimize_window_keyframes,
  * optimize_every_keyframes); finish() runs the final one.
  *
  * Drives our deciders directly rather than through CGraphSlamEngine, whose
@@ -79,6 +80,8 @@ class CSlamPipeline
   const std::vector<TFrameRecord>& records() const { return m_records; }
   /** Optimisations run so far (loop closures and finish()). */
   std::size_t optimizations() const { return m_optimizations; }
+  /** Of those, the ones over the newest keyframes only. */
+  std::size_t windowedOptimizations() const { return m_windowedOptimizations; }
   const CSlamContext& context() const { return *m_ctx; }
   const TGraph& graph() const { return m_graph; }
   const io::CFrameSource& source() const { return *m_source; }
@@ -96,6 +99,7 @@ class CSlamPipeline
   std::future<TFetched> m_next;
   std::vector<TFrameRecord> m_records;
   std::size_t m_optimizations = 0;
+  std::size_t m_windowedOptimizations = 0;
   /** Keyframes that brought loop closures since the last optimisation. */
   std::size_t m_pendingLoopKeyframes = 0;
 };
