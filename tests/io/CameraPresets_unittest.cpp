@@ -90,6 +90,21 @@ TEST(CameraPresets, ResolveAutoAndFiles)
   roislam::iotest::writeCameraIni(calib, cam);
   EXPECT_DOUBLE_EQ(resolveCamera(calib, tmp + "/mysequence").fx(), 20.0);
 
+  // The pre-2.x MRPT layout (dist without distortion_model) keeps its
+  // distortion; an explicit "none" is respected.
+  const std::string plain =
+      "[CAMERA_PARAMS]\nresolution = [640 480]\ncx = 318.6\ncy = 255.3\nfx = 517.3\n"
+      "fy = 516.5\ndist = [0.262383 -0.953104 -0.005358 0.002628 1.163314]\n";
+  std::ofstream(tmp + "/olddist.ini") << plain;
+  const auto old = resolveCamera(tmp + "/olddist.ini", tmp);
+  EXPECT_EQ(old.distortion, mrpt::img::DistortionModel::plumb_bob);
+  EXPECT_DOUBLE_EQ(old.k1(), 0.262383);
+  EXPECT_DOUBLE_EQ(old.k3(), 1.163314);
+  EXPECT_DOUBLE_EQ(old.p2(), 0.002628);
+  std::ofstream(tmp + "/nodist.ini") << plain << "distortion_model = none\n";
+  EXPECT_EQ(
+      resolveCamera(tmp + "/nodist.ini", tmp).distortion, mrpt::img::DistortionModel::none);
+
   // Bad calibration files name the file.
   for (const auto& [file, content] : std::vector<std::pair<std::string, std::string>>{
            {tmp + "/nosection.ini", "[OTHER]\nfx=1\n"},

@@ -1,10 +1,13 @@
 #include "roislam/io/CameraPresets.h"
 
-#include <mrpt/config/CConfigFile.h>
+#include <mrpt/config/CConfigFileMemory.h>
+#include <mrpt/io/vector_loadsave.h>
 #include <mrpt/containers/yaml.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <stdexcept>
+#include <vector>
 
 #include "MrptErrorText.h"
 
@@ -47,9 +50,20 @@ mrpt::img::TCamera loadIniCamera(const std::string& file)
   mrpt::img::TCamera cam;
   try
   {
-    mrpt::config::CConfigFile cfg(file);
+    mrpt::config::CConfigFileMemory cfg(mrpt::io::file_get_contents(file));
     if (!cfg.sectionExists("CAMERA_PARAMS"))
       throw std::runtime_error("missing section [CAMERA_PARAMS]");
+    // MRPT 2.x reads `dist` only with `distortion_model = plumb_bob`; files
+    // in the older layout (and hand-written ones) have only `dist`, and MRPT
+    // would silently load them as undistorted. Non-zero `dist` without a
+    // model means plumb_bob; an explicit model is respected.
+    if (cfg.read_string("CAMERA_PARAMS", "distortion_model", "").empty())
+    {
+      std::vector<double> dist;
+      cfg.read_vector("CAMERA_PARAMS", "dist", std::vector<double>(), dist);
+      if (std::any_of(dist.begin(), dist.end(), [](double d) { return d != 0; }))
+        cfg.write("CAMERA_PARAMS", "distortion_model", "plumb_bob");
+    }
     cam.loadFromConfigFile("CAMERA_PARAMS", cfg);
   }
   catch (const std::exception& e)
