@@ -2,6 +2,7 @@
 
 #include <mrpt/config/CConfigFileBase.h>
 #include <roislam/common/IniErrors.h>
+#include <roislam/roi/LargestComponent.h>
 
 #include <opencv2/imgproc.hpp>
 #include <stdexcept>
@@ -105,28 +106,14 @@ cv::Mat CRoiDetector::foregroundMask(const cv::Mat& image) const
 std::optional<TRoi> CRoiDetector::detect(const cv::Mat& image) const
 {
   const cv::Mat mask = foregroundMask(image);
-  cv::Mat labels, stats, centroids;
-  // Grana's block-based labelling measured ~3x faster here than OpenCV's
-  // default (Spaghetti) on 640x480 masks; the components are the same.
-  const int n =
-      cv::connectedComponentsWithStats(mask, labels, stats, centroids, 8, CV_32S, cv::CCL_GRANA);
-  int best = -1, bestArea = 0;
-  for (int l = 1; l < n; ++l)
-  {
-    const int area = stats.at<int>(l, cv::CC_STAT_AREA);
-    if (area > bestArea)
-    {
-      bestArea = area;
-      best = l;
-    }
-  }
-  if (best < 0 || bestArea < m_options.min_area_fraction * mask.total())
+  // Only the largest component is needed: run-length labelling finds it in a
+  // fraction of connectedComponentsWithStats' time (LargestComponent.h).
+  const auto best = largestComponent(mask);
+  if (!best || best->area < m_options.min_area_fraction * static_cast<double>(mask.total()))
     return std::nullopt;
   TRoi roi;
-  roi.box = cv::Rect(
-      stats.at<int>(best, cv::CC_STAT_LEFT), stats.at<int>(best, cv::CC_STAT_TOP),
-      stats.at<int>(best, cv::CC_STAT_WIDTH), stats.at<int>(best, cv::CC_STAT_HEIGHT));
-  roi.componentArea = bestArea;
+  roi.box = best->box;
+  roi.componentArea = best->area;
   return roi;
 }
 }  // namespace roislam::roi
