@@ -92,7 +92,8 @@ TEST(SlamPipeline, WindowedOptimisationsMoveOnlyTheNewestKeyframes)
     g.nodes[i] = mrpt::poses::CPose3D(0.1 * i, 0, 0, 0, 0, 0);
   for (mrpt::graphs::TNodeID i = 0; i + 1 < 6; ++i)
     g.insertEdgeAtEnd(
-        i, i + 1, mrpt::poses::CPose3DPDFGaussianInf(mrpt::poses::CPose3D(0.1, 0, 0, 0, 0, 0), inf));
+        i, i + 1,
+        mrpt::poses::CPose3DPDFGaussianInf(mrpt::poses::CPose3D(0.1, 0, 0, 0, 0, 0), inf));
   g.insertEdgeAtEnd(
       0, 5, mrpt::poses::CPose3DPDFGaussianInf(mrpt::poses::CPose3D(0.6, 0, 0, 0, 0, 0), inf));
   graphslam::CSlamContext ctx;

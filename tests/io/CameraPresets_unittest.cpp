@@ -102,8 +102,7 @@ TEST(CameraPresets, ResolveAutoAndFiles)
   EXPECT_DOUBLE_EQ(old.k3(), 1.163314);
   EXPECT_DOUBLE_EQ(old.p2(), 0.002628);
   std::ofstream(tmp + "/nodist.ini") << plain << "distortion_model = none\n";
-  EXPECT_EQ(
-      resolveCamera(tmp + "/nodist.ini", tmp).distortion, mrpt::img::DistortionModel::none);
+  EXPECT_EQ(resolveCamera(tmp + "/nodist.ini", tmp).distortion, mrpt::img::DistortionModel::none);
 
   // Bad calibration files name the file.
   for (const auto& [file, content] : std::vector<std::pair<std::string, std::string>>{

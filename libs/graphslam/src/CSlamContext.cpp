@@ -44,8 +44,7 @@ void CSlamContext::TOptions::loadFromConfigFile(
   loop_outlier_chi2 = c.read_double(s, "loop_outlier_chi2", loop_outlier_chi2);
   optimize_min_chi2 = c.read_double(s, "optimize_min_chi2", optimize_min_chi2);
   optimize_every_keyframes = c.read_int(s, "optimize_every_keyframes", optimize_every_keyframes);
-  optimize_window_keyframes =
-      c.read_int(s, "optimize_window_keyframes", optimize_window_keyframes);
+  optimize_window_keyframes = c.read_int(s, "optimize_window_keyframes", optimize_window_keyframes);
   map_decimation = c.read_int(s, "map_decimation", map_decimation);
   map_max_depth_m = c.read_double(s, "map_max_depth_m", map_max_depth_m);
   edge_information = c.read_string(s, "edge_information", edge_information);

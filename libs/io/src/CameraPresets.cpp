@@ -1,8 +1,8 @@
 #include "roislam/io/CameraPresets.h"
 
 #include <mrpt/config/CConfigFileMemory.h>
-#include <mrpt/io/vector_loadsave.h>
 #include <mrpt/containers/yaml.h>
+#include <mrpt/io/vector_loadsave.h>
 
 #include <algorithm>
 #include <filesystem>
