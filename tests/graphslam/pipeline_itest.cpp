@@ -122,6 +122,27 @@ TEST(SlamPipeline, WindowedOptimisationsMoveOnlyTheNewestKeyframes)
   EXPECT_EQ(windowed.optimizations, windowed.windowed + 1);
 }
 
+TEST(SlamPipeline, LoopDiscrepancyLimitGrowsWithThePath)
+{
+  // Keyframes 1 m apart along x: the limit between 2 and 7 is the fixed part
+  // plus the per-metre share of the 5 m between them, in either order.
+  graphslam::TGraph g;
+  for (mrpt::graphs::TNodeID i = 0; i < 10; ++i)
+    g.nodes[i] = mrpt::poses::CPose3D(1.0 * i, 0, 0, 0, 0, 0);
+  graphslam::CSlamContext::TConfig cfg;
+  cfg.backEnd.loop_max_discrepancy_m = 0.5;
+  cfg.backEnd.loop_max_discrepancy_per_m = 0.05;
+  const graphslam::CSlamContext ctx(cfg);
+  EXPECT_NEAR(ctx.loopDiscrepancyLimit(2, 7, g), 0.75, 1e-12);
+  EXPECT_NEAR(ctx.loopDiscrepancyLimit(7, 2, g), 0.75, 1e-12);
+  EXPECT_NEAR(ctx.loopDiscrepancyLimit(4, 4, g), 0.5, 1e-12);
+  // A missing node interrupts nothing else: the 1 m around it is not counted.
+  g.nodes.erase(5);
+  EXPECT_NEAR(ctx.loopDiscrepancyLimit(2, 7, g), 0.65, 1e-12);
+  cfg.backEnd.loop_max_discrepancy_per_m = 0;
+  EXPECT_NEAR(graphslam::CSlamContext(cfg).loopDiscrepancyLimit(0, 9, g), 0.5, 1e-12);
+}
+
 TEST(SlamPipeline, BackEndOptionsAreReadFromTheIni)
 {
   mrpt::config::CConfigFileMemory ini;
@@ -129,14 +150,17 @@ TEST(SlamPipeline, BackEndOptionsAreReadFromTheIni)
   ini.write("GraphSlam", "optimize_min_chi2", 7.0);
   ini.write("GraphSlam", "optimize_every_keyframes", 4);
   ini.write("GraphSlam", "optimize_window_keyframes", 0);
+  ini.write("GraphSlam", "loop_max_discrepancy_per_m", 0.02);
   const auto c = graphslam::CSlamContext::loadConfig(ini, "test.ini");
   EXPECT_DOUBLE_EQ(c.backEnd.loop_outlier_chi2, 12.5);
   EXPECT_DOUBLE_EQ(c.backEnd.optimize_min_chi2, 7.0);
   EXPECT_EQ(c.backEnd.optimize_every_keyframes, 4);
   EXPECT_EQ(c.backEnd.optimize_window_keyframes, 0);
+  EXPECT_DOUBLE_EQ(c.backEnd.loop_max_discrepancy_per_m, 0.02);
   const std::pair<std::string, std::string> bads[] = {
       {"optimize_every_keyframes", "0"},
       {"optimize_window_keyframes", "-1"},
+      {"loop_max_discrepancy_per_m", "-0.1"},
       {"optimize_min_chi2", "-1"},
       {"edge_information", "isotropic"}};
   for (const auto& [key, value] : bads)

@@ -81,13 +81,14 @@ CKeyframeERD::TEdgeReport CKeyframeERD::processNewKeyframe(std::size_t id)
     const auto est = c.odometry().registerKeyframes(cand, id);
     if (!est || est->inliers < static_cast<std::size_t>(opt.loop_min_inliers))
       continue;
-    // Sanity against the current estimate: drift over a loop is bounded, a
-    // wrong association usually is not.
+    // Sanity against the current estimate: drift over a loop is bounded (by
+    // a share of the path around it), a wrong association usually is not.
     const auto itA = g.nodes.find(cand), itB = g.nodes.find(id);
     if (itA == g.nodes.end() || itB == g.nodes.end())
       continue;
     const mrpt::poses::CPose3D predicted = itB->second - itA->second;
-    if ((predicted.translation() - est->pose.translation()).norm() > opt.loop_max_discrepancy_m)
+    if ((predicted.translation() - est->pose.translation()).norm() >
+        c.loopDiscrepancyLimit(cand, id, g))
       continue;
     g.insertEdgeAtEnd(
         static_cast<mrpt::graphs::TNodeID>(cand), static_cast<mrpt::graphs::TNodeID>(id),

@@ -40,6 +40,8 @@ void CSlamContext::TOptions::loadFromConfigFile(
   max_loop_candidates = c.read_int(s, "max_loop_candidates", max_loop_candidates);
   loop_min_inliers = c.read_int(s, "loop_min_inliers", loop_min_inliers);
   loop_max_discrepancy_m = c.read_double(s, "loop_max_discrepancy_m", loop_max_discrepancy_m);
+  loop_max_discrepancy_per_m =
+      c.read_double(s, "loop_max_discrepancy_per_m", loop_max_discrepancy_per_m);
   optimizer_max_iterations = c.read_int(s, "optimizer_max_iterations", optimizer_max_iterations);
   loop_outlier_chi2 = c.read_double(s, "loop_outlier_chi2", loop_outlier_chi2);
   optimize_min_chi2 = c.read_double(s, "optimize_min_chi2", optimize_min_chi2);
@@ -64,6 +66,7 @@ void CSlamContext::TOptions::saveToConfigFile(
   c.write(s, "max_loop_candidates", max_loop_candidates);
   c.write(s, "loop_min_inliers", loop_min_inliers);
   c.write(s, "loop_max_discrepancy_m", loop_max_discrepancy_m);
+  c.write(s, "loop_max_discrepancy_per_m", loop_max_discrepancy_per_m);
   c.write(s, "optimizer_max_iterations", optimizer_max_iterations);
   c.write(s, "loop_outlier_chi2", loop_outlier_chi2);
   c.write(s, "optimize_min_chi2", optimize_min_chi2);
@@ -90,6 +93,8 @@ void CSlamContext::TOptions::validate() const
     badKey("loop_min_inliers", "must be >= 3");
   if (!(loop_max_discrepancy_m > 0))
     badKey("loop_max_discrepancy_m", "must be > 0");
+  if (!(loop_max_discrepancy_per_m >= 0))
+    badKey("loop_max_discrepancy_per_m", "must be >= 0");
   if (optimizer_max_iterations < 1)
     badKey("optimizer_max_iterations", "must be >= 1");
   if (!(loop_outlier_chi2 > 0))
@@ -163,6 +168,20 @@ const frontend::TFrameResult& CSlamContext::trackFrame(const io::TRGBDFrame& fra
   m_rois.resize(m_last->newKeyframeId + 1);
   m_rois[m_last->newKeyframeId] = roi;
   return *m_last;
+}
+
+double CSlamContext::loopDiscrepancyLimit(
+    std::size_t from, std::size_t to, const TGraph& graph) const
+{
+  const auto& o = m_config.backEnd;
+  double path = 0;
+  for (std::size_t k = std::min(from, to); k < std::max(from, to); ++k)
+  {
+    const auto a = graph.nodes.find(k), b = graph.nodes.find(k + 1);
+    if (a != graph.nodes.end() && b != graph.nodes.end())
+      path += (b->second.translation() - a->second.translation()).norm();
+  }
+  return o.loop_max_discrepancy_m + o.loop_max_discrepancy_per_m * path;
 }
 
 std::vector<std::pair<std::size_t, ELoopSource>> CSlamContext::loopCandidates(

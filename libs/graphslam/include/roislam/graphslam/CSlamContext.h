@@ -18,6 +18,14 @@
  *  - loop_min_inliers          int >= 3 (25): 3-D RANSAC inliers to accept
  *  - loop_max_discrepancy_m    [m] > 0 (0.5): reject a verified closure whose
  *                              relative pose disagrees with the estimate by more
+ *                              (plus the allowance below)
+ *  - loop_max_discrepancy_per_m  >= 0 (0.05): the limit grows by this much per
+ *                              metre of estimated path between the two
+ *                              keyframes: odometry drifts a few percent of the
+ *                              distance travelled, so a fixed limit would
+ *                              refuse the true closures of long loops (a 20 m
+ *                              office loop at 2.5 % drift is already off by
+ *                              0.5 m) while they are the ones that matter
  *  - loop_outlier_chi2         double > 0 (30): after an optimisation, a loop
  *                              edge whose squared Mahalanobis error exceeds
  *                              this is removed as a false closure and the
@@ -113,6 +121,7 @@ class CSlamContext
     int max_loop_candidates = 3;
     int loop_min_inliers = 25;
     double loop_max_discrepancy_m = 0.5;
+    double loop_max_discrepancy_per_m = 0.05;
     int optimizer_max_iterations = 50;
     double loop_outlier_chi2 = 30;
     double optimize_min_chi2 = 30;
@@ -185,6 +194,12 @@ class CSlamContext
   /** The information matrix to put in the graph for a front-end measurement
    *  ([GraphSlam] edge_information). Constant-velocity constraints keep the
    *  front end's (deliberately weak) information. */
+  /** Largest translation discrepancy accepted between a verified closure
+   *  from keyframe `from` to `to` and the current estimate `graph`:
+   *  loop_max_discrepancy_m + loop_max_discrepancy_per_m x the estimated path
+   *  length between them (consecutive nodes). */
+  double loopDiscrepancyLimit(std::size_t from, std::size_t to, const TGraph& graph) const;
+
   frontend::TInformation66 edgeInformation(
       const frontend::TInformation66& frontEndInformation, frontend::ETrackingMethod method,
       std::size_t inliers) const;
