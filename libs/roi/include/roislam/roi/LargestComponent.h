@@ -4,7 +4,7 @@
  * summed per component. Stage 1 needs only this one component; after the
  * edge-growing morphology its masks are a few large blobs, i.e. few runs, and
  * this costs a fraction of cv::connectedComponentsWithStats, which labels and
- * measures every pixel (0.77 ms for a 640x480 fr1 mask here, single thread).
+ * measures every pixel (0.81 ms against 0.05 ms on fr1 masks here, one thread).
  */
 #pragma once
 
