@@ -1,8 +1,8 @@
 #include "roislam/graphslam/CSlamPipeline.h"
 
-#include <mrpt/math/CMatrixFixed.h>
 #include <mrpt/system/CTicTac.h>
 
+// getEdgeSquareError() needs Eigen complete; MRPT's headers do not include it.
 #include <Eigen/Dense>
 #include <algorithm>
 #include <stdexcept>
@@ -71,8 +71,7 @@ bool CSlamPipeline::step()
     if (rep.loopClosures > 0)
     {
       // Optimise at once when a new closure disagrees with the current
-      // estimate; consistent ones wait for a few more keyframes (the whole
-      // graph is solved each time, and its cost grows with the graph).
+      // estimate; consistent ones wait for a few more keyframes.
       const auto& opt = m_ctx->config().backEnd;
       ++m_pendingLoopKeyframes;
       double worst = 0;
@@ -95,31 +94,25 @@ bool CSlamPipeline::step()
       const std::size_t every =
           std::max(static_cast<std::size_t>(opt.optimize_every_keyframes), nodes / 10);
       const auto window = static_cast<std::size_t>(opt.optimize_window_keyframes);
-      if (m_pendingLoopKeyframes >= every)
+      const bool inconsistent = worst > opt.optimize_min_chi2;
+      if (m_pendingLoopKeyframes >= every ||
+          (inconsistent && window == 0 &&
+           m_pendingLoopKeyframes >= std::max<std::size_t>(1, nodes / 50)))
       {
         m_ctx->optimize(m_graph);
         ++m_optimizations;
         m_pendingLoopKeyframes = 0;
       }
-      else if (worst > opt.optimize_min_chi2)
+      else if (inconsistent && window > 0)
       {
-        if (window > 0)
-        {
-          // The pending count is kept: the window leaves older keyframes
-          // where they were, the next whole-graph solve moves them.
-          const auto r = m_ctx->optimize(m_graph, window);
-          ++m_optimizations;
-          if (r.freeNodes + 1 < nodes)
-            ++m_windowedOptimizations;
-          else
-            m_pendingLoopKeyframes = 0;  // the window held the whole graph
-        }
-        else if (m_pendingLoopKeyframes >= std::max<std::size_t>(1, nodes / 50))
-        {
-          m_ctx->optimize(m_graph);
-          ++m_optimizations;
-          m_pendingLoopKeyframes = 0;
-        }
+        // The pending count is kept: the window leaves older keyframes where
+        // they were, the next whole-graph solve moves them.
+        const auto r = m_ctx->optimize(m_graph, window);
+        ++m_optimizations;
+        if (r.freeNodes + 1 < nodes)
+          ++m_windowedOptimizations;
+        else
+          m_pendingLoopKeyframes = 0;  // the window held the whole graph
       }
     }
   }

@@ -44,7 +44,7 @@
  *  - optimize_every_keyframes  int >= 1 (10): other closures are optimised
  *                              together once max(this, graph nodes / 10)
  *                              keyframes brought some (and always at the
- *                              end). Each optimisation solves the whole
+ *                              end). Each of these solves the whole
  *                              graph, so its cost grows with it: optimising
  *                              at every closure cost 35 ms a frame after 750
  *                              frames (fr1/rpy there and back, 229 nodes);
