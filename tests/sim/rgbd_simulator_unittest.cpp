@@ -10,6 +10,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <opencv2/features2d.hpp>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
@@ -26,6 +27,8 @@ CRgbdSimulator::TOptions opts(const std::string& scene, bool noise, unsigned fra
   o.scene = scene;
   o.noise = noise;
   o.frames = frames;
+  // The analytic checks compare every row with the frame's one pose.
+  o.rollingShutterMs = 0;
   return o;
 }
 
@@ -35,14 +38,20 @@ struct TDepthCheck
 };
 
 /** Compares the rendered depth of a noise-free frame with the analytic scene on
- *  a pixel grid, away from depth discontinuities. */
-TDepthCheck checkDepth(const CRgbdSimulator& sim, const CRgbdSimulator::TFrame& f)
+ *  a pixel grid, away from depth discontinuities; rowPose(v) is the camera
+ *  pose row v was rendered from (default: the frame's). */
+TDepthCheck checkDepth(
+    const CRgbdSimulator& sim, const CRgbdSimulator::TFrame& frame,
+    const std::function<mrpt::poses::CPose3D(int)>& rowPose = {})
 {
   const auto cam = sim.camera();
   TDepthCheck res;
+  CRgbdSimulator::TFrame f = frame;
   for (int v = 4; v < f.depth.rows - 4; v += 7)
     for (int u = 4; u < f.depth.cols - 4; u += 7)
     {
+      if (rowPose)
+        f.pose = rowPose(v);
       const float z = f.depth.at<float>(v, u);
       const auto za = sim.scene().depthAt(f.pose, cam, u, v);
       if (z <= 0 || !za)
@@ -115,6 +124,30 @@ TEST(RgbdSimulator, TexturedDepthMatchesGeometryExactly)
     // Kinect range: everything in the room is within 0.4-4 m from the path.
     EXPECT_GT(cv::countNonZero(f.depth > 0), 0.99 * f.depth.total());
   }
+}
+
+TEST(RgbdSimulator, RollingShutterRowsSeeTheScenesFromTheirOwnTime)
+{
+  auto o = opts("textured", false);
+  o.rollingShutterMs = 20;
+  CRgbdSimulator sim(o);
+  ASSERT_EQ(sim.bandHeight(), 8u);
+  const std::size_t i = 6;  // the path turns at tens of deg/s here
+  const auto f = sim.renderFrame(i);
+  // Ground truth stays the middle row's pose, at the frame's stamp.
+  EXPECT_EQ(f.pose, sim.groundTruthPose(i));
+  auto rowPose = [&](int v)
+  {
+    const double yMid = (v / 8) * 8 + 3.5;
+    return sim.path().opticalPoseAt(i / o.fps + (yMid / o.height - 0.5) * 0.020);
+  };
+  const auto own = checkDepth(sim, f, rowPose);
+  EXPECT_GT(own.compared, 3000);
+  EXPECT_GE(own.depthOk, own.compared * 0.995);
+  EXPECT_GE(own.surfaceOk, own.compared * 0.995);
+  // Read with the one middle-row pose, the rows away from the middle are off.
+  const auto one = checkDepth(sim, f);
+  EXPECT_LT(one.surfaceOk, own.surfaceOk * 0.8);
 }
 
 TEST(RgbdSimulator, TexturedSceneIsRichFeaturelessIsFlat)
@@ -274,6 +307,8 @@ TEST(RgbdSimulator, OptionsLoadValidateAndRoundTrip)
   expectError("fps", "0");
   expectError("noise", "maybe");
   expectError("depth_time_offset", "0.05");
+  expectError("rolling_shutter_ms", "-1");
+  expectError("rolling_shutter_ms", "40");  // longer than a 30 Hz frame
   expectError("framez", "10");  // unknown key
 }
 

@@ -104,6 +104,10 @@ struct CRgbdOdometry::TImpl
   mrpt::poses::CPose3D lastRel;
   /** Motion between the last two tracked frames: P_k = P_{k-1} (+) velocity. */
   mrpt::poses::CPose3D velocity;
+  /** Colour stamp of the last tracked frame; the interval velocity spans
+   *  (0 = unknown). */
+  double lastStamp = 0, velocityDt = 0;
+  bool haveStamp = false;
 
   TImpl(const TOptions& o)
       : roiDetector(o.roi), extractor(o.extractor), matcher(o.matcher), ransac(ransacOptions(o))
@@ -122,6 +126,25 @@ struct CRgbdOdometry::TImpl
 
 namespace
 {
+/** The camera's velocity during a motion that took dt seconds (the motion
+ *  maps the later camera into the earlier one). Beyond a full turn or 3 m per
+ *  second (no hand-held camera) the motion is taken as a failed
+ *  registration: zero. */
+detail::TCameraRate cameraRate(const mrpt::poses::CPose3D& motion, double dt)
+{
+  constexpr double maxTurn = 2 * M_PI, maxSpeed = 3.0;
+  detail::TCameraRate r;
+  if (!(dt > 0))
+    return r;
+  const Eigen::AngleAxisd aa(motion.getRotationMatrix().asEigen());
+  r.omega = aa.axis() * (aa.angle() / dt);
+  r.linear = Eigen::Vector3d(motion.x(), motion.y(), motion.z()) / dt;
+  if (!r.omega.allFinite() || !r.linear.allFinite() || r.omega.norm() > maxTurn ||
+      r.linear.norm() > maxSpeed)
+    return {};
+  return r;
+}
+
 roi::CRoiDetector::TOptions roiOptionsFor(const CRgbdOdometry::TOptions& o)
 {
   roi::CRoiDetector::TOptions r = o.roi;
@@ -172,6 +195,8 @@ void CRgbdOdometry::reset()
   m_impl->icpMaps.clear();
   m_impl->haveLast = false;
   m_impl->velocity = mrpt::poses::CPose3D();
+  m_impl->velocityDt = 0;
+  m_impl->haveStamp = false;
 }
 
 std::optional<TRelativePoseEstimate> CRgbdOdometry::registerKeyframes(
@@ -282,8 +307,12 @@ TFrameResult CRgbdOdometry::process(
 
   // Lift to 3-D: undistorted pixel + depth at the (distorted) keypoint.
   t0 = Clock::now();
-  const detail::TLiftedFeatures lifted = detail::liftFeatures(all, depth, I.K, I.dist, o);
-  const std::vector<int>& valid = lifted.valid;
+  detail::TLiftedFeatures lifted = detail::liftFeatures(all, depth, I.K, I.dist, o);
+  const std::vector<int> valid = lifted.valid;
+  // Rolling shutter, first guess: the velocity of the last motion.
+  const double readout = o.rolling_shutter_ms * 1e-3;
+  const detail::TCameraRate ratePredicted = cameraRate(I.velocity, I.velocityDt);
+  detail::rectifyRollingShutter(lifted, ratePredicted, readout, I.pinhole);
   res.featuresWithDepth = valid.size();
   // Tracking set: ROI subset or the whole image.
   std::vector<int> chosen = valid;
@@ -308,7 +337,7 @@ TFrameResult CRgbdOdometry::process(
   }
   auto makeSet = [&](const std::vector<int>& idx)
   {
-    TKeyframe k = detail::makeFeatureSet(all, lifted, idx, depth, I.pinhole);
+    TKeyframe k = detail::makeFeatureSet(all, lifted, idx, I.pinhole);
     k.frameIndex = frame.index;
     k.timestamp = frame.timestamp;
     k.roi = res.roi;
@@ -327,6 +356,11 @@ TFrameResult CRgbdOdometry::process(
   auto finish = [&]()
   {
     res.times.total_ms = msSince(tStart);
+    if (res.pose)
+    {
+      I.lastStamp = frame.timestamp;
+      I.haveStamp = true;
+    }
     if (res.icpRefined)
       ++m_stats.icpRefined;
     switch (res.method)
@@ -405,6 +439,11 @@ TFrameResult CRgbdOdometry::process(
   }
 
   const std::size_t lastKf = m_keyframes.size() - 1;
+  auto setVelocity = [&](const mrpt::poses::CPose3D& v)
+  {
+    I.velocity = v;
+    I.velocityDt = I.haveStamp ? frame.timestamp - I.lastStamp : 0;
+  };
   // Prediction (constant velocity) relative to the last keyframe.
   mrpt::poses::CPose3D lastWorld = m_keyframes[lastKf].pose;
   if (I.haveLast)
@@ -464,6 +503,31 @@ TFrameResult CRgbdOdometry::process(
     }
   }
 
+  // Rolling shutter, second pass: the velocity this registration measured
+  // since the last frame replaces the predicted one (it lags by
+  // half a frame instead of one and a half), and the same matches are
+  // refined again. Measured on fr1/rpy; a third pass was not better.
+  if (reg && readout > 0 && I.haveStamp && frame.timestamp > I.lastStamp)
+  {
+    const mrpt::poses::CPose3D measured =
+        (m_keyframes[ref].pose + detail::toPose(reg->T)) - lastWorld;
+    const detail::TCameraRate rate = cameraRate(measured, frame.timestamp - I.lastStamp);
+    auto rebuild = [&]()
+    {
+      full = makeSet(valid);
+      cur = fallback || chosen.size() == valid.size() ? full : makeSet(chosen);
+      cur.fullImageFallback = fallback;
+    };
+    detail::rectifyRollingShutter(lifted, rate, readout, I.pinhole);
+    rebuild();
+    if (auto again = detail::refineRegistration(m_keyframes[ref], cur, *reg, I.pinhole, o))
+      reg = std::move(again);
+    else
+    {
+      detail::rectifyRollingShutter(lifted, ratePredicted, readout, I.pinhole);
+      rebuild();
+    }
+  }
   if (reg && o.icp_refine_sigma_m > 0 && I.icpMaps.count(ref))
   {
     // A feature registration that leaves the pose poorly determined (blur,
@@ -524,7 +588,7 @@ TFrameResult CRgbdOdometry::process(
   res.referenceKeyframe = ref;
   mrpt::poses::CPose3D world = m_keyframes[ref].pose + res.relativePose;
   res.pose = world;
-  I.velocity = world - lastWorld;
+  setVelocity(world - lastWorld);
 
   // Keyframe decision, on the motion since the last keyframe.
   const mrpt::poses::CPose3D sinceLast = world - m_keyframes[lastKf].pose;
@@ -558,7 +622,7 @@ TFrameResult CRgbdOdometry::process(
       res.inliers = r->inliers;
       world = m_keyframes[ref].pose + res.relativePose;
       res.pose = world;
-      I.velocity = world - lastWorld;
+      setVelocity(world - lastWorld);
     }
   }
   const TKeyframe& edgeSet = fullEdges ? full : cur;

@@ -94,6 +94,7 @@ void CRgbdOdometry::TOptions::loadFromConfigFile(
   min_depth_m = c.read_double(s, "min_depth_m", min_depth_m);
   max_depth_m = c.read_double(s, "max_depth_m", max_depth_m);
   depth_discontinuity_m = c.read_double(s, "depth_discontinuity_m", depth_discontinuity_m);
+  rolling_shutter_ms = c.read_double(s, "rolling_shutter_ms", rolling_shutter_ms);
   icp_fallback = c.read_bool(s, "icp_fallback", icp_fallback);
   icp_refine_sigma_m = c.read_double(s, "icp_refine_sigma_m", icp_refine_sigma_m);
   icp_decimation = c.read_int(s, "icp_decimation", icp_decimation);
@@ -136,6 +137,7 @@ void CRgbdOdometry::TOptions::saveToConfigFile(
   c.write(s, "min_depth_m", min_depth_m);
   c.write(s, "max_depth_m", max_depth_m);
   c.write(s, "depth_discontinuity_m", depth_discontinuity_m);
+  c.write(s, "rolling_shutter_ms", rolling_shutter_ms);
   c.write(s, "icp_fallback", icp_fallback);
   c.write(s, "icp_refine_sigma_m", icp_refine_sigma_m);
   c.write(s, "icp_decimation", icp_decimation);
@@ -190,6 +192,9 @@ void CRgbdOdometry::TOptions::validate() const
     common::throwBadIniKey(s, "max_depth_m", "must be > min_depth_m");
   if (!(depth_discontinuity_m >= 0))
     common::throwBadIniKey(s, "depth_discontinuity_m", "must be >= 0");
+  // A readout longer than a second is no video camera's (and a typo of s/ms).
+  if (!(rolling_shutter_ms >= 0 && rolling_shutter_ms <= 1000))
+    common::throwBadIniKey(s, "rolling_shutter_ms", "must be in [0, 1000]");
   if (!(icp_refine_sigma_m >= 0))
     common::throwBadIniKey(s, "icp_refine_sigma_m", "must be >= 0");
   if (icp_decimation < 1)

@@ -17,7 +17,13 @@ TLiftedFeatures liftFeatures(
   pts.reserve(all.size());
   for (const auto& k : all.keypoints)
     pts.push_back(k.pt);
-  cv::undistortPoints(pts, out.undistorted, K, dist, cv::noArray(), K);
+  cv::undistortPoints(pts, out.rawUndistorted, K, dist, cv::noArray(), K);
+  out.rawZ.assign(pts.size(), 0.0F);
+  out.rowFraction.resize(pts.size());
+  // The depth image is registered to the (distorted) colour image, whose
+  // rows are the ones read out in sequence.
+  for (std::size_t i = 0; i < pts.size(); ++i)
+    out.rowFraction[i] = static_cast<float>(pts[i].y / depth.rows - 0.5);
   for (std::size_t i = 0; i < pts.size(); ++i)
   {
     const int u = static_cast<int>(std::lround(pts[i].x));
@@ -40,14 +46,47 @@ TLiftedFeatures liftFeatures(
       if (lo <= 0 || hi - lo > o.depth_discontinuity_m * z)
         continue;
     }
+    out.rawZ[i] = z;
     out.valid.push_back(static_cast<int>(i));
   }
+  out.undistorted = out.rawUndistorted;
+  out.z = out.rawZ;
   return out;
+}
+
+void rectifyRollingShutter(
+    TLiftedFeatures& lifted, const TCameraRate& rate, double readout_s, const TPinhole& pinhole)
+{
+  lifted.undistorted = lifted.rawUndistorted;
+  lifted.z = lifted.rawZ;
+  if (readout_s == 0 || rate.isZero())
+    return;
+  for (int i : lifted.valid)
+  {
+    const auto k = static_cast<std::size_t>(i);
+    const double s = lifted.rowFraction[k] * readout_s;
+    const Eigen::Vector3d w = rate.omega * s;
+    const double a = w.norm();
+    const cv::Point2f& u = lifted.rawUndistorted[k];
+    const double z = lifted.rawZ[k];
+    Eigen::Vector3d X((u.x - pinhole.cx) / pinhole.fx * z, (u.y - pinhole.cy) / pinhole.fy * z, z);
+    if (a > 0)
+      X = Eigen::AngleAxisd(a, w / a) * X;
+    X += rate.linear * s;
+    // A few milliseconds of motion cannot put a point behind the camera; the
+    // guard only keeps a corrupt rate from producing NaNs.
+    if (!(X.z() > 0))
+      continue;
+    lifted.z[k] = static_cast<float>(X.z());
+    lifted.undistorted[k] = cv::Point2f(
+        static_cast<float>(pinhole.fx * X.x() / X.z() + pinhole.cx),
+        static_cast<float>(pinhole.fy * X.y() / X.z() + pinhole.cy));
+  }
 }
 
 TKeyframe makeFeatureSet(
     const features::TFeatureSet& all, const TLiftedFeatures& lifted, const std::vector<int>& idx,
-    const cv::Mat& depth, const TPinhole& pinhole)
+    const TPinhole& pinhole)
 {
   TKeyframe k;
   k.features = all.select(idx);
@@ -56,9 +95,7 @@ TKeyframe makeFeatureSet(
   for (int i : idx)
   {
     const auto& u = lifted.undistorted[static_cast<std::size_t>(i)];
-    const cv::Point2f& p = all.keypoints[static_cast<std::size_t>(i)].pt;
-    const double z =
-        depth.at<float>(static_cast<int>(std::lround(p.y)), static_cast<int>(std::lround(p.x)));
+    const double z = lifted.z[static_cast<std::size_t>(i)];
     k.points.emplace_back(
         (u.x - pinhole.cx) / pinhole.fx * z, (u.y - pinhole.cy) / pinhole.fy * z, z);
     k.pixels.push_back(u);

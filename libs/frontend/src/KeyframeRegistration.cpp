@@ -10,6 +10,78 @@
 
 namespace roislam::frontend::detail
 {
+namespace
+{
+/** The correspondences of the given (reference, current) feature pairs. */
+TCorrespondences correspondences(
+    const TKeyframe& ref, const TKeyframe& cur, const std::vector<std::pair<int, int>>& pairs,
+    const CRgbdOdometry::TOptions& o)
+{
+  TCorrespondences c;
+  c.a.reserve(pairs.size());
+  c.b.reserve(pairs.size());
+  c.ua.reserve(pairs.size());
+  c.ub.reserve(pairs.size());
+  for (const auto& [ia, ib] : pairs)
+  {
+    const auto& pa = ref.points[static_cast<std::size_t>(ia)];
+    const auto& pb = cur.points[static_cast<std::size_t>(ib)];
+    const auto& ua = ref.pixels[static_cast<std::size_t>(ia)];
+    const auto& ub = cur.pixels[static_cast<std::size_t>(ib)];
+    c.a.emplace_back(pa.x, pa.y, pa.z);
+    c.b.emplace_back(pb.x, pb.y, pb.z);
+    c.ua.emplace_back(ua.x, ua.y);
+    c.ub.emplace_back(ub.x, ub.y);
+  }
+  if (!o.scale_aware_weights)
+    return c;
+  // Keypoint precision degrades with the detection scale (pyramid level).
+  for (const auto& [ia, ib] : pairs)
+  {
+    const double sa = ref.features.keypoints[static_cast<std::size_t>(ia)].size;
+    const double sb = cur.features.keypoints[static_cast<std::size_t>(ib)].size;
+    c.sigma.push_back(0.5 * (sa + sb));
+  }
+  // Normalise: the smallest detection size of the type has pixel_sigma_px.
+  double s0 = features::isBinary(ref.features.type) ? 31.0 : 1e9;
+  if (!features::isBinary(ref.features.type))
+    for (double v : c.sigma)
+      s0 = std::min(s0, v);
+  s0 = std::max(s0, 1e-3);
+  for (double& v : c.sigma)
+    v = o.pixel_sigma_px * std::max(1.0, v / s0);
+  return c;
+}
+
+TRefineParams refineParams(const CRgbdOdometry::TOptions& o)
+{
+  TRefineParams rp;
+  rp.iterations = o.refine_iterations;
+  rp.inlierThresholdPx = o.reprojection_threshold_px;
+  rp.inlierThreshold3d = 2 * o.ransac_threshold_m;
+  rp.pixelSigma = o.pixel_sigma_px;
+  return rp;
+}
+
+std::optional<TRegistration> finishRegistration(
+    const TRefineResult& rr, std::vector<std::pair<int, int>> pairs,
+    const CRgbdOdometry::TOptions& o)
+{
+  if (rr.inliers.size() < static_cast<std::size_t>(o.min_inliers))
+    return std::nullopt;
+  TRegistration out;
+  out.T = rr.T;
+  out.information = rr.information;
+  out.matches = pairs.size();
+  out.inliers = rr.inliers.size();
+  out.rmse3d = rr.rmse3d;
+  out.rmsePx = rr.rmsePx;
+  out.pairs = std::move(pairs);
+  out.inlierPairs = rr.inliers;
+  return out;
+}
+}  // namespace
+
 std::optional<TRegistration> registerSets(
     const TKeyframe& ref, const TKeyframe& cur, const matching::CFeatureMatcher& matcher,
     const matching::CRigidTransformRansac& ransac, const TPinhole& cam,
@@ -28,40 +100,18 @@ std::optional<TRegistration> registerSets(
   if (matches.size() < minInl)
     return std::nullopt;
   t0 = Clock::now();
+  std::vector<std::pair<int, int>> pairs;
+  pairs.reserve(matches.size());
   std::vector<mrpt::math::TPoint3D> a, b;
-  TCorrespondences c;
   a.reserve(matches.size());
   b.reserve(matches.size());
   for (const auto& m : matches)
   {
-    const auto& pa = ref.points[static_cast<std::size_t>(m.trainIdx)];
-    const auto& pb = cur.points[static_cast<std::size_t>(m.queryIdx)];
-    const auto& ua = ref.pixels[static_cast<std::size_t>(m.trainIdx)];
-    const auto& ub = cur.pixels[static_cast<std::size_t>(m.queryIdx)];
-    a.push_back(pa);
-    b.push_back(pb);
-    c.a.emplace_back(pa.x, pa.y, pa.z);
-    c.b.emplace_back(pb.x, pb.y, pb.z);
-    c.ua.emplace_back(ua.x, ua.y);
-    c.ub.emplace_back(ub.x, ub.y);
-    // Keypoint precision degrades with the detection scale (pyramid level).
-    const double sa = ref.features.keypoints[static_cast<std::size_t>(m.trainIdx)].size;
-    const double sb = cur.features.keypoints[static_cast<std::size_t>(m.queryIdx)].size;
-    c.sigma.push_back(0.5 * (sa + sb));
+    pairs.emplace_back(m.trainIdx, m.queryIdx);
+    a.push_back(ref.points[static_cast<std::size_t>(m.trainIdx)]);
+    b.push_back(cur.points[static_cast<std::size_t>(m.queryIdx)]);
   }
-  if (!o.scale_aware_weights)
-    c.sigma.clear();
-  else
-  {
-    // Normalise: the smallest detection size of the type has pixel_sigma_px.
-    double s0 = features::isBinary(ref.features.type) ? 31.0 : 1e9;
-    if (!features::isBinary(ref.features.type))
-      for (double v : c.sigma)
-        s0 = std::min(s0, v);
-    s0 = std::max(s0, 1e-3);
-    for (double& v : c.sigma)
-      v = o.pixel_sigma_px * std::max(1.0, v / s0);
-  }
+  const TCorrespondences c = correspondences(ref, cur, pairs, o);
   const auto rs = ransac.estimate(a, b);
   if (!rs)
   {
@@ -69,24 +119,19 @@ std::optional<TRegistration> registerSets(
       *ransacMs += msSince(t0);
     return std::nullopt;
   }
-  TRefineParams rp;
-  rp.iterations = o.refine_iterations;
-  rp.inlierThresholdPx = o.reprojection_threshold_px;
-  rp.inlierThreshold3d = 2 * o.ransac_threshold_m;
-  rp.pixelSigma = o.pixel_sigma_px;
-  const auto rr = refineReprojection(cam, c, fromPose(rs->transform), rs->inliers, rp);
+  const auto rr = refineReprojection(cam, c, fromPose(rs->transform), rs->inliers, refineParams(o));
   if (ransacMs)
     *ransacMs += msSince(t0);
-  if (rr.inliers.size() < minInl)
-    return std::nullopt;
-  TRegistration out;
-  out.T = rr.T;
-  out.information = rr.information;
-  out.matches = matches.size();
-  out.inliers = rr.inliers.size();
-  out.rmse3d = rr.rmse3d;
-  out.rmsePx = rr.rmsePx;
-  return out;
+  return finishRegistration(rr, std::move(pairs), o);
+}
+
+std::optional<TRegistration> refineRegistration(
+    const TKeyframe& ref, const TKeyframe& cur, const TRegistration& r, const TPinhole& cam,
+    const CRgbdOdometry::TOptions& o)
+{
+  const TCorrespondences c = correspondences(ref, cur, r.pairs, o);
+  const auto rr = refineReprojection(cam, c, r.T, r.inlierPairs, refineParams(o));
+  return finishRegistration(rr, r.pairs, o);
 }
 
 TInformation66 toMrpt(const Matrix6d& m)

@@ -13,6 +13,7 @@
 #include <cstddef>
 #include <optional>
 #include <utility>
+#include <vector>
 
 #include "ReprojectionRefinement.h"
 #include "RigidMath.h"
@@ -26,6 +27,10 @@ struct TRegistration
   Matrix6d information;
   std::size_t matches = 0, inliers = 0;
   double rmse3d = 0, rmsePx = 0;
+  /** Every match as (reference feature, current feature) indices, and which
+   *  of them are inliers: what refineRegistration() starts from. */
+  std::vector<std::pair<int, int>> pairs;
+  std::vector<std::size_t> inlierPairs;
 };
 
 /** Registers cur (query) against ref (train; its cached index is used when
@@ -35,6 +40,14 @@ std::optional<TRegistration> registerSets(
     const TKeyframe& ref, const TKeyframe& cur, const matching::CFeatureMatcher& matcher,
     const matching::CRigidTransformRansac& ransac, const TPinhole& cam,
     const CRgbdOdometry::TOptions& o, std::size_t* matchesOut, double* matchMs, double* ransacMs);
+
+/** Refines r again on the same matches after cur's points and pixels were
+ *  changed in place (the rolling-shutter correction with a better angular
+ *  velocity), starting from r.T and its inliers. nullopt when fewer than
+ *  o.min_inliers survive. */
+std::optional<TRegistration> refineRegistration(
+    const TKeyframe& ref, const TKeyframe& cur, const TRegistration& r, const TPinhole& cam,
+    const CRgbdOdometry::TOptions& o);
 
 /** A 6x6 Eigen matrix as MRPT's fixed-size one. */
 TInformation66 toMrpt(const Matrix6d& m);

@@ -5,6 +5,7 @@
 #include <mrpt/math/CMatrixF.h>
 #include <mrpt/opengl/CCamera.h>
 #include <mrpt/opengl/CFBORender.h>
+#include <Eigen/Dense>
 #include <mrpt/random/RandomGenerators.h>
 #include <unistd.h>
 
@@ -230,6 +231,7 @@ void CRgbdSimulator::TOptions::loadFromConfigFile(
   r.get("fps", fps);
   r.get("base_timestamp", baseTimestamp);
   r.get("depth_time_offset", depthTimeOffset);
+  r.get("rolling_shutter_ms", rollingShutterMs);
   r.get("width", width);
   r.get("height", height);
   r.get("fx", fx);
@@ -268,6 +270,7 @@ void CRgbdSimulator::TOptions::saveToConfigFile(
   wd("fps", fps);
   wd("base_timestamp", baseTimestamp);
   wd("depth_time_offset", depthTimeOffset);
+  wd("rolling_shutter_ms", rollingShutterMs);
   w("width", std::to_string(width));
   w("height", std::to_string(height));
   wd("fx", fx);
@@ -303,6 +306,8 @@ void CRgbdSimulator::TOptions::validate(const std::string& section) const
     fail("fps", "must be in (0, 1000]");
   if (!(std::abs(depthTimeOffset) < 0.02))
     fail("depth_time_offset", "must be within +-0.02 s");
+  if (!(rollingShutterMs >= 0 && rollingShutterMs * 1e-3 <= 1.0 / fps))
+    fail("rolling_shutter_ms", "must be in [0, frame period]");
   if (width < 16 || width > 4096)
     fail("width", "must be in [16, 4096]");
   if (height < 16 || height > 4096)
@@ -395,6 +400,13 @@ mrpt::img::TCamera CRgbdSimulator::camera() const
   return c;
 }
 
+unsigned CRgbdSimulator::bandHeight() const
+{
+  // 8 rows: the camera turns at most 60 deg/s * 20 ms / 60 bands = 0.02 deg
+  // within a band, a fifth of a pixel; the renders are 16 rows high and cheap.
+  return m_opts.rollingShutterMs > 0 ? std::min(8u, m_opts.height) : m_opts.height;
+}
+
 double CRgbdSimulator::timestamp(std::size_t i) const
 {
   // Whole microseconds, so the "%.6f" file names parse back to the same value.
@@ -424,7 +436,7 @@ CRgbdSimulator::TFrame CRgbdSimulator::renderFrame(std::size_t i)
     m_impl->glScene = m_scene.makeOpenGLScene();
     try
     {
-      m_impl->fbo = std::make_unique<mrpt::opengl::CFBORender>(W * ss, H * ss);
+      m_impl->fbo = std::make_unique<mrpt::opengl::CFBORender>(W * ss, bandHeight() * ss);
       tGlOwner = this;
     }
     catch (const std::exception& e)
@@ -444,30 +456,48 @@ CRgbdSimulator::TFrame CRgbdSimulator::renderFrame(std::size_t i)
   f.depthTimestamp = f.timestamp + m_opts.depthTimeOffset;
   f.pose = groundTruthPose(i);
 
-  mrpt::opengl::CCamera cam;
-  cam.set6DOFMode(true);
-  cam.setPose(f.pose);
-  // OpenGL samples pixel (u, v) at (u + 0.5, v + 0.5): shift the principal
-  // point so rays go through integer pixel centres as in MRPT/TUM. With ss x ss
-  // supersampling, output pixel u is the block centred at ss * u + ss / 2.
-  mrpt::img::TCamera pinhole;
-  pinhole.ncols = W * ss;
-  pinhole.nrows = H * ss;
-  pinhole.fx(m_opts.fx * ss);
-  pinhole.fy(m_opts.fy * ss);
-  pinhole.cx(m_opts.cx * ss + ss / 2.0);
-  pinhole.cy(m_opts.cy * ss + ss / 2.0);
-  cam.setProjectiveFromPinhole(pinhole);
-  fbo.setCamera(glScene, cam);
-
-  mrpt::img::CImage rgbImg;
-  mrpt::math::CMatrixFloat depthM;
-  fbo.render_RGBD(glScene, rgbImg, depthM);
+  // One render per band of rows, each from the camera pose at that band's
+  // time (rolling shutter; one band = a global shutter). The band's frustum
+  // is the full image's cut to its rows: the principal point moves up.
+  const unsigned bandRows = bandHeight();
+  const double tFrame = static_cast<double>(i) / m_opts.fps;
+  cv::Mat rgbSS(H * ss, W * ss, CV_8UC3);
+  mrpt::math::CMatrixFloat depthSS(H * ss, W * ss);
+  for (unsigned r0 = 0; r0 < H; r0 += bandRows)
+  {
+    // Row y is read at t + (y / H - 0.5) * readout: the middle row at the
+    // frame's stamp, where the ground truth is.
+    const double yMid = r0 + (bandRows - 1) / 2.0;
+    const double t = tFrame + (yMid / H - 0.5) * m_opts.rollingShutterMs * 1e-3;
+    mrpt::opengl::CCamera cam;
+    cam.set6DOFMode(true);
+    cam.setPose(bandRows == H ? f.pose : m_path.opticalPoseAt(t));
+    // OpenGL samples pixel (u, v) at (u + 0.5, v + 0.5): shift the principal
+    // point so rays go through integer pixel centres as in MRPT/TUM. With
+    // ss x ss supersampling, output pixel u is the block centred at
+    // ss * u + ss / 2.
+    mrpt::img::TCamera pinhole;
+    pinhole.ncols = W * ss;
+    pinhole.nrows = bandRows * ss;
+    pinhole.fx(m_opts.fx * ss);
+    pinhole.fy(m_opts.fy * ss);
+    pinhole.cx(m_opts.cx * ss + ss / 2.0);
+    pinhole.cy(m_opts.cy * ss + ss / 2.0 - static_cast<double>(r0 * ss));
+    cam.setProjectiveFromPinhole(pinhole);
+    fbo.setCamera(glScene, cam);
+    mrpt::img::CImage rgbImg;
+    mrpt::math::CMatrixFloat depthM;
+    fbo.render_RGBD(glScene, rgbImg, depthM);
+    const unsigned rows = std::min(bandRows, H - r0) * ss;
+    rgbImg.asCvMatRef()(cv::Rect(0, 0, static_cast<int>(W * ss), static_cast<int>(rows)))
+        .copyTo(rgbSS(cv::Rect(0, static_cast<int>(r0 * ss), static_cast<int>(W * ss), static_cast<int>(rows))));
+    depthSS.asEigen().block(r0 * ss, 0, rows, W * ss) = depthM.asEigen().block(0, 0, rows, W * ss);
+  }
   if (ss == 1)
-    f.rgb = rgbImg.asCvMat<cv::Mat>(mrpt::img::DEEP_COPY);
+    f.rgb = rgbSS;
   else
-    cv::resize(rgbImg.asCvMatRef(), f.rgb, cv::Size(W, H), 0, 0, cv::INTER_AREA);
-  f.depth = depthAtPixelCentres(depthM, ss, W, H);
+    cv::resize(rgbSS, f.rgb, cv::Size(W, H), 0, 0, cv::INTER_AREA);
+  f.depth = depthAtPixelCentres(depthSS, ss, W, H);
 
   CKinectNoiseModel::applyRange(f.depth, m_opts.minDepth, m_opts.maxDepth);
   if (m_opts.noise)

@@ -75,6 +75,16 @@
  *  - min_depth_m, max_depth_m [m] (0.3, 4.0): depth range used for features
  *  - depth_discontinuity_m    [m] >= 0 (0.05): skip keypoints whose 3x3 depth
  *                             neighbourhood spans more than this * depth (0 = off)
+ *  - rolling_shutter_ms       [ms] >= 0 (0 = global shutter): time the colour
+ *                             camera takes to read its rows out, top to
+ *                             bottom. Keypoints are corrected to the middle
+ *                             row's time with the angular velocity predicted
+ *                             from the last motion, then, once registered,
+ *                             with the one measured since the last frame, and
+ *                             the registration is refined again
+ *                             (FeatureLifting.h). The shipped configs use 20
+ *                             for the TUM Kinect (fr1/rpy, 9 runs: mean ATE
+ *                             0.0265 m at 0, 0.0153 m at 20)
  *  - icp_fallback             bool (true): depth ICP when features fail
  *  - icp_refine_sigma_m       [m] >= 0 (0.01; 0 = off): a feature
  *                             registration whose worst translation 1-sigma
@@ -174,6 +184,7 @@ class CRgbdOdometry : public mrpt::system::COutputLogger
     double min_depth_m = 0.3;
     double max_depth_m = 4.0;
     double depth_discontinuity_m = 0.05;
+    double rolling_shutter_ms = 0;
     bool icp_fallback = true;
     double icp_refine_sigma_m = 0.01;
     int icp_decimation = 4;
