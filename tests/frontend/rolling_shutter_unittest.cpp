@@ -23,8 +23,9 @@ const TPinhole kCam{517.3, 516.5, 318.6, 255.3};
 Eigen::Vector3d toMiddle(const TCameraRate& r, double s, const Eigen::Vector3d& Xs)
 {
   const Eigen::Vector3d w = r.omega * s;
-  const Eigen::Matrix3d R = w.norm() > 0 ? Eigen::AngleAxisd(w.norm(), w.normalized()).toRotationMatrix()
-                                         : Eigen::Matrix3d::Identity();
+  const Eigen::Matrix3d R = w.norm() > 0
+                                ? Eigen::AngleAxisd(w.norm(), w.normalized()).toRotationMatrix()
+                                : Eigen::Matrix3d::Identity();
   return R * Xs + r.linear * s;
 }
 
@@ -76,7 +77,8 @@ TScene makeScene(const TCameraRate& r, double readout)
     const double z = Z(rng);
     const Eigen::Vector3d X(U(rng) * 0.5 * z, U(rng) * 0.4 * z, z);
     const TObservation o = observe(r, readout, X);
-    const int u = static_cast<int>(std::lround(o.pixel.x)), v = static_cast<int>(std::lround(o.pixel.y));
+    const int u = static_cast<int>(std::lround(o.pixel.x)),
+              v = static_cast<int>(std::lround(o.pixel.y));
     if (u < 2 || v < 2 || u >= kW - 2 || v >= kH - 2 ||
         cv::countNonZero(sc.depth(cv::Rect(u - 2, v - 2, 5, 5))) != 0)
       continue;
@@ -115,11 +117,12 @@ cv::Mat K()
 TEST(RollingShutter, CarriesEveryPointIntoTheMiddleRowsCamera)
 {
   TCameraRate rate;
-  rate.omega = Eigen::Vector3d(0.4, -1.2, 0.3);   // about 75 deg/s
+  rate.omega = Eigen::Vector3d(0.4, -1.2, 0.3);     // about 75 deg/s
   rate.linear = Eigen::Vector3d(0.15, -0.05, 0.3);  // m/s
   const double readout = 0.02;
   const TScene sc = makeScene(rate, readout);
-  TLiftedFeatures lifted = liftFeatures(sc.features, sc.depth, K(), cv::Mat::zeros(1, 5, CV_64F), options());
+  TLiftedFeatures lifted =
+      liftFeatures(sc.features, sc.depth, K(), cv::Mat::zeros(1, 5, CV_64F), options());
   ASSERT_EQ(lifted.valid.size(), sc.obs.size());
   // Without a correction the points are where the camera saw them.
   for (int i : lifted.valid)
@@ -149,7 +152,8 @@ TEST(RollingShutter, ZeroRateOrReadoutRestoresTheRawPoints)
   TCameraRate rate;
   rate.omega = Eigen::Vector3d(0, 1.0, 0);
   const TScene sc = makeScene(rate, 0.02);
-  TLiftedFeatures lifted = liftFeatures(sc.features, sc.depth, K(), cv::Mat::zeros(1, 5, CV_64F), options());
+  TLiftedFeatures lifted =
+      liftFeatures(sc.features, sc.depth, K(), cv::Mat::zeros(1, 5, CV_64F), options());
   const auto rawPixels = lifted.undistorted;
   const auto rawZ = lifted.z;
   rectifyRollingShutter(lifted, rate, 0.02, kCam);

@@ -31,6 +31,9 @@ TOutcome run(const std::string& seq, double minChi2, int every, int window = 0)
   graphslam::CSlamContext::TConfig cfg;
   cfg.frontEnd.extractor.feature_type = roislam::features::EFeatureType::ORB;
   cfg.frontEnd.extractor.max_features = 600;
+  // The fixture's camera is rgbd-simul's Kinect-like rolling shutter, as in
+  // the shipped configs.
+  cfg.frontEnd.rolling_shutter_ms = 25;
   cfg.backEnd.optimize_min_chi2 = minChi2;
   cfg.backEnd.optimize_every_keyframes = every;
   cfg.backEnd.optimize_window_keyframes = window;

@@ -129,7 +129,7 @@ TEST(RgbdSimulator, TexturedDepthMatchesGeometryExactly)
 TEST(RgbdSimulator, RollingShutterRowsSeeTheScenesFromTheirOwnTime)
 {
   auto o = opts("textured", false);
-  o.rollingShutterMs = 20;
+  o.rollingShutterMs = 25;
   CRgbdSimulator sim(o);
   ASSERT_EQ(sim.bandHeight(), 8u);
   const std::size_t i = 6;  // the path turns at tens of deg/s here
@@ -139,7 +139,7 @@ TEST(RgbdSimulator, RollingShutterRowsSeeTheScenesFromTheirOwnTime)
   auto rowPose = [&](int v)
   {
     const double yMid = (v / 8) * 8 + 3.5;
-    return sim.path().opticalPoseAt(i / o.fps + (yMid / o.height - 0.5) * 0.020);
+    return sim.path().opticalPoseAt(i / o.fps + (yMid / o.height - 0.5) * 0.025);
   };
   const auto own = checkDepth(sim, f, rowPose);
   EXPECT_GT(own.compared, 3000);
@@ -309,7 +309,7 @@ TEST(RgbdSimulator, OptionsLoadValidateAndRoundTrip)
   expectError("depth_time_offset", "0.05");
   expectError("rolling_shutter_ms", "-1");
   expectError("rolling_shutter_ms", "40");  // longer than a 30 Hz frame
-  expectError("framez", "10");  // unknown key
+  expectError("framez", "10");              // unknown key
 }
 
 TEST(RgbdSimulator, WritesTumLayoutMatchingRenderedFrames)

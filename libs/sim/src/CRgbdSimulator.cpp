@@ -5,10 +5,10 @@
 #include <mrpt/math/CMatrixF.h>
 #include <mrpt/opengl/CCamera.h>
 #include <mrpt/opengl/CFBORender.h>
-#include <Eigen/Dense>
 #include <mrpt/random/RandomGenerators.h>
 #include <unistd.h>
 
+#include <Eigen/Dense>
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -490,7 +490,8 @@ CRgbdSimulator::TFrame CRgbdSimulator::renderFrame(std::size_t i)
     fbo.render_RGBD(glScene, rgbImg, depthM);
     const unsigned rows = std::min(bandRows, H - r0) * ss;
     rgbImg.asCvMatRef()(cv::Rect(0, 0, static_cast<int>(W * ss), static_cast<int>(rows)))
-        .copyTo(rgbSS(cv::Rect(0, static_cast<int>(r0 * ss), static_cast<int>(W * ss), static_cast<int>(rows))));
+        .copyTo(rgbSS(cv::Rect(
+            0, static_cast<int>(r0 * ss), static_cast<int>(W * ss), static_cast<int>(rows))));
     depthSS.asEigen().block(r0 * ss, 0, rows, W * ss) = depthM.asEigen().block(0, 0, rows, W * ss);
   }
   if (ss == 1)

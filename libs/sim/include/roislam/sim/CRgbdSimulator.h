@@ -23,10 +23,10 @@
  *   fps                frame rate, Hz, (0, 1000]                      [30]
  *   base_timestamp     stamp of frame 0, s                            [1000000000.0]
  *   depth_time_offset  depth stamp minus colour stamp, s, |.| < 0.02  [0.0]
- *   rolling_shutter_ms row readout time, top to bottom, ms            [20]
+ *   rolling_shutter_ms row readout time, top to bottom, ms            [25]
  *                      (0 = global shutter). Rows are rendered in bands of
  *                      8, each from the pose at its time; the middle row is
- *                      at the frame's stamp and ground truth. 20 is what the
+ *                      at the frame's stamp and ground truth. 25 is what the
  *                      shipped configs assume for the TUM Kinect.
  *   width, height      image size, px                                 [640, 480]
  *   fx, fy, cx, cy     pinhole intrinsics, px (no distortion)         [517.3 516.5 318.6 255.3]
@@ -79,7 +79,7 @@ class CRgbdSimulator : public mrpt::system::COutputLogger
     double fps = 30.0;
     double baseTimestamp = 1000000000.0;
     double depthTimeOffset = 0.0;
-    double rollingShutterMs = 20.0;
+    double rollingShutterMs = 25.0;
     unsigned width = 640, height = 480;
     double fx = 517.3, fy = 516.5, cx = 318.6, cy = 255.3;
     double minDepth = 0.4, maxDepth = 4.0;
