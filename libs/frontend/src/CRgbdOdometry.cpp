@@ -108,6 +108,15 @@ struct CRgbdOdometry::TImpl
    *  (0 = unknown). */
   double lastStamp = 0, velocityDt = 0;
   bool haveStamp = false;
+  /** The first keyframe is made before any velocity is known: its raw
+   *  points wait here until the next frame measures one (rolling shutter). */
+  struct TUncorrectedKeyframe
+  {
+    std::size_t id = 0;
+    std::vector<cv::Point2f> rawPixels;
+    std::vector<float> rawZ, rowFraction;
+  };
+  std::optional<TUncorrectedKeyframe> uncorrected;
 
   TImpl(const TOptions& o)
       : roiDetector(o.roi), extractor(o.extractor), matcher(o.matcher), ransac(ransacOptions(o))
@@ -197,6 +206,7 @@ void CRgbdOdometry::reset()
   m_impl->velocity = mrpt::poses::CPose3D();
   m_impl->velocityDt = 0;
   m_impl->haveStamp = false;
+  m_impl->uncorrected.reset();
 }
 
 std::optional<TRelativePoseEstimate> CRgbdOdometry::registerKeyframes(
@@ -405,6 +415,21 @@ TFrameResult CRgbdOdometry::process(
     res.isNewKeyframe = true;
     res.newKeyframeId = m_keyframes.back().id;
     I.icpMaps[res.newKeyframeId] = I.icp->buildMap(depth);
+    I.uncorrected.reset();
+    if (readout > 0 && !(I.velocityDt > 0))
+    {
+      const std::vector<int>& idx = o.keyframe_full_features || fallback ? valid : chosen;
+      TImpl::TUncorrectedKeyframe u;
+      u.id = res.newKeyframeId;
+      for (int i : idx)
+      {
+        const auto k = static_cast<std::size_t>(i);
+        u.rawPixels.push_back(lifted.rawUndistorted[k]);
+        u.rawZ.push_back(lifted.rawZ[k]);
+        u.rowFraction.push_back(lifted.rowFraction[k]);
+      }
+      I.uncorrected = std::move(u);
+    }
     const std::size_t keep = static_cast<std::size_t>(o.recent_keyframes) + 1;
     m_keyframes.back().index =
         std::make_shared<matching::CFeatureIndex>(o.matcher, m_keyframes.back().features);
@@ -512,6 +537,26 @@ TFrameResult CRgbdOdometry::process(
     const mrpt::poses::CPose3D measured =
         (m_keyframes[ref].pose + detail::toPose(reg->T)) - lastWorld;
     const detail::TCameraRate rate = cameraRate(measured, frame.timestamp - I.lastStamp);
+    // The first keyframe, uncorrected so far, gets the velocity measured
+    // from it to this frame (it was the last frame) and this registration
+    // is refined against its corrected points.
+    if (I.uncorrected && I.uncorrected->id == ref && I.lastStamp == m_keyframes[ref].timestamp)
+    {
+      TKeyframe& k = m_keyframes[ref];
+      const auto& u = *I.uncorrected;
+      for (std::size_t j = 0; j < k.points.size() && j < u.rawPixels.size(); ++j)
+      {
+        const Eigen::Vector3d X = detail::rectifyPoint(
+            u.rawPixels[j], u.rawZ[j], u.rowFraction[j] * readout, rate, I.pinhole);
+        if (!(X.z() > 0))
+          continue;
+        k.points[j] = mrpt::math::TPoint3D(X.x(), X.y(), X.z());
+        k.pixels[j] = cv::Point2f(
+            static_cast<float>(I.pinhole.fx * X.x() / X.z() + I.pinhole.cx),
+            static_cast<float>(I.pinhole.fy * X.y() / X.z() + I.pinhole.cy));
+      }
+    }
+    I.uncorrected.reset();
     auto rebuild = [&]()
     {
       full = makeSet(valid);

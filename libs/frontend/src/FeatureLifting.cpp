@@ -54,6 +54,20 @@ TLiftedFeatures liftFeatures(
   return out;
 }
 
+Eigen::Vector3d rectifyPoint(
+    const cv::Point2f& rawPixel, double rawZ, double s, const TCameraRate& rate,
+    const TPinhole& pinhole)
+{
+  Eigen::Vector3d X(
+      (rawPixel.x - pinhole.cx) / pinhole.fx * rawZ, (rawPixel.y - pinhole.cy) / pinhole.fy * rawZ,
+      rawZ);
+  const Eigen::Vector3d w = rate.omega * s;
+  const double a = w.norm();
+  if (a > 0)
+    X = Eigen::AngleAxisd(a, w / a) * X;
+  return X + rate.linear * s;
+}
+
 void rectifyRollingShutter(
     TLiftedFeatures& lifted, const TCameraRate& rate, double readout_s, const TPinhole& pinhole)
 {
@@ -64,15 +78,8 @@ void rectifyRollingShutter(
   for (int i : lifted.valid)
   {
     const auto k = static_cast<std::size_t>(i);
-    const double s = lifted.rowFraction[k] * readout_s;
-    const Eigen::Vector3d w = rate.omega * s;
-    const double a = w.norm();
-    const cv::Point2f& u = lifted.rawUndistorted[k];
-    const double z = lifted.rawZ[k];
-    Eigen::Vector3d X((u.x - pinhole.cx) / pinhole.fx * z, (u.y - pinhole.cy) / pinhole.fy * z, z);
-    if (a > 0)
-      X = Eigen::AngleAxisd(a, w / a) * X;
-    X += rate.linear * s;
+    const Eigen::Vector3d X = rectifyPoint(
+        lifted.rawUndistorted[k], lifted.rawZ[k], lifted.rowFraction[k] * readout_s, rate, pinhole);
     // A few milliseconds of motion cannot put a point behind the camera; the
     // guard only keeps a corrupt rate from producing NaNs.
     if (!(X.z() > 0))

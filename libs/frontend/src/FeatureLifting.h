@@ -62,6 +62,12 @@ struct TCameraRate
   bool isZero() const { return omega.isZero() && linear.isZero(); }
 };
 
+/** A point seen s seconds after the middle row (its raw undistorted pixel and
+ *  depth), carried into the middle row's camera: exp(omega s) X + linear s. */
+Eigen::Vector3d rectifyPoint(
+    const cv::Point2f& rawPixel, double rawZ, double s, const TCameraRate& rate,
+    const TPinhole& pinhole);
+
 /** Recomputes lifted.undistorted and lifted.z at the valid indices from the
  *  raw ones: a point seen s = rowFraction * readout_s seconds after the
  *  middle row is carried into the middle row's camera, X' = exp(omega s) X +
