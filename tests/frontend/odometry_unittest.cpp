@@ -9,6 +9,9 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "SyntheticRoom.h"
 
@@ -267,6 +270,7 @@ TEST(RgbdOdometry, OptionsIniRoundTripAndErrors)
   o.max_roi_sigma_m = 0.004;
   o.max_roi_sigma_deg = 0.3;
   o.icp_refine_sigma_m = 0.02;
+  o.rolling_shutter_ms = 25;
   o.keyframe_full_features = false;
   o.keyframe_full_registration = false;
   mrpt::config::CConfigFileMemory cfg;
@@ -280,6 +284,7 @@ TEST(RgbdOdometry, OptionsIniRoundTripAndErrors)
   EXPECT_DOUBLE_EQ(l.max_roi_sigma_m, 0.004);
   EXPECT_DOUBLE_EQ(l.max_roi_sigma_deg, 0.3);
   EXPECT_DOUBLE_EQ(l.icp_refine_sigma_m, 0.02);
+  EXPECT_DOUBLE_EQ(l.rolling_shutter_ms, 25);
   EXPECT_FALSE(l.keyframe_full_features);
   EXPECT_FALSE(l.keyframe_full_registration);
   EXPECT_EQ(l.extractor.max_features, 500);
@@ -300,10 +305,15 @@ TEST(RgbdOdometry, OptionsIniRoundTripAndErrors)
   bad2.write("FrontEnd", "ransac_threshold_m", -1.0);
   CRgbdOdometry::TOptions b2;
   EXPECT_THROW(b2.loadFromConfigFile(bad2, "FrontEnd"), std::invalid_argument);
-  for (const char* key : {"max_roi_sigma_m", "max_roi_sigma_deg", "icp_refine_sigma_m"})
+  for (const auto& [key, value] : std::vector<std::pair<std::string, double>>{
+           {"max_roi_sigma_m", -0.1},
+           {"max_roi_sigma_deg", -0.1},
+           {"icp_refine_sigma_m", -0.1},
+           {"rolling_shutter_ms", -1},
+           {"rolling_shutter_ms", 2000}})
   {
     mrpt::config::CConfigFileMemory bad3;
-    bad3.write("FrontEnd", key, -0.1);
+    bad3.write("FrontEnd", key, value);
     try
     {
       CRgbdOdometry::TOptions b3;
@@ -312,8 +322,7 @@ TEST(RgbdOdometry, OptionsIniRoundTripAndErrors)
     }
     catch (const std::invalid_argument& e)
     {
-      EXPECT_NE(std::string(e.what()).find(std::string("[FrontEnd] ") + key), std::string::npos)
-          << e.what();
+      EXPECT_NE(std::string(e.what()).find("[FrontEnd] " + key), std::string::npos) << e.what();
     }
   }
 
