@@ -557,11 +557,11 @@ TFrameResult CRgbdOdometry::process(
       }
     }
     I.uncorrected.reset();
+    // Points and pixels only: the feature sets keep their descriptors.
     auto rebuild = [&]()
     {
-      full = makeSet(valid);
-      cur = fallback || chosen.size() == valid.size() ? full : makeSet(chosen);
-      cur.fullImageFallback = fallback;
+      detail::updateFeatureSetPoints(full, lifted, valid, I.pinhole);
+      detail::updateFeatureSetPoints(cur, lifted, fallback ? valid : chosen, I.pinhole);
     };
     detail::rectifyRollingShutter(lifted, rate, readout, I.pinhole);
     rebuild();

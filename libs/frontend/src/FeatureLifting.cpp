@@ -97,6 +97,16 @@ TKeyframe makeFeatureSet(
 {
   TKeyframe k;
   k.features = all.select(idx);
+  updateFeatureSetPoints(k, lifted, idx, pinhole);
+  return k;
+}
+
+void updateFeatureSetPoints(
+    TKeyframe& k, const TLiftedFeatures& lifted, const std::vector<int>& idx,
+    const TPinhole& pinhole)
+{
+  k.points.clear();
+  k.pixels.clear();
   k.points.reserve(idx.size());
   k.pixels.reserve(idx.size());
   for (int i : idx)
@@ -107,6 +117,5 @@ TKeyframe makeFeatureSet(
         (u.x - pinhole.cx) / pinhole.fx * z, (u.y - pinhole.cy) / pinhole.fy * z, z);
     k.pixels.push_back(u);
   }
-  return k;
 }
 }  // namespace roislam::frontend::detail

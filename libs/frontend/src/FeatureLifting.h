@@ -82,4 +82,11 @@ void rectifyRollingShutter(
 TKeyframe makeFeatureSet(
     const features::TFeatureSet& all, const TLiftedFeatures& lifted, const std::vector<int>& idx,
     const TPinhole& pinhole);
+
+/** Recomputes k's points and pixels (k made by makeFeatureSet with the same
+ *  idx) from lifted, after a new rolling-shutter correction; the features,
+ *  and so any index built over them, stay. */
+void updateFeatureSetPoints(
+    TKeyframe& k, const TLiftedFeatures& lifted, const std::vector<int>& idx,
+    const TPinhole& pinhole);
 }  // namespace roislam::frontend::detail
