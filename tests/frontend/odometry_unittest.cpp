@@ -309,7 +309,7 @@ TEST(RgbdOdometry, OptionsIniRoundTripAndErrors)
            {"max_roi_sigma_m", -0.1},
            {"max_roi_sigma_deg", -0.1},
            {"icp_refine_sigma_m", -0.1},
-           {"rolling_shutter_ms", -1},
+           {"rolling_shutter_ms", -1001},
            {"rolling_shutter_ms", 2000}})
   {
     mrpt::config::CConfigFileMemory bad3;

@@ -416,7 +416,7 @@ TFrameResult CRgbdOdometry::process(
     res.newKeyframeId = m_keyframes.back().id;
     I.icpMaps[res.newKeyframeId] = I.icp->buildMap(depth);
     I.uncorrected.reset();
-    if (readout > 0 && !(I.velocityDt > 0))
+    if (readout != 0 && !(I.velocityDt > 0))
     {
       const std::vector<int>& idx = o.keyframe_full_features || fallback ? valid : chosen;
       TImpl::TUncorrectedKeyframe u;
@@ -532,7 +532,7 @@ TFrameResult CRgbdOdometry::process(
   // since the last frame replaces the predicted one (it lags by
   // half a frame instead of one and a half), and the same matches are
   // refined again. Measured on fr1/rpy; a third pass was not better.
-  if (reg && readout > 0 && I.haveStamp && frame.timestamp > I.lastStamp)
+  if (reg && readout != 0 && I.haveStamp && frame.timestamp > I.lastStamp)
   {
     const mrpt::poses::CPose3D measured =
         (m_keyframes[ref].pose + detail::toPose(reg->T)) - lastWorld;

@@ -2,6 +2,7 @@
 #include <mrpt/config/CConfigFileBase.h>
 #include <roislam/common/IniErrors.h>
 
+#include <cmath>
 #include <stdexcept>
 
 #include "roislam/frontend/CRgbdOdometry.h"
@@ -193,8 +194,8 @@ void CRgbdOdometry::TOptions::validate() const
   if (!(depth_discontinuity_m >= 0))
     common::throwBadIniKey(s, "depth_discontinuity_m", "must be >= 0");
   // A readout longer than a second is no video camera's (and a typo of s/ms).
-  if (!(rolling_shutter_ms >= 0 && rolling_shutter_ms <= 1000))
-    common::throwBadIniKey(s, "rolling_shutter_ms", "must be in [0, 1000]");
+  if (!(std::abs(rolling_shutter_ms) <= 1000))
+    common::throwBadIniKey(s, "rolling_shutter_ms", "must be in [-1000, 1000]");
   if (!(icp_refine_sigma_m >= 0))
     common::throwBadIniKey(s, "icp_refine_sigma_m", "must be >= 0");
   if (icp_decimation < 1)

@@ -75,13 +75,13 @@
  *  - min_depth_m, max_depth_m [m] (0.3, 4.0): depth range used for features
  *  - depth_discontinuity_m    [m] >= 0 (0.05): skip keypoints whose 3x3 depth
  *                             neighbourhood spans more than this * depth (0 = off)
- *  - rolling_shutter_ms       [ms] >= 0 (0 = global shutter): time the colour
- *                             camera takes to read its rows out, top to
- *                             bottom. Each keypoint's point is carried to the
- *                             middle row's time with the velocity of the last
- *                             motion, then, once registered, with the one
- *                             measured since the last frame, and the
- *                             registration is refined again on the same
+ *  - rolling_shutter_ms       [ms] in [-1000, 1000] (0 = global shutter): time
+ *                             the colour camera takes to read its rows out,
+ *                             top to bottom; negative: bottom to top (a camera
+ *                             mounted upside down, its images turned in
+ *                             software; a sequence played backwards). Each keypoint's point is
+ * carried to the middle row's time with the velocity of the last motion, then, once registered,
+ * with the one measured since the last frame, and the registration is refined again on the same
  *                             matches (FeatureLifting.h). The shipped configs
  *                             use 25 for the TUM Kinect (fr1/rpy, 9 runs: mean
  *                             ATE 0.0265 m at 0, 0.0119 m at 25)
