@@ -1,5 +1,5 @@
 // The rolling-shutter correction of lifted keypoints (libs/frontend/src
-// FeatureLifting.h): points observed by a moving rolling-shutter camera, each
+// RollingShutter.h): points observed by a moving rolling-shutter camera, each
 // at its own row's time, are carried exactly into the middle row's camera.
 #include <gtest/gtest.h>
 
@@ -8,7 +8,7 @@
 #include <opencv2/core.hpp>
 #include <random>
 
-#include "FeatureLifting.h"
+#include "RollingShutter.h"
 
 using roislam::frontend::CRgbdOdometry;
 using namespace roislam::frontend::detail;

@@ -20,6 +20,7 @@
 #include "KeyframeRegistration.h"
 #include "ReprojectionRefinement.h"
 #include "RigidMath.h"
+#include "RollingShutter.h"
 #include "Timing.h"
 
 namespace roislam::frontend
@@ -110,13 +111,7 @@ struct CRgbdOdometry::TImpl
   bool haveStamp = false;
   /** The first keyframe is made before any velocity is known: its raw
    *  points wait here until the next frame measures one (rolling shutter). */
-  struct TUncorrectedKeyframe
-  {
-    std::size_t id = 0;
-    std::vector<cv::Point2f> rawPixels;
-    std::vector<float> rawZ, rowFraction;
-  };
-  std::optional<TUncorrectedKeyframe> uncorrected;
+  std::optional<detail::TUncorrectedKeyframe> uncorrected;
 
   TImpl(const TOptions& o)
       : roiDetector(o.roi), extractor(o.extractor), matcher(o.matcher), ransac(ransacOptions(o))
@@ -135,25 +130,6 @@ struct CRgbdOdometry::TImpl
 
 namespace
 {
-/** The camera's velocity during a motion that took dt seconds (the motion
- *  maps the later camera into the earlier one). Beyond a full turn or 3 m per
- *  second (no hand-held camera) the motion is taken as a failed
- *  registration: zero. */
-detail::TCameraRate cameraRate(const mrpt::poses::CPose3D& motion, double dt)
-{
-  constexpr double maxTurn = 2 * M_PI, maxSpeed = 3.0;
-  detail::TCameraRate r;
-  if (!(dt > 0))
-    return r;
-  const Eigen::AngleAxisd aa(motion.getRotationMatrix().asEigen());
-  r.omega = aa.axis() * (aa.angle() / dt);
-  r.linear = Eigen::Vector3d(motion.x(), motion.y(), motion.z()) / dt;
-  if (!r.omega.allFinite() || !r.linear.allFinite() || r.omega.norm() > maxTurn ||
-      r.linear.norm() > maxSpeed)
-    return {};
-  return r;
-}
-
 roi::CRoiDetector::TOptions roiOptionsFor(const CRgbdOdometry::TOptions& o)
 {
   roi::CRoiDetector::TOptions r = o.roi;
@@ -321,7 +297,7 @@ TFrameResult CRgbdOdometry::process(
   const std::vector<int> valid = lifted.valid;
   // Rolling shutter, first guess: the velocity of the last motion.
   const double readout = o.rolling_shutter_ms * 1e-3;
-  const detail::TCameraRate ratePredicted = cameraRate(I.velocity, I.velocityDt);
+  const detail::TCameraRate ratePredicted = detail::cameraRate(I.velocity, I.velocityDt);
   detail::rectifyRollingShutter(lifted, ratePredicted, readout, I.pinhole);
   res.featuresWithDepth = valid.size();
   // Tracking set: ROI subset or the whole image.
@@ -417,19 +393,8 @@ TFrameResult CRgbdOdometry::process(
     I.icpMaps[res.newKeyframeId] = I.icp->buildMap(depth);
     I.uncorrected.reset();
     if (readout != 0 && !(I.velocityDt > 0))
-    {
-      const std::vector<int>& idx = o.keyframe_full_features || fallback ? valid : chosen;
-      TImpl::TUncorrectedKeyframe u;
-      u.id = res.newKeyframeId;
-      for (int i : idx)
-      {
-        const auto k = static_cast<std::size_t>(i);
-        u.rawPixels.push_back(lifted.rawUndistorted[k]);
-        u.rawZ.push_back(lifted.rawZ[k]);
-        u.rowFraction.push_back(lifted.rowFraction[k]);
-      }
-      I.uncorrected = std::move(u);
-    }
+      I.uncorrected = detail::uncorrectedKeyframe(
+          res.newKeyframeId, lifted, o.keyframe_full_features || fallback ? valid : chosen);
     const std::size_t keep = static_cast<std::size_t>(o.recent_keyframes) + 1;
     m_keyframes.back().index =
         std::make_shared<matching::CFeatureIndex>(o.matcher, m_keyframes.back().features);
@@ -536,26 +501,12 @@ TFrameResult CRgbdOdometry::process(
   {
     const mrpt::poses::CPose3D measured =
         (m_keyframes[ref].pose + detail::toPose(reg->T)) - lastWorld;
-    const detail::TCameraRate rate = cameraRate(measured, frame.timestamp - I.lastStamp);
+    const detail::TCameraRate rate = detail::cameraRate(measured, frame.timestamp - I.lastStamp);
     // The first keyframe, uncorrected so far, gets the velocity measured
     // from it to this frame (it was the last frame) and this registration
     // is refined against its corrected points.
     if (I.uncorrected && I.uncorrected->id == ref && I.lastStamp == m_keyframes[ref].timestamp)
-    {
-      TKeyframe& k = m_keyframes[ref];
-      const auto& u = *I.uncorrected;
-      for (std::size_t j = 0; j < k.points.size() && j < u.rawPixels.size(); ++j)
-      {
-        const Eigen::Vector3d X = detail::rectifyPoint(
-            u.rawPixels[j], u.rawZ[j], u.rowFraction[j] * readout, rate, I.pinhole);
-        if (!(X.z() > 0))
-          continue;
-        k.points[j] = mrpt::math::TPoint3D(X.x(), X.y(), X.z());
-        k.pixels[j] = cv::Point2f(
-            static_cast<float>(I.pinhole.fx * X.x() / X.z() + I.pinhole.cx),
-            static_cast<float>(I.pinhole.fy * X.y() / X.z() + I.pinhole.cy));
-      }
-    }
+      detail::correctKeyframe(m_keyframes[ref], *I.uncorrected, rate, readout, I.pinhole);
     I.uncorrected.reset();
     // Points and pixels only: the feature sets keep their descriptors.
     auto rebuild = [&]()

@@ -54,43 +54,6 @@ TLiftedFeatures liftFeatures(
   return out;
 }
 
-Eigen::Vector3d rectifyPoint(
-    const cv::Point2f& rawPixel, double rawZ, double s, const TCameraRate& rate,
-    const TPinhole& pinhole)
-{
-  Eigen::Vector3d X(
-      (rawPixel.x - pinhole.cx) / pinhole.fx * rawZ, (rawPixel.y - pinhole.cy) / pinhole.fy * rawZ,
-      rawZ);
-  const Eigen::Vector3d w = rate.omega * s;
-  const double a = w.norm();
-  if (a > 0)
-    X = Eigen::AngleAxisd(a, w / a) * X;
-  return X + rate.linear * s;
-}
-
-void rectifyRollingShutter(
-    TLiftedFeatures& lifted, const TCameraRate& rate, double readout_s, const TPinhole& pinhole)
-{
-  lifted.undistorted = lifted.rawUndistorted;
-  lifted.z = lifted.rawZ;
-  if (readout_s == 0 || rate.isZero())
-    return;
-  for (int i : lifted.valid)
-  {
-    const auto k = static_cast<std::size_t>(i);
-    const Eigen::Vector3d X = rectifyPoint(
-        lifted.rawUndistorted[k], lifted.rawZ[k], lifted.rowFraction[k] * readout_s, rate, pinhole);
-    // A few milliseconds of motion cannot put a point behind the camera; the
-    // guard only keeps a corrupt rate from producing NaNs.
-    if (!(X.z() > 0))
-      continue;
-    lifted.z[k] = static_cast<float>(X.z());
-    lifted.undistorted[k] = cv::Point2f(
-        static_cast<float>(pinhole.fx * X.x() / X.z() + pinhole.cx),
-        static_cast<float>(pinhole.fy * X.y() / X.z() + pinhole.cy));
-  }
-}
-
 TKeyframe makeFeatureSet(
     const features::TFeatureSet& all, const TLiftedFeatures& lifted, const std::vector<int>& idx,
     const TPinhole& pinhole)

@@ -1,0 +1,75 @@
+/* Private: the rolling-shutter model of the front end.
+ *
+ * A Kinect-type colour camera exposes its rows one after the other, top to
+ * bottom, so while the camera moves each row sees the scene from a slightly
+ * different pose. On fr1/rpy (about 60 deg/s) this was the largest error left
+ * in a frame-to-keyframe registration: the global-shutter motion that best
+ * explains the sheared image is wrong by up to a degree, and the translation
+ * follows it by centimetres. rectifyRollingShutter() moves every keypoint's
+ * point (and so its pixel) by the motion the camera made between its row's
+ * time and the middle row's, so the set looks as if taken at once at the
+ * middle row's time. The depth image, registered to the colour one, is read
+ * at the keypoint's own pixel (its rows are read out in step, to first order).
+ * The velocity comes from the odometry itself (CRgbdOdometry.cpp).
+ */
+#pragma once
+
+#include <mrpt/poses/CPose3D.h>
+#include <roislam/frontend/TKeyframe.h>
+
+#include <Eigen/Dense>
+#include <cstddef>
+#include <opencv2/core.hpp>
+#include <vector>
+
+#include "FeatureLifting.h"
+#include "ReprojectionRefinement.h"
+
+namespace roislam::frontend::detail
+{
+/** How fast the camera moves, in its own frame: angular (rad/s) and linear
+ *  (m/s) velocity. */
+struct TCameraRate
+{
+  Eigen::Vector3d omega = Eigen::Vector3d::Zero();
+  Eigen::Vector3d linear = Eigen::Vector3d::Zero();
+  bool isZero() const { return omega.isZero() && linear.isZero(); }
+};
+
+/** A point seen s seconds after the middle row (its raw undistorted pixel and
+ *  depth), carried into the middle row's camera: exp(omega s) X + linear s. */
+Eigen::Vector3d rectifyPoint(
+    const cv::Point2f& rawPixel, double rawZ, double s, const TCameraRate& rate,
+    const TPinhole& pinhole);
+
+/** Recomputes lifted.undistorted and lifted.z at the valid indices from the
+ *  raw ones: a point seen s = rowFraction * readout_s seconds after the
+ *  middle row is carried into the middle row's camera, X' = exp(omega s) X +
+ *  linear s, and its pixel is X' projected. A zero rate or readout_s = 0
+ *  restores the raw values. */
+void rectifyRollingShutter(
+    TLiftedFeatures& lifted, const TCameraRate& rate, double readout_s, const TPinhole& pinhole);
+
+/** The camera's velocity during a motion that took dt seconds (motion maps
+ *  the later camera into the earlier one); zero when dt <= 0 or the motion is
+ *  no hand-held camera's (see the .cpp). */
+TCameraRate cameraRate(const mrpt::poses::CPose3D& motion, double dt);
+
+/** A keyframe's raw points, kept until a velocity is known to correct them:
+ *  entry j belongs to the keyframe's feature j. */
+struct TUncorrectedKeyframe
+{
+  std::size_t id = 0;
+  std::vector<cv::Point2f> rawPixels;
+  std::vector<float> rawZ, rowFraction;
+};
+
+/** The raw points of the keyframe id whose features are lifted's at idx. */
+TUncorrectedKeyframe uncorrectedKeyframe(
+    std::size_t id, const TLiftedFeatures& lifted, const std::vector<int>& idx);
+
+/** Replaces k's points and pixels with u's raw ones corrected with rate. */
+void correctKeyframe(
+    TKeyframe& k, const TUncorrectedKeyframe& u, const TCameraRate& rate, double readout_s,
+    const TPinhole& pinhole);
+}  // namespace roislam::frontend::detail
