@@ -130,6 +130,9 @@ class CRgbdSimulator : public mrpt::system::COutputLogger
   const CCameraPath& path() const { return m_path; }
 
   double timestamp(std::size_t i) const;
+  /** Depth PNG value per metre of the written sequences (TUM: 5000). */
+  static constexpr double kDepthScale = 5000.0;
+
   /** Rows per render: 8 with a rolling shutter, else the image height. */
   unsigned bandHeight() const;
   /** Ground-truth pose of frame i (colour optical frame in the world). */

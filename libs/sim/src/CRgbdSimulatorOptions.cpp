@@ -1,0 +1,239 @@
+// CRgbdSimulator::TOptions: the [RgbdSimulator] ini section, read strictly
+// (every value must parse completely, unknown keys are errors), and checked.
+#include <mrpt/config/CConfigFileBase.h>
+
+#include <cmath>
+#include <iomanip>
+#include <set>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+
+#include "roislam/sim/CRgbdSimulator.h"
+
+namespace roislam::sim
+{
+namespace
+{
+std::string trim(const std::string& s)
+{
+  const auto b = s.find_first_not_of(" \t\r\n");
+  if (b == std::string::npos)
+    return "";
+  return s.substr(b, s.find_last_not_of(" \t\r\n") - b + 1);
+}
+
+std::string fmtDouble(double v)
+{
+  std::ostringstream o;
+  o << std::setprecision(17) << v;
+  return o.str();
+}
+
+/** Strict reader: every value must parse completely; unknown keys are errors. */
+class CKeyReader
+{
+ public:
+  CKeyReader(const mrpt::config::CConfigFileBase& cfg, const std::string& section)
+      : m_cfg(cfg), m_sec(section)
+  {
+  }
+
+  template <class T>
+  void get(const std::string& key, T& value)
+  {
+    m_known.insert(key);
+    if (!m_cfg.keyExists(m_sec, key))
+      return;
+    const std::string s = trim(m_cfg.read_string(m_sec, key, ""));
+    if (!parse(s, value))
+      throw std::invalid_argument(
+          "[" + m_sec + "] " + key + ": cannot parse '" + s + "' as " + typeName(value));
+  }
+
+  void rejectUnknownKeys() const
+  {
+    std::vector<std::string> keys;
+    m_cfg.getAllKeys(m_sec, keys);
+    for (const auto& k : keys)
+      if (!m_known.count(k))
+        throw std::invalid_argument("[" + m_sec + "] " + k + ": unknown key");
+  }
+
+ private:
+  static bool parse(const std::string& s, double& v)
+  {
+    if (s.empty())
+      return false;
+    char* end = nullptr;
+    v = std::strtod(s.c_str(), &end);
+    return *end == '\0' && std::isfinite(v);
+  }
+  static bool parse(const std::string& s, unsigned& v)
+  {
+    if (s.empty() || s[0] == '-')
+      return false;
+    char* end = nullptr;
+    const unsigned long long x = std::strtoull(s.c_str(), &end, 10);
+    if (*end != '\0' || x > std::numeric_limits<uint32_t>::max())
+      return false;
+    v = static_cast<unsigned>(x);
+    return true;
+  }
+  static bool parse(const std::string& s, bool& v)
+  {
+    if (s == "true" || s == "1" || s == "yes" || s == "on")
+      return v = true, true;
+    if (s == "false" || s == "0" || s == "no" || s == "off")
+      return v = false, true;
+    return false;
+  }
+  static bool parse(const std::string& s, std::string& v)
+  {
+    v = s;
+    return !s.empty();
+  }
+  static const char* typeName(double) { return "a number"; }
+  static const char* typeName(unsigned) { return "a non-negative integer"; }
+  static const char* typeName(bool) { return "a boolean (true|false)"; }
+  static const char* typeName(const std::string&) { return "a non-empty string"; }
+
+  const mrpt::config::CConfigFileBase& m_cfg;
+  std::string m_sec;
+  std::set<std::string> m_known;
+};
+}  // namespace
+
+// ---------------------------------------------------------------- TOptions
+
+void CRgbdSimulator::TOptions::loadFromConfigFile(
+    const mrpt::config::CConfigFileBase& cfg, const std::string& section)
+{
+  CKeyReader r(cfg, section);
+  r.get("scene", scene);
+  r.get("frames", frames);
+  r.get("seed", seed);
+  r.get("texture_seed", textureSeed);
+  r.get("noise", noise);
+  r.get("fps", fps);
+  r.get("base_timestamp", baseTimestamp);
+  r.get("depth_time_offset", depthTimeOffset);
+  r.get("rolling_shutter_ms", rollingShutterMs);
+  r.get("width", width);
+  r.get("height", height);
+  r.get("fx", fx);
+  r.get("fy", fy);
+  r.get("cx", cx);
+  r.get("cy", cy);
+  r.get("min_depth", minDepth);
+  r.get("max_depth", maxDepth);
+  r.get("depth_noise_a", depthNoiseA);
+  r.get("depth_noise_b", depthNoiseB);
+  r.get("depth_noise_z0", depthNoiseZ0);
+  r.get("edge_jump_ratio", edgeJumpRatio);
+  r.get("rgb_noise_std", rgbNoiseStd);
+  r.get("supersampling", supersampling);
+  r.get("texels_per_metre", texelsPerMetre);
+  r.get("path_translation_amplitude", pathTranslationAmplitude);
+  r.get("path_yaw_amplitude_deg", pathYawAmplitudeDeg);
+  r.get("path_pitch_amplitude_deg", pathPitchAmplitudeDeg);
+  r.get("path_roll_amplitude_deg", pathRollAmplitudeDeg);
+  r.get("max_linear_speed", maxLinearSpeed);
+  r.get("max_angular_speed_deg", maxAngularSpeedDeg);
+  r.rejectUnknownKeys();
+  validate(section);
+}
+
+void CRgbdSimulator::TOptions::saveToConfigFile(
+    mrpt::config::CConfigFileBase& cfg, const std::string& section) const
+{
+  auto w = [&](const char* k, const std::string& v) { cfg.write(section, k, v); };
+  auto wd = [&](const char* k, double v) { w(k, fmtDouble(v)); };
+  w("scene", scene);
+  w("frames", std::to_string(frames));
+  w("seed", std::to_string(seed));
+  w("texture_seed", std::to_string(textureSeed));
+  w("noise", noise ? "true" : "false");
+  wd("fps", fps);
+  wd("base_timestamp", baseTimestamp);
+  wd("depth_time_offset", depthTimeOffset);
+  wd("rolling_shutter_ms", rollingShutterMs);
+  w("width", std::to_string(width));
+  w("height", std::to_string(height));
+  wd("fx", fx);
+  wd("fy", fy);
+  wd("cx", cx);
+  wd("cy", cy);
+  wd("min_depth", minDepth);
+  wd("max_depth", maxDepth);
+  wd("depth_noise_a", depthNoiseA);
+  wd("depth_noise_b", depthNoiseB);
+  wd("depth_noise_z0", depthNoiseZ0);
+  wd("edge_jump_ratio", edgeJumpRatio);
+  wd("rgb_noise_std", rgbNoiseStd);
+  w("supersampling", std::to_string(supersampling));
+  wd("texels_per_metre", texelsPerMetre);
+  wd("path_translation_amplitude", pathTranslationAmplitude);
+  wd("path_yaw_amplitude_deg", pathYawAmplitudeDeg);
+  wd("path_pitch_amplitude_deg", pathPitchAmplitudeDeg);
+  wd("path_roll_amplitude_deg", pathRollAmplitudeDeg);
+  wd("max_linear_speed", maxLinearSpeed);
+  wd("max_angular_speed_deg", maxAngularSpeedDeg);
+}
+
+void CRgbdSimulator::TOptions::validate(const std::string& section) const
+{
+  auto fail = [&](const std::string& key, const std::string& what)
+  { throw std::invalid_argument("[" + section + "] " + key + ": " + what); };
+  if (scene != "textured" && scene != "featureless")
+    fail("scene", "'" + scene + "' is not textured|featureless");
+  if (frames < 2)
+    fail("frames", "must be >= 2");
+  if (!(fps > 0 && fps <= 1000))
+    fail("fps", "must be in (0, 1000]");
+  if (!(std::abs(depthTimeOffset) < 0.02))
+    fail("depth_time_offset", "must be within +-0.02 s");
+  if (!(rollingShutterMs >= 0 && rollingShutterMs * 1e-3 <= 1.0 / fps))
+    fail("rolling_shutter_ms", "must be in [0, frame period]");
+  if (width < 16 || width > 4096)
+    fail("width", "must be in [16, 4096]");
+  if (height < 16 || height > 4096)
+    fail("height", "must be in [16, 4096]");
+  if (!(fx > 0))
+    fail("fx", "must be > 0");
+  if (!(fy > 0))
+    fail("fy", "must be > 0");
+  if (!(cx >= 0 && cx <= width))
+    fail("cx", "must lie inside the image");
+  if (!(cy >= 0 && cy <= height))
+    fail("cy", "must lie inside the image");
+  if (!(minDepth >= 0))
+    fail("min_depth", "must be >= 0");
+  if (!(maxDepth > minDepth && maxDepth <= 65535 / kDepthScale))
+    fail("max_depth", "must be > min_depth and <= 13.1 (16-bit PNG range)");
+  if (!(depthNoiseA >= 0))
+    fail("depth_noise_a", "must be >= 0");
+  if (!(depthNoiseB >= 0))
+    fail("depth_noise_b", "must be >= 0");
+  if (!(edgeJumpRatio > 0))
+    fail("edge_jump_ratio", "must be > 0");
+  if (!(rgbNoiseStd >= 0 && rgbNoiseStd <= 64))
+    fail("rgb_noise_std", "must be in [0, 64]");
+  if (supersampling < 1 || supersampling > 4)
+    fail("supersampling", "must be in [1, 4]");
+  if (!(texelsPerMetre >= 50 && texelsPerMetre <= 3000))
+    fail("texels_per_metre", "must be in [50, 3000]");
+  if (!(pathTranslationAmplitude >= 0 && pathTranslationAmplitude <= 0.6))
+    fail("path_translation_amplitude", "must be in [0, 0.6] (the room is small)");
+  for (auto [k, v] :
+       {std::pair{"path_yaw_amplitude_deg", pathYawAmplitudeDeg},
+        std::pair{"path_pitch_amplitude_deg", pathPitchAmplitudeDeg},
+        std::pair{"path_roll_amplitude_deg", pathRollAmplitudeDeg}})
+    if (!(v >= 0 && v <= 45))
+      fail(k, "must be in [0, 45]");
+  if (!(maxLinearSpeed > 0))
+    fail("max_linear_speed", "must be > 0");
+  if (!(maxAngularSpeedDeg > 0))
+    fail("max_angular_speed_deg", "must be > 0");
+}
+}  // namespace roislam::sim
