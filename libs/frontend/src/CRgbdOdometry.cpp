@@ -294,7 +294,8 @@ TFrameResult CRgbdOdometry::process(
   // Lift to 3-D: undistorted pixel + depth at the (distorted) keypoint.
   t0 = Clock::now();
   detail::TLiftedFeatures lifted = detail::liftFeatures(all, depth, I.K, I.dist, o);
-  const std::vector<int> valid = lifted.valid;
+  // The corrections below change points and pixels, never which are valid.
+  const std::vector<int>& valid = lifted.valid;
   // Rolling shutter, first guess: the velocity of the last motion.
   const double readout = o.rolling_shutter_ms * 1e-3;
   const detail::TCameraRate ratePredicted = detail::cameraRate(I.velocity, I.velocityDt);

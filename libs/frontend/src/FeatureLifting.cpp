@@ -20,12 +20,11 @@ TLiftedFeatures liftFeatures(
   cv::undistortPoints(pts, out.rawUndistorted, K, dist, cv::noArray(), K);
   out.rawZ.assign(pts.size(), 0.0F);
   out.rowFraction.resize(pts.size());
-  // The depth image is registered to the (distorted) colour image, whose
-  // rows are the ones read out in sequence.
-  for (std::size_t i = 0; i < pts.size(); ++i)
-    out.rowFraction[i] = static_cast<float>(pts[i].y / depth.rows - 0.5);
   for (std::size_t i = 0; i < pts.size(); ++i)
   {
+    // The depth image is registered to the (distorted) colour image, whose
+    // rows are the ones read out in sequence.
+    out.rowFraction[i] = static_cast<float>(pts[i].y / depth.rows - 0.5);
     const int u = static_cast<int>(std::lround(pts[i].x));
     const int v = static_cast<int>(std::lround(pts[i].y));
     if (u < 1 || v < 1 || u >= depth.cols - 1 || v >= depth.rows - 1)

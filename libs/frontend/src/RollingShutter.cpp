@@ -4,6 +4,16 @@
 
 namespace roislam::frontend::detail
 {
+namespace
+{
+cv::Point2f project(const Eigen::Vector3d& X, const TPinhole& pinhole)
+{
+  return {
+      static_cast<float>(pinhole.fx * X.x() / X.z() + pinhole.cx),
+      static_cast<float>(pinhole.fy * X.y() / X.z() + pinhole.cy)};
+}
+}  // namespace
+
 // Beyond a full turn or 3 m per second (no hand-held camera) the motion is
 // taken as a failed registration: zero.
 TCameraRate cameraRate(const mrpt::poses::CPose3D& motion, double dt)
@@ -52,9 +62,7 @@ void rectifyRollingShutter(
     if (!(X.z() > 0))
       continue;
     lifted.z[k] = static_cast<float>(X.z());
-    lifted.undistorted[k] = cv::Point2f(
-        static_cast<float>(pinhole.fx * X.x() / X.z() + pinhole.cx),
-        static_cast<float>(pinhole.fy * X.y() / X.z() + pinhole.cy));
+    lifted.undistorted[k] = project(X, pinhole);
   }
 }
 
@@ -81,12 +89,10 @@ void correctKeyframe(
   {
     const Eigen::Vector3d X =
         rectifyPoint(u.rawPixels[j], u.rawZ[j], u.rowFraction[j] * readout_s, rate, pinhole);
-    if (!(X.z() > 0))
+    if (!(X.z() > 0))  // as in rectifyRollingShutter
       continue;
     k.points[j] = mrpt::math::TPoint3D(X.x(), X.y(), X.z());
-    k.pixels[j] = cv::Point2f(
-        static_cast<float>(pinhole.fx * X.x() / X.z() + pinhole.cx),
-        static_cast<float>(pinhole.fy * X.y() / X.z() + pinhole.cy));
+    k.pixels[j] = project(X, pinhole);
   }
 }
 }  // namespace roislam::frontend::detail

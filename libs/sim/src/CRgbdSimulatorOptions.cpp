@@ -3,11 +3,15 @@
 #include <mrpt/config/CConfigFileBase.h>
 
 #include <cmath>
+#include <cstdint>
+#include <cstdlib>
 #include <iomanip>
+#include <limits>
 #include <set>
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "roislam/sim/CRgbdSimulator.h"
 
