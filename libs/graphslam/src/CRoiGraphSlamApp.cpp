@@ -1,17 +1,15 @@
 #include <mrpt/config/CConfigFile.h>
 #include <mrpt/system/CTicTac.h>
-#include <octomap/OcTree.h>
 #include <roislam/evaluation/CTrajectoryEvaluator.h>
 #include <roislam/frontend/PoseUncertainty.h>
 #include <roislam/graphslam/CKeyframeERD.h>
 #include <roislam/graphslam/CKeyframeNRD.h>
 #include <roislam/graphslam/CRoiGraphSlamApp.h>
 #include <roislam/graphslam/CRoislamOptionsChecker.h>
+#include <roislam/graphslam/CSlamOutputWriter.h>
 #include <roislam/graphslam/CSlamPipeline.h>
 #include <roislam/io/CFrameSource.h>
 #include <roislam/io/TumTrajectory.h>
-#include <roislam/viz/CSlamSceneBuilder.h>
-#include <roislam/viz/CSnapshotRenderer.h>
 #include <sys/resource.h>
 
 #include <cmath>
@@ -35,33 +33,6 @@ std::string firstLine(const std::string& s)
   return s.substr(0, s.find('\n'));
 }
 
-/** Writes text through `file`.tmp renamed on success. */
-void writeTextFile(const std::string& file, const std::string& text)
-{
-  const std::string tmp = file + ".tmp";
-  {
-    std::ofstream out(tmp);
-    out << text;
-    out.flush();
-    if (!out)
-      throw std::runtime_error(file + ": cannot write");
-  }
-  if (std::rename(tmp.c_str(), file.c_str()) != 0)
-  {
-    std::remove(tmp.c_str());
-    throw std::runtime_error(file + ": cannot rename from " + tmp);
-  }
-}
-
-void renameOrThrow(const std::string& tmp, const std::string& file)
-{
-  if (std::rename(tmp.c_str(), file.c_str()) != 0)
-  {
-    std::remove(tmp.c_str());
-    throw std::runtime_error(file + ": cannot rename from " + tmp);
-  }
-}
-
 double peakRssMb()
 {
   struct rusage ru
@@ -74,20 +45,6 @@ double peakRssMb()
 nlohmann::json optionalJson(const std::optional<double>& v)
 {
   return v ? nlohmann::json(*v) : nlohmann::json(nullptr);
-}
-
-void checkWritableDir(const std::string& dir)
-{
-  std::error_code ec;
-  fs::create_directories(dir, ec);
-  if (ec || !fs::is_directory(dir))
-    throw std::runtime_error("output dir " + dir + ": cannot create");
-  const std::string probe = dir + "/.roi-graphslam-write-test";
-  std::ofstream out(probe);
-  if (!out)
-    throw std::runtime_error("output dir " + dir + ": not writable");
-  out.close();
-  std::remove(probe.c_str());
 }
 }  // namespace
 
@@ -146,24 +103,14 @@ CRoiGraphSlamApp::CRoiGraphSlamApp(TArguments arguments) : m_args(std::move(argu
   m_config.backEnd.validate();
 }
 
-CRoiGraphSlamApp::TSummary CRoiGraphSlamApp::run()
+void CRoiGraphSlamApp::progress(const std::string& line) const
 {
-  auto progress = [&](const std::string& s)
-  {
-    if (m_args.progress)
-      m_args.progress(s);
-  };
-  auto source = io::CFrameSource::open(m_args.input, m_args.camera);
-  checkWritableDir(m_args.outputDir);
-  const std::string out = m_args.outputDir + "/";
-  progress(
-      "roi-graphslam: " + source->name() + ", " + std::to_string(source->size()) +
-      " frames, mode " + frontend::toString(m_config.frontEnd.mode) + ", " +
-      features::toString(m_config.frontEnd.extractor.feature_type));
+  if (m_args.progress)
+    m_args.progress(line);
+}
 
-  mrpt::system::CTicTac wall;
-  const std::size_t total = source->size();
-  CSlamPipeline pipeline(m_config, std::move(source));
+void CRoiGraphSlamApp::runFrames(CSlamPipeline& pipeline, std::size_t total) const
+{
   const auto& records = pipeline.records();
   while ((!m_args.maxFrames || records.size() < m_args.maxFrames) && pipeline.step())
     if (records.size() % 50 == 0)
@@ -173,193 +120,91 @@ CRoiGraphSlamApp::TSummary CRoiGraphSlamApp::run()
           ", loops " + std::to_string(pipeline.context().loopClosures().size()));
   if (records.empty())
     throw std::runtime_error(m_args.input + ": no frames");
-  const auto finalReport = pipeline.finish();
-  const std::size_t optimizations = pipeline.optimizations();
-  const std::size_t windowedOptimizations = pipeline.windowedOptimizations();
-  const CSlamContext* ctx = &pipeline.context();
-  const TGraph& graph = pipeline.graph();
-  const io::CFrameSource* src = &pipeline.source();
+}
 
-  const auto& odo = ctx->odometry();
-  const io::TTrajectory estimate = pipeline.trajectory();
-  io::TTrajectory odometryOnly;
-  for (const auto& r : records)
-    if (r.result.pose)
-      odometryOnly.push_back({r.result.timestamp, *r.result.pose});
-  const double wallS = wall.Tac();
+CRoiGraphSlamApp::TEvaluation CRoiGraphSlamApp::evaluate(
+    const CSlamPipeline& pipeline, const io::TTrajectory& estimate) const
+{
+  TEvaluation ev;
+  const auto gtFile = pipeline.source().groundTruthFile();
+  if (!gtFile || !fs::exists(*gtFile))
+    return ev;
+  try
+  {
+    ev.groundTruth = io::loadTumTrajectory(*gtFile);
+    ev.result = evaluation::CTrajectoryEvaluator().evaluate(ev.groundTruth, estimate);
+    // The causal front-end estimate (poses as tracked, before later
+    // optimisations), to show what the back end adds.
+    io::TTrajectory odometryOnly;
+    for (const auto& r : pipeline.records())
+      if (r.result.pose)
+        odometryOnly.push_back({r.result.timestamp, *r.result.pose});
+    ev.odometryAte =
+        evaluation::CTrajectoryEvaluator().evaluate(ev.groundTruth, odometryOnly).ate.rmse;
+  }
+  catch (const std::exception& e)
+  {
+    ev.result.reset();
+    ev.error = firstLine(e.what());
+    progress("roi-graphslam: warning: evaluation failed: " + ev.error);
+  }
+  return ev;
+}
 
-  TSummary s;
-  s.frames = records.size();
-  s.keyframes = odo.keyframes().size();
-  s.loopClosures = ctx->loopClosures().size();
+CRoiGraphSlamApp::TSummary CRoiGraphSlamApp::summarize(
+    const CSlamPipeline& pipeline, const io::TTrajectory& estimate, double wallS,
+    const TEvaluation& ev) const
+{
+  const auto& odo = pipeline.context().odometry();
   const auto& st = odo.stats();
+  TSummary s;
+  s.frames = pipeline.records().size();
+  s.keyframes = odo.keyframes().size();
+  s.loopClosures = pipeline.context().loopClosures().size();
   s.trackedFrames = estimate.size();
   s.lostFrames = st.lost;
   s.fallbackFrames = st.fullImageFallback + st.depthIcp + st.constantVelocity;
   s.wallS = wallS;
   s.fps = wallS > 0 ? s.frames / wallS : 0;
   s.failed = s.lostFrames > 0 || estimate.empty();
+  if (ev.result)
+  {
+    s.ateRmse = ev.result->ate.rmse;
+    s.rpeTransRmse = ev.result->rpe.trans_rmse;
+    s.rpeRotRmseDeg = ev.result->rpe.rot_rmse_deg;
+  }
+  return s;
+}
 
-  // Evaluation against ground truth.
-  std::optional<evaluation::TEvaluationResult> eval;
-  std::optional<double> odometryAte;
-  std::string evalError;
-  if (const auto gtFile = src->groundTruthFile(); gtFile && fs::exists(*gtFile))
-  {
-    try
-    {
-      const auto gt = io::loadTumTrajectory(*gtFile);
-      eval = evaluation::CTrajectoryEvaluator().evaluate(gt, estimate);
-      s.ateRmse = eval->ate.rmse;
-      s.rpeTransRmse = eval->rpe.trans_rmse;
-      s.rpeRotRmseDeg = eval->rpe.rot_rmse_deg;
-      // The causal front-end estimate (poses as tracked, before later
-      // optimisations), to show what the back end adds.
-      odometryAte = evaluation::CTrajectoryEvaluator().evaluate(gt, odometryOnly).ate.rmse;
-    }
-    catch (const std::exception& e)
-    {
-      evalError = firstLine(e.what());
-      progress("roi-graphslam: warning: evaluation failed: " + evalError);
-    }
-  }
-
-  // Trajectory, graph, per-frame log.
-  io::saveTumTrajectory(
-      out + "trajectory.txt", estimate,
-      "roi-graphslam " + src->name() + " mode " + frontend::toString(m_config.frontEnd.mode));
-  try
-  {
-    graph.saveToTextFile(out + "graph.graph.tmp");
-  }
-  catch (const std::exception& e)
-  {
-    throw std::runtime_error(out + "graph.graph: " + firstLine(e.what()));
-  }
-  renameOrThrow(out + "graph.graph.tmp", out + "graph.graph");
-  {
-    std::ostringstream csv;
-    csv << "index,timestamp,method,features,features_with_depth,roi_features,tracking_features,"
-           "matches,inliers,roi_x,roi_y,roi_w,roi_h,keyframe,reference_keyframe,roi_ms,"
-           "extract_ms,lift_ms,match_ms,ransac_ms,icp_ms,keyframe_ms,frontend_ms,backend_ms,"
-           "sigma_t_mm,sigma_r_deg,icp_refined\n";
-    csv << std::setprecision(6) << std::fixed;
-    for (const auto& r : records)
-    {
-      const auto& f = r.result;
-      const auto& t = f.times;
-      csv << f.frameIndex << "," << f.timestamp << "," << frontend::toString(f.method) << ","
-          << f.features << "," << f.featuresWithDepth << "," << f.roiFeatures << ","
-          << f.trackingFeatures << "," << f.matches << "," << f.inliers << ",";
-      if (f.roi)
-        csv << f.roi->x << "," << f.roi->y << "," << f.roi->width << "," << f.roi->height << ",";
-      else
-        csv << ",,,,";
-      csv << (f.isNewKeyframe ? std::to_string(f.newKeyframeId) : std::string()) << ","
-          << f.referenceKeyframe << "," << t.roi_ms << "," << t.extract_ms << "," << t.lift_ms
-          << "," << t.match_ms << "," << t.ransac_ms << "," << t.icp_ms << "," << t.keyframe_ms
-          << "," << t.total_ms << "," << r.backendMs << ",";
-      // The registration's worst-case 1-sigma (largest axis of the marginal
-      // covariance): shows how well a (small) ROI constrains the pose.
-      const auto sd = frontend::worstSigmas(f.relativeInformation);
-      if (sd && f.method != frontend::ETrackingMethod::Initial &&
-          f.method != frontend::ETrackingMethod::Lost)
-        csv << 1e3 * sd->translation_m << "," << sd->rotation_rad * 180.0 / M_PI << ",";
-      else
-        csv << ",,";
-      csv << (f.icpRefined ? 1 : 0) << "\n";
-    }
-    writeTextFile(out + "frames.csv", csv.str());
-  }
-
-  // Map: OctoMap (5 cm) from the keyframes' decimated clouds in the world frame.
-  mrpt::system::CTicTac mapTimer;
-  viz::TSceneContent content;
-  {
-    octomap::OcTree tree(0.05);
-    const auto& clouds = ctx->keyframeClouds();
-    std::size_t total = 0;
-    for (const auto& c : clouds)
-      total += c.size();
-    const std::size_t sceneStep = std::max<std::size_t>(1, total / 400000 + 1);
-    std::size_t counter = 0;
-    for (std::size_t k = 0; k < clouds.size(); ++k)
-    {
-      const auto pose = pipeline.keyframePose(k);
-      octomap::Pointcloud pc;
-      pc.reserve(clouds[k].size());
-      for (std::size_t i = 0; i < clouds[k].size(); ++i)
-      {
-        float x, y, z, r, g, b;
-        clouds[k].getPointRGB(i, x, y, z, r, g, b);
-        double wx, wy, wz;
-        pose.composePoint(x, y, z, wx, wy, wz);
-        pc.push_back(static_cast<float>(wx), static_cast<float>(wy), static_cast<float>(wz));
-        if (counter++ % sceneStep == 0)
-          content.cloud.insertPointRGB(
-              static_cast<float>(wx), static_cast<float>(wy), static_cast<float>(wz), r, g, b);
-      }
-      const auto t = pose.translation();
-      tree.insertPointCloud(pc, octomap::point3d(t.x, t.y, t.z), -1, false, true);
-    }
-    const std::string tmp = out + "map.bt.tmp";
-    if (!tree.writeBinary(tmp))
-      throw std::runtime_error(out + "map.bt: cannot write");
-    renameOrThrow(tmp, out + "map.bt");
-  }
-  s.mapS = mapTimer.Tac();
-
-  // Scene and snapshot.
-  mrpt::system::CTicTac snapTimer;
-  for (const auto& p : estimate)
-    content.trajectory.push_back(p.pose.translation());
-  if (eval)
-  {
-    // Ground truth shown in the estimate's frame.
-    const auto toEstimate = -eval->ate.alignment;
-    for (const auto& p : io::loadTumTrajectory(*src->groundTruthFile()))
-      content.groundTruth.push_back((toEstimate + p.pose).translation());
-  }
-  auto scene = viz::CSlamSceneBuilder().build(content);
-  viz::CSlamSceneBuilder::save(*scene, out + "scene.3Dscene");
-  std::string snapshotError;
-  if (m_args.snapshot)
-  {
-    try
-    {
-      viz::CSnapshotRenderer().renderToFile(*scene, out + "snapshot.png");
-    }
-    catch (const std::exception& e)
-    {
-      snapshotError = firstLine(e.what());
-      progress("roi-graphslam: warning: no snapshot: " + snapshotError);
-    }
-  }
-  s.snapshotS = snapTimer.Tac();
-  s.peakRssMb = peakRssMb();
-
+nlohmann::json CRoiGraphSlamApp::summaryJson(
+    const CSlamPipeline& pipeline, const TSummary& s, const TOptimizationReport& finalReport,
+    const TEvaluation& ev) const
+{
+  const CSlamContext& ctx = pipeline.context();
+  const auto& st = ctx.odometry().stats();
+  const auto& fe = m_config.frontEnd;
   nlohmann::json j;
-  j["sequence"] = src->name();
+  j["sequence"] = pipeline.source().name();
   j["input"] = m_args.input;
-  j["mode"] = frontend::toString(m_config.frontEnd.mode);
-  j["feature"] = features::toString(m_config.frontEnd.extractor.feature_type);
-  j["max_features"] = m_config.frontEnd.extractor.max_features;
-  j["strict_roi"] = m_config.frontEnd.strict_roi;
+  j["mode"] = frontend::toString(fe.mode);
+  j["feature"] = features::toString(fe.extractor.feature_type);
+  j["max_features"] = fe.extractor.max_features;
+  j["strict_roi"] = fe.strict_roi;
   j["frames"] = s.frames;
-  j["skipped_frames"] = src->skippedFrames();
+  j["skipped_frames"] = pipeline.source().skippedFrames();
   j["keyframes"] = s.keyframes;
   j["loop_closures"] = s.loopClosures;
   std::size_t lmLoops = 0;
-  for (const auto& lc : ctx->loopClosures())
+  for (const auto& lc : ctx.loopClosures())
     lmLoops += lc.source == ELoopSource::Landmark;
   j["loop_closures_landmark"] = lmLoops;
   j["loop_closures_proximity"] = s.loopClosures - lmLoops;
-  j["loop_closures_rejected"] = ctx->rejectedLoopClosures();
-  j["landmarks"] = ctx->database().size();
-  j["graph_nodes"] = graph.nodes.size();
-  j["graph_edges"] = graph.edges.size();
-  j["optimizations"] = optimizations;
-  j["optimizations_windowed"] = windowedOptimizations;
+  j["loop_closures_rejected"] = ctx.rejectedLoopClosures();
+  j["landmarks"] = ctx.database().size();
+  j["graph_nodes"] = pipeline.graph().nodes.size();
+  j["graph_edges"] = pipeline.graph().edges.size();
+  j["optimizations"] = pipeline.optimizations();
+  j["optimizations_windowed"] = pipeline.windowedOptimizations();
   j["final_optimization"] = {
       {"iterations", finalReport.iterations},
       {"chi2_before", finalReport.chi2Before},
@@ -387,13 +232,67 @@ CRoiGraphSlamApp::TSummary CRoiGraphSlamApp::run()
   j["ate_rmse"] = optionalJson(s.ateRmse);
   j["rpe_trans_rmse"] = optionalJson(s.rpeTransRmse);
   j["rpe_rot_rmse_deg"] = optionalJson(s.rpeRotRmseDeg);
-  j["frontend_ate_rmse"] = optionalJson(odometryAte);
-  j["evaluation"] = eval ? evaluation::toJson(*eval) : nlohmann::json(nullptr);
-  if (!evalError.empty())
-    j["evaluation_error"] = evalError;
+  j["frontend_ate_rmse"] = optionalJson(ev.odometryAte);
+  j["evaluation"] = ev.result ? evaluation::toJson(*ev.result) : nlohmann::json(nullptr);
+  if (!ev.error.empty())
+    j["evaluation_error"] = ev.error;
+  return j;
+}
+
+CRoiGraphSlamApp::TSummary CRoiGraphSlamApp::run()
+{
+  auto source = io::CFrameSource::open(m_args.input, m_args.camera);
+  CSlamOutputWriter::checkWritableDir(m_args.outputDir);
+  progress(
+      "roi-graphslam: " + source->name() + ", " + std::to_string(source->size()) +
+      " frames, mode " + frontend::toString(m_config.frontEnd.mode) + ", " +
+      features::toString(m_config.frontEnd.extractor.feature_type));
+
+  mrpt::system::CTicTac wall;
+  const std::size_t total = source->size();
+  CSlamPipeline pipeline(m_config, std::move(source));
+  runFrames(pipeline, total);
+  const auto finalReport = pipeline.finish();
+  const io::TTrajectory estimate = pipeline.trajectory();
+  const double wallS = wall.Tac();
+
+  const TEvaluation ev = evaluate(pipeline, estimate);
+  TSummary s = summarize(pipeline, estimate, wallS, ev);
+
+  const CSlamOutputWriter writer(m_args.outputDir);
+  writer.writeTrajectory(
+      estimate, "roi-graphslam " + pipeline.source().name() + " mode " +
+                    frontend::toString(m_config.frontEnd.mode));
+  writer.writeGraph(pipeline.graph());
+  writer.writeFramesCsv(pipeline.records());
+
+  const CSlamOutputWriter::TRun run{
+      pipeline.records(), pipeline.context(), pipeline.graph(),
+      [&pipeline](std::size_t id) { return pipeline.keyframePose(id); }};
+  mrpt::system::CTicTac mapTimer;
+  viz::TSceneContent content = writer.writeMap(run);
+  s.mapS = mapTimer.Tac();
+
+  mrpt::system::CTicTac snapTimer;
+  for (const auto& p : estimate)
+    content.trajectory.push_back(p.pose.translation());
+  if (ev.result)
+  {
+    // Ground truth shown in the estimate's frame.
+    const auto toEstimate = -ev.result->ate.alignment;
+    for (const auto& p : ev.groundTruth)
+      content.groundTruth.push_back((toEstimate + p.pose).translation());
+  }
+  const std::string snapshotError = writer.writeScene(content, m_args.snapshot);
+  if (!snapshotError.empty())
+    progress("roi-graphslam: warning: no snapshot: " + snapshotError);
+  s.snapshotS = snapTimer.Tac();
+  s.peakRssMb = peakRssMb();
+
+  nlohmann::json j = summaryJson(pipeline, s, finalReport, ev);
   if (!snapshotError.empty())
     j["snapshot_error"] = snapshotError;
-  writeTextFile(out + "summary.json", j.dump(2) + "\n");
+  writer.writeSummary(j);
   return s;
 }
 }  // namespace roislam::graphslam

@@ -20,9 +20,13 @@
  */
 #pragma once
 
+#include <roislam/evaluation/TEvaluationResult.h>
 #include <roislam/graphslam/CSlamContext.h>
+#include <roislam/graphslam/CSlamPipeline.h>
+#include <roislam/io/TumTrajectory.h>
 
 #include <functional>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 
@@ -80,6 +84,28 @@ class CRoiGraphSlamApp
   static std::string listRegistrars(const std::string& type);
 
  private:
+  /** The run's error against ground truth, when the sequence has one. */
+  struct TEvaluation
+  {
+    io::TTrajectory groundTruth;
+    std::optional<evaluation::TEvaluationResult> result;
+    /** ATE of the causal front-end estimate (poses as tracked). */
+    std::optional<double> odometryAte;
+    /** Why the evaluation failed (empty when it did not). */
+    std::string error;
+  };
+
+  void progress(const std::string& line) const;
+  /** Steps the pipeline to the end (or maxFrames), with progress lines. */
+  void runFrames(CSlamPipeline& pipeline, std::size_t total) const;
+  TEvaluation evaluate(const CSlamPipeline& pipeline, const io::TTrajectory& estimate) const;
+  TSummary summarize(
+      const CSlamPipeline& pipeline, const io::TTrajectory& estimate, double wallS,
+      const TEvaluation& ev) const;
+  nlohmann::json summaryJson(
+      const CSlamPipeline& pipeline, const TSummary& s, const TOptimizationReport& finalReport,
+      const TEvaluation& ev) const;
+
   TArguments m_args;
   CSlamContext::TConfig m_config;
 };

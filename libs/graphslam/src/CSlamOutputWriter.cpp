@@ -1,0 +1,187 @@
+#include <octomap/OcTree.h>
+#include <roislam/frontend/PoseUncertainty.h>
+#include <roislam/graphslam/CSlamOutputWriter.h>
+#include <roislam/viz/CSlamSceneBuilder.h>
+#include <roislam/viz/CSnapshotRenderer.h>
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <sstream>
+#include <stdexcept>
+
+namespace fs = std::filesystem;
+
+namespace roislam::graphslam
+{
+namespace
+{
+std::string firstLine(const std::string& s)
+{
+  return s.substr(0, s.find('\n'));
+}
+
+void renameOrThrow(const std::string& tmp, const std::string& file)
+{
+  if (std::rename(tmp.c_str(), file.c_str()) != 0)
+  {
+    std::remove(tmp.c_str());
+    throw std::runtime_error(file + ": cannot rename from " + tmp);
+  }
+}
+
+const char* kFramesCsvHeader =
+    "index,timestamp,method,features,features_with_depth,roi_features,tracking_features,"
+    "matches,inliers,roi_x,roi_y,roi_w,roi_h,keyframe,reference_keyframe,roi_ms,"
+    "extract_ms,lift_ms,match_ms,ransac_ms,icp_ms,keyframe_ms,frontend_ms,backend_ms,"
+    "sigma_t_mm,sigma_r_deg,icp_refined\n";
+
+void writeFramesCsvRow(std::ostream& csv, const CSlamPipeline::TFrameRecord& r)
+{
+  const auto& f = r.result;
+  const auto& t = f.times;
+  csv << f.frameIndex << "," << f.timestamp << "," << frontend::toString(f.method) << ","
+      << f.features << "," << f.featuresWithDepth << "," << f.roiFeatures << ","
+      << f.trackingFeatures << "," << f.matches << "," << f.inliers << ",";
+  if (f.roi)
+    csv << f.roi->x << "," << f.roi->y << "," << f.roi->width << "," << f.roi->height << ",";
+  else
+    csv << ",,,,";
+  csv << (f.isNewKeyframe ? std::to_string(f.newKeyframeId) : std::string()) << ","
+      << f.referenceKeyframe << "," << t.roi_ms << "," << t.extract_ms << "," << t.lift_ms << ","
+      << t.match_ms << "," << t.ransac_ms << "," << t.icp_ms << "," << t.keyframe_ms << ","
+      << t.total_ms << "," << r.backendMs << ",";
+  // The registration's worst-case 1-sigma (largest axis of the marginal
+  // covariance): shows how well a (small) ROI constrains the pose.
+  const auto sd = frontend::worstSigmas(f.relativeInformation);
+  if (sd && f.method != frontend::ETrackingMethod::Initial &&
+      f.method != frontend::ETrackingMethod::Lost)
+    csv << 1e3 * sd->translation_m << "," << sd->rotation_rad * 180.0 / M_PI << ",";
+  else
+    csv << ",,";
+  csv << (f.icpRefined ? 1 : 0) << "\n";
+}
+}  // namespace
+
+CSlamOutputWriter::CSlamOutputWriter(std::string outputDir) : m_dir(std::move(outputDir) + "/") {}
+
+void CSlamOutputWriter::checkWritableDir(const std::string& dir)
+{
+  std::error_code ec;
+  fs::create_directories(dir, ec);
+  if (ec || !fs::is_directory(dir))
+    throw std::runtime_error("output dir " + dir + ": cannot create");
+  const std::string probe = dir + "/.roi-graphslam-write-test";
+  std::ofstream out(probe);
+  if (!out)
+    throw std::runtime_error("output dir " + dir + ": not writable");
+  out.close();
+  std::remove(probe.c_str());
+}
+
+void CSlamOutputWriter::writeTextFile(const std::string& file, const std::string& text)
+{
+  const std::string tmp = file + ".tmp";
+  {
+    std::ofstream out(tmp);
+    out << text;
+    out.flush();
+    if (!out)
+      throw std::runtime_error(file + ": cannot write");
+  }
+  renameOrThrow(tmp, file);
+}
+
+void CSlamOutputWriter::writeTrajectory(
+    const io::TTrajectory& estimate, const std::string& header) const
+{
+  io::saveTumTrajectory(m_dir + "trajectory.txt", estimate, header);
+}
+
+void CSlamOutputWriter::writeGraph(const TGraph& graph) const
+{
+  const std::string file = m_dir + "graph.graph";
+  try
+  {
+    graph.saveToTextFile(file + ".tmp");
+  }
+  catch (const std::exception& e)
+  {
+    throw std::runtime_error(file + ": " + firstLine(e.what()));
+  }
+  renameOrThrow(file + ".tmp", file);
+}
+
+void CSlamOutputWriter::writeFramesCsv(
+    const std::vector<CSlamPipeline::TFrameRecord>& records) const
+{
+  std::ostringstream csv;
+  csv << kFramesCsvHeader << std::setprecision(6) << std::fixed;
+  for (const auto& r : records)
+    writeFramesCsvRow(csv, r);
+  writeTextFile(m_dir + "frames.csv", csv.str());
+}
+
+viz::TSceneContent CSlamOutputWriter::writeMap(const TRun& run) const
+{
+  viz::TSceneContent content;
+  octomap::OcTree tree(0.05);
+  const auto& clouds = run.context.keyframeClouds();
+  std::size_t total = 0;
+  for (const auto& c : clouds)
+    total += c.size();
+  // The scene keeps at most ~400k points (SceneViewer3D and the snapshot).
+  const std::size_t sceneStep = std::max<std::size_t>(1, total / 400000 + 1);
+  std::size_t counter = 0;
+  for (std::size_t k = 0; k < clouds.size(); ++k)
+  {
+    const auto pose = run.keyframePose(k);
+    octomap::Pointcloud pc;
+    pc.reserve(clouds[k].size());
+    for (std::size_t i = 0; i < clouds[k].size(); ++i)
+    {
+      float x, y, z, r, g, b;
+      clouds[k].getPointRGB(i, x, y, z, r, g, b);
+      double wx, wy, wz;
+      pose.composePoint(x, y, z, wx, wy, wz);
+      pc.push_back(static_cast<float>(wx), static_cast<float>(wy), static_cast<float>(wz));
+      if (counter++ % sceneStep == 0)
+        content.cloud.insertPointRGB(
+            static_cast<float>(wx), static_cast<float>(wy), static_cast<float>(wz), r, g, b);
+    }
+    // COctoMap ignores sensorPose in MRPT 2.5, so the clouds go in already in
+    // the world frame, with the keyframe's position as the rays' origin.
+    const auto t = pose.translation();
+    tree.insertPointCloud(pc, octomap::point3d(t.x, t.y, t.z), -1, false, true);
+  }
+  const std::string tmp = m_dir + "map.bt.tmp";
+  if (!tree.writeBinary(tmp))
+    throw std::runtime_error(m_dir + "map.bt: cannot write");
+  renameOrThrow(tmp, m_dir + "map.bt");
+  return content;
+}
+
+std::string CSlamOutputWriter::writeScene(const viz::TSceneContent& content, bool snapshot) const
+{
+  auto scene = viz::CSlamSceneBuilder().build(content);
+  viz::CSlamSceneBuilder::save(*scene, m_dir + "scene.3Dscene");
+  if (!snapshot)
+    return {};
+  try
+  {
+    viz::CSnapshotRenderer().renderToFile(*scene, m_dir + "snapshot.png");
+  }
+  catch (const std::exception& e)
+  {
+    return firstLine(e.what());
+  }
+  return {};
+}
+
+void CSlamOutputWriter::writeSummary(const nlohmann::json& summary) const
+{
+  writeTextFile(m_dir + "summary.json", summary.dump(2) + "\n");
+}
+}  // namespace roislam::graphslam
