@@ -123,11 +123,13 @@
 #include <roislam/features/CFeatureExtractor.h>
 #include <roislam/frontend/TFrameResult.h>
 #include <roislam/frontend/TKeyframe.h>
+#include <roislam/frontend/TPreparedFrame.h>
 #include <roislam/io/TRGBDFrame.h>
 #include <roislam/matching/CFeatureMatcher.h>
 #include <roislam/roi/CRoiDetector.h>
 
 #include <deque>
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
@@ -233,30 +235,23 @@ class CRgbdOdometry : public mrpt::system::COutputLogger
    *  first camera frame). Call before the first process() (or after reset()). */
   void setInitialPose(const mrpt::poses::CPose3D& pose) { m_initialPose = pose; }
 
-  /** A ROI detected ahead of process() for one frame (detectRoiAhead). */
-  struct TRoiHint
-  {
-    std::size_t frameIndex = 0;
-    double timestamp = 0;
-    std::optional<roi::TRoi> roi;
-    double ms = 0;
-    /** The frame's grey image, converted once for the detector and reused
-     *  by process() (empty when the frame was grey already). */
-    cv::Mat grey;
-  };
+  /** Stage 1 and the checks, for a frame that process() will receive later:
+   *  throws std::invalid_argument unless rgb is CV_8UC3 and depth CV_32FC1
+   *  of the same size as rgb and the camera; converts to grey and, in ROI
+   *  modes, detects the ROI. Const and safe to call from another thread
+   *  while process() runs (CSlamPipeline calls it on the thread that decodes
+   *  the next frame). */
+  TPreparedFrame prepare(const io::TRGBDFrame& frame) const;
 
-  /** Stage 1 for a frame that process() will receive later; const and safe to
-   *  call from another thread while process() runs (e.g. the thread that
-   *  decodes the next frame), so that in ROI modes the ROI costs the tracking
-   *  thread nothing even when feature extraction uses every core. */
-  TRoiHint detectRoiAhead(const io::TRGBDFrame& frame) const;
-
-  /** Tracks one frame (frames in time order; rgb CV_8UC3, depth CV_32F metres,
-   *  same size; else std::invalid_argument). A hint for this very frame
-   *  (same index and timestamp) replaces the ROI detection; others are
-   *  ignored. */
-  TFrameResult process(
-      const io::TRGBDFrame& frame, const std::optional<TRoiHint>& roiHint = std::nullopt);
+  /** Tracks one prepared frame (frames in time order). The stages, in
+   *  order (each in its own file, see the README's stage map):
+   *  extract features -> lift them to 3-D -> track against the recent
+   *  keyframes -> refine (rolling shutter, depth ICP) -> pose (or the
+   *  depth-only / constant-velocity fallbacks) -> keyframe decision ->
+   *  new keyframe with its constraints. */
+  TFrameResult process(const TPreparedFrame& frame);
+  /** prepare() then process(), on this thread. */
+  TFrameResult process(const io::TRGBDFrame& frame) { return process(prepare(frame)); }
 
   /** All keyframes so far; keyframes()[id].id == id. References are
    *  invalidated by process() (the container may grow). */
@@ -266,13 +261,15 @@ class CRgbdOdometry : public mrpt::system::COutputLogger
 
   /** Registers keyframe B against keyframe A from their stored features
    *  (matching + 3-D RANSAC + refinement): pose(B) = pose(A) (+) result.pose.
-   *  nullopt when too few inliers. For loop-closure verification by the back
-   *  end. Throws std::out_of_range on a bad id. */
+   *  nullopt when too few inliers. A const query, for loop-closure
+   *  verification by the back end. Throws std::out_of_range on a bad id. */
   std::optional<TRelativePoseEstimate> registerKeyframes(std::size_t idA, std::size_t idB) const;
 
-  /** The back end pushes an optimised keyframe pose; tracking continues from
-   *  it (later frames are composed onto the corrected reference keyframe). */
-  void setKeyframePose(std::size_t id, const mrpt::poses::CPose3D& pose);
+  /** The back end's correction, the one way its results reach the front end:
+   *  optimised world poses of keyframes (by id; ids the front end does not
+   *  have are ignored). Tracking continues from them (later frames are
+   *  composed onto the corrected reference keyframe). */
+  void correctKeyframePoses(const std::map<std::size_t, mrpt::poses::CPose3D>& poses);
 
   /** Forgets all keyframes and state (initial pose kept). */
   void reset();
@@ -282,6 +279,27 @@ class CRgbdOdometry : public mrpt::system::COutputLogger
 
  private:
   struct TImpl;
+  struct TFrameWork;
+  // The stages of process(), in order (files StageExtract.cpp, StageTrack.cpp,
+  // StageRefine.cpp, StageKeyframe.cpp).
+  void extractFeatures(TFrameWork& w) const;
+  void liftFeatures(TFrameWork& w) const;
+  void startMap(TFrameWork& w);
+  void predictMotion(TFrameWork& w) const;
+  void trackFeatures(TFrameWork& w) const;
+  /** Registers query against the recent keyframes, newest first (w.reg,
+   *  w.ref, the match count). */
+  void registerWithRecent(const TKeyframe& query, TFrameWork& w) const;
+  void refineRollingShutter(TFrameWork& w);
+  void refineWithDepth(TFrameWork& w) const;
+  /** Pose from the registration, or from the fallbacks; false when Lost. */
+  bool resolvePose(TFrameWork& w);
+  bool needsKeyframe(const TFrameWork& w) const;
+  void makeKeyframeConstraints(TFrameWork& w);
+  void insertKeyframe(TFrameWork& w, const mrpt::poses::CPose3D& pose);
+  /** Remembers the frame as the last tracked one, counts it, times it. */
+  TFrameResult finish(TFrameWork& w);
+
   TOptions m_options;
   mrpt::poses::CPose3D m_initialPose;
   std::deque<TKeyframe> m_keyframes;

@@ -137,7 +137,8 @@ struct TFrameResult
   std::size_t trackingFeatures = 0;   //!< the set actually matched
   std::size_t matches = 0;            //!< ratio-test matches to the reference
   std::size_t inliers = 0;            //!< after RANSAC + refinement (ICP: pairs)
-  /** The ROI found in this frame (ROI modes only). */
+  /** The ROI found in this frame: ROI modes, and keyframes of the
+   *  traditional mode (their ROI is the back end's landmark). */
   std::optional<cv::Rect> roi;
 
   TStageTimes times;

@@ -25,7 +25,7 @@ struct TKeyframe
   /** TRGBDFrame::index and ::timestamp of the frame. */
   std::size_t frameIndex = 0;
   double timestamp = 0;
-  /** World pose; replaced by setKeyframePose() when the back end optimises. */
+  /** World pose; replaced by correctKeyframePoses() when the back end optimises. */
   mrpt::poses::CPose3D pose;
 
   /** Features stored for matching, only those with valid depth: the whole
