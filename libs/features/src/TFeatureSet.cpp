@@ -48,6 +48,22 @@ TFeatureSet TFeatureSet::select(const std::vector<int>& indices) const
   return out;
 }
 
+TFeatureSet concat(const TFeatureSet& a, const TFeatureSet& b)
+{
+  if (b.empty())
+    return a;
+  if (a.empty())
+    return b;
+  if (a.type != b.type)
+    throw std::invalid_argument("concat: feature sets of different types");
+  TFeatureSet out;
+  out.type = a.type;
+  out.keypoints = a.keypoints;
+  out.keypoints.insert(out.keypoints.end(), b.keypoints.begin(), b.keypoints.end());
+  cv::vconcat(a.descriptors, b.descriptors, out.descriptors);
+  return out;
+}
+
 TFeatureSet TFeatureSet::subset(const cv::Rect& rect) const
 {
   std::vector<int> inside;

@@ -136,6 +136,7 @@ void CRgbdOdometry::reset()
   m_impl->velocityDt = 0;
   m_impl->haveStamp = false;
   m_impl->uncorrected.reset();
+  m_impl->regionGrowth = 1;
 }
 
 std::optional<TRelativePoseEstimate> CRgbdOdometry::registerKeyframes(
@@ -180,6 +181,7 @@ TPreparedFrame CRgbdOdometry::prepare(const io::TRGBDFrame& frame) const
     p.roiDetected = true;
     p.roi_ms = msSince(t0);
   }
+  p.prepare_ms = msSince(t0);
   return p;
 }
 
@@ -187,6 +189,8 @@ TFrameResult CRgbdOdometry::process(const TPreparedFrame& frame)
 {
   m_impl->useCamera(frame.frame.camera, m_options);
   TFrameWork w(frame);
+  if (!m_keyframes.empty())
+    predictMotion(w);
   extractFeatures(w);
   liftFeatures(w);
   if (m_keyframes.empty() || w.strictLost)
@@ -194,7 +198,6 @@ TFrameResult CRgbdOdometry::process(const TPreparedFrame& frame)
     startMap(w);
     return finish(w);
   }
-  predictMotion(w);
   trackFeatures(w);
   refineRollingShutter(w);
   refineWithDepth(w);
@@ -207,6 +210,9 @@ TFrameResult CRgbdOdometry::process(const TPreparedFrame& frame)
     m_impl->lastRel = w.res.relativePose;
     return finish(w);
   }
+  // Keyframes store (and register) the whole image's features.
+  if (m_options.keyframe_full_features)
+    extendToImage(w, EExtension::Keyframe);
   makeKeyframeConstraints(w);
   insertKeyframe(w, *w.res.pose);
   return finish(w);
@@ -215,7 +221,7 @@ TFrameResult CRgbdOdometry::process(const TPreparedFrame& frame)
 TFrameResult CRgbdOdometry::finish(TFrameWork& w)
 {
   TFrameResult& res = w.res;
-  res.times.total_ms = msSince(w.start);
+  res.times.total_ms = w.in.prepare_ms + msSince(w.start);
   if (res.pose)
   {
     m_impl->lastStamp = w.in.frame.timestamp;
@@ -224,6 +230,8 @@ TFrameResult CRgbdOdometry::finish(TFrameWork& w)
   ++m_stats.frames;
   if (isRoiMode(m_options.mode) && !res.roi)
     ++m_stats.noRoi;
+  ++m_stats.extensions[res.work.extension];
+  m_stats.describedFractionSum += res.work.describedFraction(res.imageSize);
   if (res.icpRefined)
     ++m_stats.icpRefined;
   switch (res.method)

@@ -80,4 +80,15 @@ void updateFeatureSetPoints(
     k.pixels.push_back(u);
   }
 }
+void appendLifted(TLiftedFeatures& a, const TLiftedFeatures& b, int offset)
+{
+  for (int i : b.valid)
+    a.valid.push_back(offset + i);
+  auto append = [](auto& to, const auto& from) { to.insert(to.end(), from.begin(), from.end()); };
+  append(a.undistorted, b.undistorted);
+  append(a.z, b.z);
+  append(a.rawUndistorted, b.rawUndistorted);
+  append(a.rawZ, b.rawZ);
+  append(a.rowFraction, b.rowFraction);
+}
 }  // namespace roislam::frontend::detail

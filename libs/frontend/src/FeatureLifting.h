@@ -41,6 +41,10 @@ TLiftedFeatures liftFeatures(
     const features::TFeatureSet& all, const cv::Mat& depth, const cv::Mat& K, const cv::Mat& dist,
     const CRgbdOdometry::TOptions& o);
 
+/** Appends b (lifted from features that follow a's `offset` features in the
+ *  frame's set) to a. */
+void appendLifted(TLiftedFeatures& a, const TLiftedFeatures& b, int offset);
+
 /** The features at idx (indices into all, each in lifted.valid) with their
  *  3-D points in the camera's optical frame and undistorted pixels. Only the
  *  feature fields of the TKeyframe are filled. */

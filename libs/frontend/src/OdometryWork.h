@@ -53,6 +53,12 @@ struct CRgbdOdometry::TImpl
   /** The first keyframe is made before any velocity is known: its raw
    *  points wait here until the next frame measures one (rolling shutter). */
   std::optional<detail::TUncorrectedKeyframe> uncorrected;
+  /** roi_extraction = region: the tracking region's minimum area, as a
+   *  multiple of roi_min_area_fraction. It grows after each region
+   *  registration that failed or left the pose poorly determined, and
+   *  shrinks back after each good one, so that the region is as large as
+   *  this scene needs for a determined pose (StageTrack.cpp). */
+  double regionGrowth = 1;
 
   explicit TImpl(const TOptions& o);
   /** Rebuilds the camera-dependent state when the intrinsics change. */
@@ -80,7 +86,11 @@ struct CRgbdOdometry::TFrameWork
   TFrameResult res;
 
   // extractFeatures
+  /** Every feature described so far: the tracking region's first, then the
+   *  extension's (extendToImage). */
   features::TFeatureSet all;
+  /** Stage 2 ran on the region only so far (ROI-only, may be extended). */
+  bool regionOnly = false;
   // liftFeatures
   detail::TLiftedFeatures lifted;
   /** Features tracked with (indices into all, a subset of lifted.valid):
@@ -92,8 +102,10 @@ struct CRgbdOdometry::TFrameWork
   bool fallback = false;
   /** strict_roi: too few ROI features, the frame will be Lost. */
   bool strictLost = false;
-  /** The rolling-shutter correction's first guess (the last motion). */
-  detail::TCameraRate ratePredicted;
+  /** The rolling-shutter correction's first guess (the last motion), and
+   *  the one lifted's points carry now (the measured one after
+   *  refineRollingShutter). */
+  detail::TCameraRate ratePredicted, rateApplied;
 
   // predictMotion
   std::size_t lastKf = 0;

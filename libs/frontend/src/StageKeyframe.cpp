@@ -1,15 +1,38 @@
 // The keyframe stages of the front end: the first keyframe (the map's
 // origin), the keyframe decision, a new keyframe's constraints to the recent
 // keyframes, and its storage.
+#include <algorithm>
 #include <cmath>
 #include <tuple>
+#include <vector>
 
 #include "OdometryWork.h"
+#include "TrackingRegion.h"
 
 namespace roislam::frontend
 {
 using detail::Clock;
 using detail::msSince;
+
+namespace
+{
+/** The tracking region the next frames follow, with the median depth of the
+ *  keyframe's features inside it (the depth its corners are moved at). */
+void setRegion(TKeyframe& kf, const cv::Rect& region)
+{
+  kf.region = region;
+  kf.regionDepth = 0;
+  std::vector<double> z;
+  const cv::Rect2f box(region);
+  for (std::size_t i = 0; i < kf.points.size(); ++i)
+    if (box.contains(kf.features.keypoints[i].pt))
+      z.push_back(kf.points[i].z);
+  if (z.empty())
+    return;
+  std::nth_element(z.begin(), z.begin() + static_cast<std::ptrdiff_t>(z.size() / 2), z.end());
+  kf.regionDepth = z[z.size() / 2];
+}
+}  // namespace
 
 void CRgbdOdometry::startMap(TFrameWork& w)
 {
@@ -108,6 +131,16 @@ void CRgbdOdometry::insertKeyframe(TFrameWork& w, const mrpt::poses::CPose3D& po
   TKeyframe& kf = o.keyframe_full_features ? w.full : w.cur;
   kf.fullImageFallback = w.fallback;
   kf.roi = res.roi;
+  // The next frames follow the region this keyframe described densely while
+  // it tracked well; after a failure or a weak registration, a new one from
+  // stage 1 (the frame's ROI grown as in StageExtract.cpp).
+  const bool regionTracked =
+      res.work.extension == EExtension::None || res.work.extension == EExtension::Keyframe;
+  setRegion(
+      kf, regionTracked || !res.roi
+              ? res.work.region
+              : detail::trackingRegion(
+                    *res.roi, w.in.grey.size(), o.roi_min_area_fraction, o.roi_min_aspect));
   kf.id = m_keyframes.size();
   kf.pose = pose;
   m_keyframes.push_back(std::move(kf));

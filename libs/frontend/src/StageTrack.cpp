@@ -2,6 +2,8 @@
 // frame's features registered against the recent keyframes (the ROI's first
 // in ROI modes, the whole image's when those fail or leave the pose poorly
 // determined).
+#include <algorithm>
+
 #include "OdometryWork.h"
 
 namespace roislam::frontend
@@ -38,7 +40,7 @@ void CRgbdOdometry::predictMotion(TFrameWork& w) const
   w.predictedRel = predictedWorld - m_keyframes[w.lastKf].pose;
 }
 
-void CRgbdOdometry::trackFeatures(TFrameWork& w) const
+void CRgbdOdometry::trackFeatures(TFrameWork& w)
 {
   const TOptions& o = m_options;
   registerWithRecent(w.cur, w);
@@ -46,9 +48,20 @@ void CRgbdOdometry::trackFeatures(TFrameWork& w) const
   // determined, is kept only when nothing better exists.
   const bool roiTracked = isRoiMode(o.mode) && !o.strict_roi && !w.fallback;
   const bool weakRoi = w.reg && roiTracked && detail::isWeakRoiRegistration(*w.reg, o);
-  if ((w.reg && !weakRoi) || !roiTracked || w.full.features.size() <= w.cur.features.size())
+  if (w.regionOnly)
+  {
+    // The region grows for the next frames while it does not determine the
+    // pose, by half its area at a time, and shrinks back by a tenth per good
+    // frame: a few weak frames in a row double it.
+    double& g = m_impl->regionGrowth;
+    g = (w.reg && !weakRoi) ? std::max(1.0, g * 0.9) : std::min(1e3, g * 1.5);
+  }
+  if ((w.reg && !weakRoi) || !roiTracked)
     return;
   // The ROI's features did not register (or barely): the whole image's may.
+  extendToImage(w, weakRoi ? EExtension::RoiWeak : EExtension::RoiFailed);
+  if (w.full.features.size() <= w.cur.features.size())
+    return;
   const auto roiReg = w.reg;
   const std::size_t roiRef = w.ref;
   const std::size_t roiMatches = w.res.matches;

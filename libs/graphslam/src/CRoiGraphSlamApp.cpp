@@ -223,6 +223,16 @@ nlohmann::json CRoiGraphSlamApp::summaryJson(
       {"lost", st.lost},
       {"no_roi", st.noRoi},
       {"icp_refined", st.icpRefined}};
+  // What stage 2 described: ROI-only frames describe their tracking region
+  // alone; the others were extended once, for the reason given.
+  nlohmann::json ext = nlohmann::json::object();
+  for (const auto& [reason, n] : st.extensions)
+    if (reason != frontend::EExtension::None)
+      ext[frontend::toString(reason)] = n;
+  const auto roiOnly = st.extensions.find(frontend::EExtension::None);
+  j["described_pixel_fraction"] = st.frames > 0 ? st.describedFractionSum / st.frames : 0.0;
+  j["roi_only_frames"] = roiOnly == st.extensions.end() ? 0 : roiOnly->second;
+  j["extended_frames"] = ext;
   j["failed"] = s.failed;
   j["wall_s"] = s.wallS;
   j["fps"] = s.fps;

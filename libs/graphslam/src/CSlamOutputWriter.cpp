@@ -36,7 +36,8 @@ const char* kFramesCsvHeader =
     "index,timestamp,method,features,features_with_depth,roi_features,tracking_features,"
     "matches,inliers,roi_x,roi_y,roi_w,roi_h,keyframe,reference_keyframe,roi_ms,"
     "extract_ms,lift_ms,match_ms,ransac_ms,icp_ms,keyframe_ms,frontend_ms,backend_ms,"
-    "sigma_t_mm,sigma_r_deg,icp_refined\n";
+    "sigma_t_mm,sigma_r_deg,icp_refined,region_x,region_y,region_w,region_h,region_pixels,"
+    "region_features,extension_pixels,extension_features,extension\n";
 
 void writeFramesCsvRow(std::ostream& csv, const CSlamPipeline::TFrameRecord& r)
 {
@@ -61,7 +62,14 @@ void writeFramesCsvRow(std::ostream& csv, const CSlamPipeline::TFrameRecord& r)
     csv << 1e3 * sd->translation_m << "," << sd->rotation_rad * 180.0 / M_PI << ",";
   else
     csv << ",,";
-  csv << (f.icpRefined ? 1 : 0) << "\n";
+  csv << (f.icpRefined ? 1 : 0) << ",";
+  const auto& w = f.work;
+  if (!w.region.empty())
+    csv << w.region.x << "," << w.region.y << "," << w.region.width << "," << w.region.height;
+  else
+    csv << ",,,";
+  csv << "," << w.regionPixels << "," << w.regionFeatures << "," << w.extensionPixels << ","
+      << w.extensionFeatures << "," << frontend::toString(w.extension) << "\n";
 }
 }  // namespace
 

@@ -46,5 +46,10 @@ struct TKeyframe
   std::optional<cv::Rect> roi;
   /** ROI mode only: the frame itself was tracked with whole-image features. */
   bool fullImageFallback = false;
+  /** ROI modes (roi_extraction = region): the tracking region of the frame,
+   *  which the next frames follow (empty when none), and the median depth of
+   *  its features, metres. */
+  cv::Rect region;
+  double regionDepth = 0;
 };
 }  // namespace roislam::frontend

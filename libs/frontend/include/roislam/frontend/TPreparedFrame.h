@@ -23,7 +23,7 @@ struct TPreparedFrame
   bool roiDetected = false;
   /** Its result: nullopt when no ROI was found (or not detected). */
   std::optional<roi::TRoi> roi;
-  /** Time stage 1 took, milliseconds. */
-  double roi_ms = 0;
+  /** Time stage 1 took, and all of prepare() (grey image + stage 1), ms. */
+  double roi_ms = 0, prepare_ms = 0;
 };
 }  // namespace roislam::frontend
