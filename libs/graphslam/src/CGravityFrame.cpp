@@ -19,8 +19,8 @@ TVector3D cross(const TVector3D& a, const TVector3D& b)
 
 double angleDeg(const TVector3D& a, const TVector3D& b)
 {
-  const double c = std::clamp(
-      (a.x * b.x + a.y * b.y + a.z * b.z) / (a.norm() * b.norm()), -1.0, 1.0);
+  const double c =
+      std::clamp((a.x * b.x + a.y * b.y + a.z * b.z) / (a.norm() * b.norm()), -1.0, 1.0);
   return std::acos(c) * 180.0 / M_PI;
 }
 
@@ -55,7 +55,7 @@ nlohmann::json CGravityFrame::TResult::toJson() const
   const mrpt::poses::CPose3DQuat q(toDisplay);
   nlohmann::json j;
   j["up"] = CGravityFrame::toString(source);
-  j["estimate_to_display"] = {{"x", q.x()},          {"y", q.y()},          {"z", q.z()},
+  j["estimate_to_display"] = {{"x", q.x()},         {"y", q.y()},         {"z", q.z()},
                               {"qx", q.quat().x()}, {"qy", q.quat().y()}, {"qz", q.quat().z()},
                               {"qw", q.quat().r()}};
   j["accelerometer_samples"] = accelerometerSamples;
@@ -66,8 +66,7 @@ nlohmann::json CGravityFrame::TResult::toJson() const
   return j;
 }
 
-mrpt::poses::CPose3D CGravityFrame::levelled(
-    const io::TTrajectory& estimate, const TVector3D& up)
+mrpt::poses::CPose3D CGravityFrame::levelled(const io::TTrajectory& estimate, const TVector3D& up)
 {
   const mrpt::poses::CPose3D first = estimate.empty() ? mrpt::poses::CPose3D() : estimate[0].pose;
   const TVector3D z = up.unitarize();
@@ -139,8 +138,8 @@ std::optional<std::pair<TVector3D, std::size_t>> CGravityFrame::upFromAccelerome
   const double consistency = sum.norm() / magnitude;
   if (!(consistency >= kMinConsistency))
   {
-    ss << "accelerometer: the readings disagree (mean / mean magnitude " << consistency
-       << " < " << kMinConsistency << ")";
+    ss << "accelerometer: the readings disagree (mean / mean magnitude " << consistency << " < "
+       << kMinConsistency << ")";
     why = ss.str();
     return std::nullopt;
   }
@@ -154,9 +153,8 @@ CGravityFrame::TResult CGravityFrame::choose(
 {
   TResult r;
   std::string why;
-  const auto fromAccel = accelerometer.empty()
-                             ? std::nullopt
-                             : upFromAccelerometer(estimate, accelerometer, why);
+  const auto fromAccel =
+      accelerometer.empty() ? std::nullopt : upFromAccelerometer(estimate, accelerometer, why);
   if (fromAccel)
     r.accelerometerSamples = fromAccel->second;
   if (groundTruthAlignment)
@@ -179,8 +177,7 @@ CGravityFrame::TResult CGravityFrame::choose(
     return r;
   }
   r.source = ESource::FirstCamera;
-  const TVector3D down =
-      estimate.empty() ? TVector3D(0, 1, 0) : axis(estimate[0].pose, 1);
+  const TVector3D down = estimate.empty() ? TVector3D(0, 1, 0) : axis(estimate[0].pose, 1);
   r.toDisplay = levelled(estimate, down * -1.0);
   return r;
 }

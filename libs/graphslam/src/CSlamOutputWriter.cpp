@@ -271,7 +271,8 @@ CSlamOutputWriter::TPictures CSlamOutputWriter::writePictures(
     const auto pose = toDisplay + p.pose;
     content.trajectory.push_back(pose.translation());
     const auto R = pose.getRotationMatrix();
-    content.lookDirection = content.lookDirection + mrpt::math::TVector3D(R(0, 2), R(1, 2), R(2, 2));
+    content.lookDirection =
+        content.lookDirection + mrpt::math::TVector3D(R(0, 2), R(1, 2), R(2, 2));
   }
   for (std::size_t k = 0; k < run.context.keyframeClouds().size(); ++k)
     content.keyframes.push_back((toDisplay + run.keyframePose(k)).translation());

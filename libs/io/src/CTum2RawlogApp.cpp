@@ -161,8 +161,7 @@ CTum2RawlogApp::TResult CTum2RawlogApp::run()
   // Ground truth and accelerometer log next to the rawlog, also via temporary names.
   TResult result;
   CSideFile groundTruth(
-      source.groundTruthFile(), outDir / (stem + ".groundtruth.txt"),
-      staging.extension().string());
+      source.groundTruthFile(), outDir / (stem + ".groundtruth.txt"), staging.extension().string());
   CSideFile accelerometer(
       source.accelerometerFile(), outDir / (stem + ".accelerometer.txt"),
       staging.extension().string());

@@ -18,7 +18,8 @@ TAccelerometerLog loadTumAccelerometer(const std::string& file)
   for (const auto& row : tumtext::readRows(file, 4, "timestamp ax ay az"))
     log.push_back({row[0], {row[1], row[2], row[3]}});
   std::stable_sort(
-      log.begin(), log.end(), [](const auto& a, const auto& b) { return a.timestamp < b.timestamp; });
+      log.begin(), log.end(),
+      [](const auto& a, const auto& b) { return a.timestamp < b.timestamp; });
   return log;
 }
 

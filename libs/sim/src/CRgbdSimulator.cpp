@@ -203,8 +203,7 @@ mrpt::math::TVector3D CRgbdSimulator::accelerometerReading(std::size_t i) const
   const mrpt::math::TVector3D accel = (p2 - p1 * 2.0 + p0) * (1.0 / (h * h));
   // An accelerometer at rest reads +g upwards (the specific force).
   const mrpt::math::TVector3D specificWorld = accel + mrpt::math::TVector3D(0, 0, 9.81);
-  const mrpt::math::TVector3D optical =
-      m_path.opticalPoseAt(t).inverseRotateVector(specificWorld);
+  const mrpt::math::TVector3D optical = m_path.opticalPoseAt(t).inverseRotateVector(specificWorld);
   // The axis change is a half turn about z, its own inverse.
   return io::accelerometerToOptical(optical);
 }

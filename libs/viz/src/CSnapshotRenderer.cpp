@@ -145,8 +145,7 @@ void drawLegend(
 }
 
 /** A bar of one grid spacing at the bottom left of the top view. */
-void drawScaleBar(
-    cv::Mat& img, const TSnapshotView& view, const cv::Point& offset, double spacing)
+void drawScaleBar(cv::Mat& img, const TSnapshotView& view, const cv::Point& offset, double spacing)
 {
   const int len = static_cast<int>(std::lround(view.pixelsPerMetre * spacing));
   if (len < 10 || len > static_cast<int>(view.camera.ncols) / 2)
@@ -195,8 +194,7 @@ std::vector<TSnapshotView> CSnapshotRenderer::views(const TSceneContent& content
   const CViewFramer framer(m_options.framing);
   const auto pts = framingPoints(content, *box);
   const auto heading = framer.heading(content.lookDirection);
-  std::vector<TSnapshotView> v{
-      framer.perspective(pts, *box, heading, panelWidth(), panelHeight())};
+  std::vector<TSnapshotView> v{framer.perspective(pts, *box, heading, panelWidth(), panelHeight())};
   if (m_options.topView)
     v.push_back(framer.topDown(pts, *box, heading, panelWidth(), panelHeight()));
   return v;
@@ -223,8 +221,9 @@ mrpt::img::CImage CSnapshotRenderer::render(const TSceneContent& content) const
         const auto& view = views[k];
         CSlamSceneBuilder::TOptions so;
         so.showTrajectories = !m_options.overlays;
-        // Points about 1.2 cm across: solid surfaces at any zoom, 2-5 px.
-        so.pointSize = static_cast<float>(std::clamp(0.012 * view.pixelsPerMetre, 2.0, 5.0));
+        // Points about 1.5 cm across (the map's spacing at 1-2 m with
+        // [BackEnd] map_decimation 8): surfaces look solid, at 2-6 px.
+        so.pointSize = static_cast<float>(std::clamp(0.015 * view.pixelsPerMetre, 2.0, 6.0));
         const double top = highestCamera(content);
         if (k == 1 && std::isfinite(top))
           so.maxPointHeight = top + m_options.cutAboveCamerasM;
@@ -241,8 +240,8 @@ mrpt::img::CImage CSnapshotRenderer::render(const TSceneContent& content) const
         fbo.setCamera(*scene, camera);
         mrpt::img::CImage img;
         fbo.render_RGB(*scene, img);
-        img.asCvMatRef().copyTo(out(cv::Rect(
-            static_cast<int>(k * W), header, static_cast<int>(W), static_cast<int>(H))));
+        img.asCvMatRef().copyTo(out(
+            cv::Rect(static_cast<int>(k * W), header, static_cast<int>(W), static_cast<int>(H))));
       }
     }
   }
@@ -270,8 +269,7 @@ mrpt::img::CImage CSnapshotRenderer::render(const TSceneContent& content) const
   return mrpt::img::CImage(out, mrpt::img::DEEP_COPY);
 }
 
-void CSnapshotRenderer::renderToFile(
-    const TSceneContent& content, const std::string& pngFile) const
+void CSnapshotRenderer::renderToFile(const TSceneContent& content, const std::string& pngFile) const
 {
   const auto image = render(content);
   // The encoder picks the format from the extension, so keep ".png" last.

@@ -108,8 +108,8 @@ TSnapshotView CViewFramer::perspective(
   const TPoint3D centre = boxCentre(box);
   const double d = m_options.distanceFactor * halfDiagonal(box);
   const TPoint3D eye = centre - forward * d;
-  return fit(cameraPose(eye, right, down, forward), points, centre, width, height,
-             m_options.margin);
+  return fit(
+      cameraPose(eye, right, down, forward), points, centre, width, height, m_options.margin);
 }
 
 TSnapshotView CViewFramer::topDown(
@@ -122,7 +122,7 @@ TSnapshotView CViewFramer::topDown(
   const TVector3D right = cross(down, forward);
   const TPoint3D centre = boxCentre(box);
   const TPoint3D eye = centre + TVector3D(0, 0, 1) * (20 * halfDiagonal(box));
-  return fit(cameraPose(eye, right, down, forward), points, centre, width, height,
-             m_options.margin);
+  return fit(
+      cameraPose(eye, right, down, forward), points, centre, width, height, m_options.margin);
 }
 }  // namespace roislam::viz

@@ -7,8 +7,7 @@
 
 namespace roislam::viz
 {
-std::optional<mrpt::math::TBoundingBox> robustBounds(
-    const TSceneContent& content, double fraction)
+std::optional<mrpt::math::TBoundingBox> robustBounds(const TSceneContent& content, double fraction)
 {
   std::array<double, 3> lo = {1e30, 1e30, 1e30}, hi = {-1e30, -1e30, -1e30};
   auto grow = [&](const mrpt::math::TPoint3D& p)

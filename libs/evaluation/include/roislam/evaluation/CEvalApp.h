@@ -22,10 +22,10 @@ class CEvalApp
     std::string groundTruthFile;
     std::string estimateFile;
     CTrajectoryEvaluator::TOptions evaluation;
-    bool json = false;        //!< one JSON object (toJson()) instead of a table
-    std::string plotFile;     //!< PNG to write, or empty
+    bool json = false;          //!< one JSON object (toJson()) instead of a table
+    std::string plotFile;       //!< PNG to write, or empty
     std::string errorPlotFile;  //!< PNG of the errors over time, or empty
-    std::string alignedFile;  //!< aligned estimate (TUM) to write, or empty
+    std::string alignedFile;    //!< aligned estimate (TUM) to write, or empty
   };
 
   explicit CEvalApp(const TParams& params);

@@ -43,7 +43,7 @@ class CSlamOutputWriter
   /** What the pictures compare the run with and how they are labelled. */
   struct TReference
   {
-    std::string sequence;           //!< name shown in the legend and plot titles
+    std::string sequence;             //!< name shown in the legend and plot titles
     const io::TTrajectory& estimate;  //!< the run's trajectory, as estimated
     /** Ground truth (TUM), empty when unknown. */
     const io::TTrajectory& groundTruth;

@@ -46,13 +46,13 @@ class CTum2RawlogApp : public mrpt::system::COutputLogger
 
   struct TResult
   {
-    std::size_t frames = 0;                  //!< observations written
-    std::size_t skipped = 0;                 //!< colour frames without depth partner
-    std::string rawlog;                      //!< absolute path of the rawlog
-    std::string imagesDir;                   //!< absolute path of NAME_Images
-    std::optional<std::string> groundTruth;  //!< copied ground truth, if any
+    std::size_t frames = 0;                    //!< observations written
+    std::size_t skipped = 0;                   //!< colour frames without depth partner
+    std::string rawlog;                        //!< absolute path of the rawlog
+    std::string imagesDir;                     //!< absolute path of NAME_Images
+    std::optional<std::string> groundTruth;    //!< copied ground truth, if any
     std::optional<std::string> accelerometer;  //!< copied accelerometer log, if any
-    double seconds = 0;                      //!< wall time
+    double seconds = 0;                        //!< wall time
   };
 
   explicit CTum2RawlogApp(const TOptions& options);

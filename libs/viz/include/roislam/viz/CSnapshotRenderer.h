@@ -34,8 +34,8 @@ class CSnapshotRenderer
     bool topView = true;        //!< false: the 3-D view alone, full width
     /** Background grey level in [0,1]. */
     float background = 1.0f;
-    int trajectoryPx = 4;  //!< line thickness of the estimate (ground truth: + 4)
-    int keyframePx = 4;    //!< radius of the keyframe marks
+    int trajectoryPx = 4;        //!< line thickness of the estimate (ground truth: + 4)
+    int keyframePx = 4;          //!< radius of the keyframe marks
     unsigned int headerPx = 34;  //!< legend strip above the panels (with overlays)
     /** Draw trajectories, keyframes and legend over the render. */
     bool overlays = true;

@@ -17,11 +17,11 @@ namespace roislam::viz
 {
 struct TSnapshotView
 {
-  mrpt::poses::CPose3D pose;   //!< optical frame in the world
-  mrpt::img::TCamera camera;   //!< panel size and pinhole intrinsics (px)
-  double nearM = 0.01;         //!< clip distances (m)
+  mrpt::poses::CPose3D pose;  //!< optical frame in the world
+  mrpt::img::TCamera camera;  //!< panel size and pinhole intrinsics (px)
+  double nearM = 0.01;        //!< clip distances (m)
   double farM = 100;
-  double pixelsPerMetre = 100; //!< at the framed box's centre
+  double pixelsPerMetre = 100;  //!< at the framed box's centre
 
   /** Pixel (u right, v down) of a world point; nullopt behind the camera. */
   std::optional<mrpt::math::TPoint2D> project(const mrpt::math::TPoint3D& world) const
