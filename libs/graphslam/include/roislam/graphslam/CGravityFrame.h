@@ -14,8 +14,12 @@
  *    the motion's accelerations over a run is its change of velocity over
  *    its duration, small for a hand-held run that starts and ends slowly, so
  *    gravity dominates. Measured on fr1/xyz (150 frames) and fr1/rpy (250
- *    frames): within 1.5 degrees of the ground truth's up (summary.json
- *    display_frame.accelerometer_vs_ground_truth_deg, tests/graphslam).
+ *    frames) against the ground truth's z: 3.8 and 4.1 degrees with the
+ *    ground truth's own rotations (tests/graphslam/CGravityFrame_unittest),
+ *    4.6 and 5.7 degrees with our estimate's (big ROI, summary.json
+ *    display_frame.accelerometer_vs_ground_truth_deg), so most of it lies
+ *    between the Kinect's accelerometer and the motion-capture frame, not in
+ *    the estimate; 0.35 degrees on rgbd-simul's loop;
  *    Refused (falling back) with fewer than kMinSamples samples, or when the
  *    mean is below kMinConsistency of the mean magnitude (the readings
  *    disagree: wrong axes, or a broken estimate);
