@@ -1,7 +1,8 @@
-#include <mrpt/math/CMatrixFixed.h>
+#include <mrpt/math/geometry.h>
 #include <mrpt/poses/CPose3DQuat.h>
 #include <roislam/graphslam/CGravityFrame.h>
 
+#include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
 #include <sstream>
@@ -12,15 +13,14 @@ namespace
 {
 using mrpt::math::TVector3D;
 
-TVector3D cross(const TVector3D& a, const TVector3D& b)
+double dot(const TVector3D& a, const TVector3D& b)
 {
-  return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
+  return a.x * b.x + a.y * b.y + a.z * b.z;
 }
 
 double angleDeg(const TVector3D& a, const TVector3D& b)
 {
-  const double c =
-      std::clamp((a.x * b.x + a.y * b.y + a.z * b.z) / (a.norm() * b.norm()), -1.0, 1.0);
+  const double c = std::clamp(dot(a, b) / (a.norm() * b.norm()), -1.0, 1.0);
   return std::acos(c) * 180.0 / M_PI;
 }
 
@@ -73,26 +73,17 @@ mrpt::poses::CPose3D CGravityFrame::levelled(const io::TTrajectory& estimate, co
   // The first camera's view, made level; its right-hand axis when it looks
   // straight up or down.
   TVector3D view = axis(first, 2);
-  view = view - z * (view.x * z.x + view.y * z.y + view.z * z.z);
+  view = view - z * dot(view, z);
   if (view.norm() < 0.1)
   {
     const TVector3D right = axis(first, 0);
-    view = cross(z, right - z * (right.x * z.x + right.y * z.y + right.z * z.z));
+    view = mrpt::math::crossProduct3D(z, right - z * dot(right, z));
   }
   const TVector3D y = view.unitarize();
-  const TVector3D x = cross(y, z);
-  // Rows of the rotation world -> display are the display axes.
-  mrpt::math::CMatrixDouble33 R;
-  const TVector3D rows[3] = {x, y, z};
-  for (int r = 0; r < 3; ++r)
-  {
-    R(r, 0) = rows[r].x;
-    R(r, 1) = rows[r].y;
-    R(r, 2) = rows[r].z;
-  }
-  mrpt::math::CVectorFixedDouble<3> zero;
-  zero.fill(0);
-  const mrpt::poses::CPose3D rotation(R, zero);
+  const TVector3D x = mrpt::math::crossProduct3D(y, z);
+  Eigen::Matrix3d R;  // world -> display: its rows are the display's axes
+  R << x.x, x.y, x.z, y.x, y.y, y.z, z.x, z.y, z.z;
+  const mrpt::poses::CPose3D rotation(R, mrpt::math::TPoint3D(0, 0, 0));
   const auto origin = first.translation();
   return rotation + mrpt::poses::CPose3D(-origin.x, -origin.y, -origin.z, 0, 0, 0);
 }

@@ -1,6 +1,7 @@
-#include <mrpt/math/CMatrixFixed.h>
+#include <mrpt/math/geometry.h>
 #include <roislam/viz/CViewFramer.h>
 
+#include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
@@ -12,28 +13,13 @@ namespace
 using mrpt::math::TPoint3D;
 using mrpt::math::TVector3D;
 
-TVector3D cross(const TVector3D& a, const TVector3D& b)
-{
-  return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
-}
-
 /** Camera at `eye` with optical axes right / down / forward (world). */
 mrpt::poses::CPose3D cameraPose(
     const TPoint3D& eye, const TVector3D& right, const TVector3D& down, const TVector3D& forward)
 {
-  mrpt::math::CMatrixDouble33 R;
-  const TVector3D cols[3] = {right, down, forward};
-  for (int c = 0; c < 3; ++c)
-  {
-    R(0, c) = cols[c].x;
-    R(1, c) = cols[c].y;
-    R(2, c) = cols[c].z;
-  }
-  mrpt::math::CVectorFixedDouble<3> t;
-  t[0] = eye.x;
-  t[1] = eye.y;
-  t[2] = eye.z;
-  return mrpt::poses::CPose3D(R, t);
+  Eigen::Matrix3d R;  // columns: the camera's axes
+  R << right.x, down.x, forward.x, right.y, down.y, forward.y, right.z, down.z, forward.z;
+  return mrpt::poses::CPose3D(R, eye);
 }
 
 /** Focal length and principal point that make the points' projections
@@ -103,8 +89,8 @@ TSnapshotView CViewFramer::perspective(
   const double el = m_options.elevationDeg * M_PI / 180.0;
   const TVector3D up(0, 0, 1);
   const TVector3D forward = heading * std::cos(el) - up * std::sin(el);
-  const TVector3D right = cross(forward, up).unitarize();
-  const TVector3D down = cross(forward, right);
+  const TVector3D right = mrpt::math::crossProduct3D(forward, up).unitarize();
+  const TVector3D down = mrpt::math::crossProduct3D(forward, right);
   const TPoint3D centre = boxCentre(box);
   const double d = m_options.distanceFactor * halfDiagonal(box);
   const TPoint3D eye = centre - forward * d;
@@ -119,7 +105,7 @@ TSnapshotView CViewFramer::topDown(
   // Far above with a long focal length: heights barely change the scale.
   const TVector3D forward(0, 0, -1);
   const TVector3D down = heading * -1.0;  // image up = heading
-  const TVector3D right = cross(down, forward);
+  const TVector3D right = mrpt::math::crossProduct3D(down, forward);
   const TPoint3D centre = boxCentre(box);
   const TPoint3D eye = centre + TVector3D(0, 0, 1) * (20 * halfDiagonal(box));
   return fit(
