@@ -54,13 +54,13 @@ struct TRun
   nlohmann::json summary;
 };
 
-TRun runApp(const std::string& input, const std::string& out)
+TRun runApp(const std::string& input, const std::string& out, const std::string& extra = "")
 {
   const std::string exe = roislam::testing::binaryDir() + "/apps/roi-graphslam/roi-graphslam";
   const std::string ini = roislam::testing::sourceDir() + "/config/roi_big.ini";
   const std::string errFile = out + ".stderr";
   const int rc = std::system((exe + " --ini " + ini + " --feature orb --input " + input +
-                              " --output-dir " + out + " > /dev/null 2> " + errFile)
+                              " --output-dir " + out + " " + extra + " > /dev/null 2> " + errFile)
                                  .c_str());
   TRun r;
   r.exitCode = WIFEXITED(rc) ? WEXITSTATUS(rc) : -1;
@@ -321,5 +321,19 @@ TEST(RoiGraphSlamPictures, GravityUpFramedAndPlottedWithWhatTheSequenceHas)
   for (const char* f : {"ate.png", "errors.png"})
     EXPECT_FALSE(fs::exists(tmp + "/bare/" + f)) << f;
   EXPECT_EQ(r.err.find("warning"), std::string::npos) << r.err;
+
+  // A corrupt accelerometer log: the first camera's frame, and one line
+  // naming the file and line (the run itself succeeds).
+  const std::string broken = variant(seq, tmp + "/seq_broken", false, false);
+  std::ofstream(broken + "/accelerometer.txt") << "# timestamp ax ay az\n1000000000 0 9.8\n";
+  r = runApp(broken, tmp + "/broken", "--max-frames 20 --no-snapshot");
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  EXPECT_EQ(r.summary["display_frame"]["up"], "first_camera");
+  const std::string where = broken + "/accelerometer.txt:2:";
+  EXPECT_NE(r.summary["display_frame"]["note"].get<std::string>().find(where), std::string::npos);
+  EXPECT_NE(
+      r.err.find("roi-graphslam: warning: pictures not levelled by the accelerometer: " + where),
+      std::string::npos)
+      << r.err;
   fs::remove_all(tmp);
 }

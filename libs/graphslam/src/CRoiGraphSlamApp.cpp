@@ -273,20 +273,14 @@ CRoiGraphSlamApp::TSummary CRoiGraphSlamApp::run()
       pipeline.source().name(), estimate, ev.groundTruth, ev.result ? &*ev.result : nullptr,
       pipeline.source().accelerometerFile()};
   const auto pictures = writer.writePictures(run, reference, m_args.snapshot);
-  if (!pictures.snapshotError.empty())
-    progress("roi-graphslam: warning: no snapshot: " + pictures.snapshotError);
-  if (!pictures.plotError.empty())
-    progress("roi-graphslam: warning: no error plots: " + pictures.plotError);
+  for (const auto& w : pictures.warnings())
+    progress("roi-graphslam: warning: " + w);
   s.mapS = pictures.mapS;
   s.snapshotS = pictures.snapshotS;
   s.peakRssMb = peakRssMb();
 
   nlohmann::json j = summaryJson(pipeline, s, finalReport, ev);
-  j["display_frame"] = pictures.frame.toJson();
-  if (!pictures.snapshotError.empty())
-    j["snapshot_error"] = pictures.snapshotError;
-  if (!pictures.plotError.empty())
-    j["plot_error"] = pictures.plotError;
+  pictures.addToSummary(j);
   writer.writeSummary(j);
   return s;
 }

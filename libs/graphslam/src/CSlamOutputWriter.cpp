@@ -250,6 +250,27 @@ std::string CSlamOutputWriter::writePlots(const TReference& reference) const
   return error;
 }
 
+std::vector<std::string> CSlamOutputWriter::TPictures::warnings() const
+{
+  std::vector<std::string> w;
+  if (!snapshotError.empty())
+    w.push_back("no snapshot: " + snapshotError);
+  if (!plotError.empty())
+    w.push_back("no error plots: " + plotError);
+  if (!frame.note.empty())
+    w.push_back("pictures not levelled by the accelerometer: " + frame.note);
+  return w;
+}
+
+void CSlamOutputWriter::TPictures::addToSummary(nlohmann::json& summary) const
+{
+  summary["display_frame"] = frame.toJson();
+  if (!snapshotError.empty())
+    summary["snapshot_error"] = snapshotError;
+  if (!plotError.empty())
+    summary["plot_error"] = plotError;
+}
+
 CSlamOutputWriter::TPictures CSlamOutputWriter::writePictures(
     const TRun& run, const TReference& reference, bool snapshot) const
 {

@@ -60,6 +60,13 @@ class CSlamOutputWriter
     double snapshotS = 0;          //!< scene, snapshot and plots
     std::string snapshotError;     //!< why snapshot.png is missing (empty: written or not asked)
     std::string plotError;         //!< why ate.png / errors.png are missing despite an evaluation
+
+    /** One line each: a missing snapshot or plot, an accelerometer log that
+     *  could not level the pictures. */
+    std::vector<std::string> warnings() const;
+    /** Adds "display_frame" (CGravityFrame::TResult::toJson()) and, when
+     *  set, "snapshot_error" and "plot_error" to a summary. */
+    void addToSummary(nlohmann::json& summary) const;
   };
 
   /** The folder must exist and be writable (checkWritableDir). */
