@@ -5,6 +5,7 @@
  *    fit a plane whose normal is +z within 5 degrees (ground truth and
  *    accelerometer; the first-camera fallback is as tilted as that camera),
  *    and they land in the lower part of the snapshot's 3-D view;
+ *    map.bt's occupied voxels span the same box as the scene's cloud;
  *  - framing: the map covers a minimum fraction of each snapshot panel;
  *  - plots: ate.png and errors.png exist and are non-empty with ground
  *    truth, and are absent, without any error or warning, without it. */
@@ -14,6 +15,7 @@
 #include <mrpt/opengl/CPointCloud.h>
 #include <mrpt/opengl/CPointCloudColoured.h>
 #include <mrpt/opengl/CSetOfLines.h>
+#include <octomap/OcTree.h>
 #include <roislam/evaluation/CTrajectoryEvaluator.h>
 #include <roislam/io/TumTrajectory.h>
 #include <roislam/testing/TestData.h>
@@ -150,6 +152,25 @@ Eigen::Vector3d planeNormal(const std::vector<TPoint3D>& pts)
   return es.eigenvectors().col(0);  // smallest eigenvalue
 }
 
+/** map.bt is in the same (gravity-up) frame as the scene: the scene's map
+ *  points fall in its occupied voxels (it was built from the same points). */
+void checkOctoMapFrame(const std::string& out, const std::vector<TPoint3D>& cloud)
+{
+  octomap::OcTree tree(0.05);
+  ASSERT_TRUE(tree.readBinary(out + "/map.bt")) << out;
+  std::size_t inside = 0, tried = 0;
+  for (std::size_t i = 0; i < cloud.size(); i += 10, ++tried)
+  {
+    const auto* node = tree.search(cloud[i].x, cloud[i].y, cloud[i].z);
+    inside += node && tree.isNodeOccupied(node);
+  }
+  ASSERT_GT(tried, 100u);
+  EXPECT_GT(static_cast<double>(inside) / tried, 0.8) << out;
+  std::printf(
+      "%s: %.0f %% of the scene's points in map.bt's occupied voxels\n", out.c_str(),
+      100.0 * inside / tried);
+}
+
 int median(std::vector<int> v)
 {
   std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
@@ -163,6 +184,7 @@ double checkOrientationAndFraming(
   const auto estimate = roislam::io::loadTumTrajectory(out + "/trajectory.txt");
   const TScene scene = loadScene(out + "/scene.3Dscene");
   EXPECT_EQ(scene.trajectory.size(), estimate.size());
+  checkOctoMapFrame(out, scene.cloud);
   std::vector<TPoint3D> estimated;
   for (const auto& p : estimate)
     estimated.push_back(p.pose.translation());
