@@ -215,13 +215,12 @@ std::string CSlamOutputWriter::writeScene(const viz::TSceneContent& content, boo
 std::string CSlamOutputWriter::writePlots(const TReference& reference) const
 {
   const std::string ate = m_dir + "ate.png", errors = m_dir + "errors.png";
+  // None left from an earlier run here: without ground truth, or when
+  // gnuplot fails, the folder holds no plot.
+  std::remove(ate.c_str());
+  std::remove(errors.c_str());
   if (!reference.evaluation)
-  {
-    // No ground truth: no plots, and none left from an earlier run here.
-    std::remove(ate.c_str());
-    std::remove(errors.c_str());
     return {};
-  }
   const auto& ev = *reference.evaluation;
   std::string error;
   try

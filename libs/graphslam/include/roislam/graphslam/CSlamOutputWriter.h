@@ -8,7 +8,7 @@
  * first camera's optical frame, TUM convention); the pictures (map.bt,
  * scene.3Dscene, snapshot.png) are drawn gravity-up in the frame
  * CGravityFrame chooses (ground truth, accelerometer or first camera),
- * recorded in summary.json's "display_frame" by the caller.
+ * recorded in summary.json's "display_frame" (TPictures::addToSummary).
  */
 #pragma once
 
@@ -83,8 +83,8 @@ class CSlamOutputWriter
   /** The pictures of a run, in the gravity-up frame (CGravityFrame::choose):
    *  map.bt, scene.3Dscene, snapshot.png when `snapshot`, and, when the
    *  evaluation is known, ate.png (CTrajectoryPlot: top view and height over
-   *  time) and errors.png (CErrorPlot: ATE and RPE over time); without one,
-   *  plots of an earlier run in the folder are removed. Throws on map or
+   *  time) and errors.png (CErrorPlot: ATE and RPE over time); plots of an
+   *  earlier run in the folder are removed first. Throws on map or
    *  scene errors; a missing snapshot or plot is reported in the result. */
   TPictures writePictures(const TRun& run, const TReference& reference, bool snapshot) const;
 
