@@ -139,6 +139,7 @@ TEST(TumFrameSource, AssociationIsGreedyOneToOneWithinWindow)
   EXPECT_DOUBLE_EQ(e[2].rgbStamp, 3.000);
   EXPECT_DOUBLE_EQ(e[2].depthStamp, 3.019);
   EXPECT_FALSE(src.groundTruthFile());
+  EXPECT_FALSE(src.accelerometerFile());
 
   // Frames carry the images of the associated files (depth image index 1 for
   // the second frame) and metres = raw / 5000.

@@ -243,7 +243,13 @@ TEvaluationResult CTrajectoryEvaluator::evaluate(
 
   std::vector<double> ateErrors(n);
   for (std::size_t k = 0; k < n; ++k)
+  {
     ateErrors[k] = (rot * model.col(k) + trans - data.col(k)).norm();
+    result.ate.samples.push_back({estStamps[matches[k].second], ateErrors[k]});
+  }
+  std::sort(
+      result.ate.samples.begin(), result.ate.samples.end(),
+      [](const auto& a, const auto& b) { return a.timestamp < b.timestamp; });
   const TStats ate = computeStats(ateErrors);
   result.ate.rmse = ate.rmse;
   result.ate.mean = ate.mean;
@@ -311,6 +317,8 @@ TEvaluationResult CTrajectoryEvaluator::evaluate(
     const auto Rm = error.getRotationMatrix();
     const double c = std::min(1.0, std::max(-1.0, (Rm(0, 0) + Rm(1, 1) + Rm(2, 2) - 1) / 2));
     rotErrors.push_back(std::acos(c));
+    result.rpe.samples.push_back(
+        {estStamps[i], transErrors.back(), rotErrors.back() * 180.0 / M_PI});
   }
   if (transErrors.size() < 2)
     throw std::runtime_error(

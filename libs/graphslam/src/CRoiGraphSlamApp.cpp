@@ -279,29 +279,18 @@ CRoiGraphSlamApp::TSummary CRoiGraphSlamApp::run()
   const CSlamOutputWriter::TRun run{
       pipeline.records(), pipeline.context(), pipeline.graph(),
       [&pipeline](std::size_t id) { return pipeline.keyframePose(id); }};
-  mrpt::system::CTicTac mapTimer;
-  viz::TSceneContent content = writer.writeMap(run);
-  s.mapS = mapTimer.Tac();
-
-  mrpt::system::CTicTac snapTimer;
-  for (const auto& p : estimate)
-    content.trajectory.push_back(p.pose.translation());
-  if (ev.result)
-  {
-    // Ground truth shown in the estimate's frame.
-    const auto toEstimate = -ev.result->ate.alignment;
-    for (const auto& p : ev.groundTruth)
-      content.groundTruth.push_back((toEstimate + p.pose).translation());
-  }
-  const std::string snapshotError = writer.writeScene(content, m_args.snapshot);
-  if (!snapshotError.empty())
-    progress("roi-graphslam: warning: no snapshot: " + snapshotError);
-  s.snapshotS = snapTimer.Tac();
+  const CSlamOutputWriter::TReference reference{
+      pipeline.source().name(), estimate, ev.groundTruth, ev.result ? &*ev.result : nullptr,
+      pipeline.source().accelerometerFile()};
+  const auto pictures = writer.writePictures(run, reference, m_args.snapshot);
+  for (const auto& w : pictures.warnings())
+    progress("roi-graphslam: warning: " + w);
+  s.mapS = pictures.mapS;
+  s.snapshotS = pictures.snapshotS;
   s.peakRssMb = peakRssMb();
 
   nlohmann::json j = summaryJson(pipeline, s, finalReport, ev);
-  if (!snapshotError.empty())
-    j["snapshot_error"] = snapshotError;
+  pictures.addToSummary(j);
   writer.writeSummary(j);
   return s;
 }

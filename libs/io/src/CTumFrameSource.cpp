@@ -229,6 +229,14 @@ std::optional<std::string> CTumFrameSource::groundTruthFile() const
   return std::nullopt;
 }
 
+std::optional<std::string> CTumFrameSource::accelerometerFile() const
+{
+  const fs::path file = fs::path(m_dir) / "accelerometer.txt";
+  if (fs::is_regular_file(file))
+    return file.string();
+  return std::nullopt;
+}
+
 std::string CTumFrameSource::name() const
 {
   return fs::path(m_dir).filename().string();
