@@ -11,8 +11,12 @@
 #pragma once
 
 #include <roislam/bench/TRunRecord.h>
+#include <roislam/io/TumTrajectory.h>
 
+#include <array>
+#include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace roislam::bench
@@ -44,5 +48,27 @@ class CChartWriter
   TOptions m_options;
   std::vector<std::string> m_warnings;
   void plot(const std::string& dir, const std::string& name, const std::string& script);
+
+  /** Test 1: clustered bars per sequence, one bar per extractor. */
+  std::vector<std::string> writeTest1(
+      const std::vector<TRunRecord>& records, const std::string& dir);
+  /** Tests 2-3: one chart per metric, mean +- std per version and extractor. */
+  std::vector<std::string> writeVersionCharts(
+      const std::vector<TRunRecord>& records, const std::string& dir, int test);
+  /** metric = {summary key, axis label, chart name suffix}; nullopt when no value. */
+  std::optional<std::string> writeVersionChart(
+      const std::vector<TRunRecord>& records, const std::string& dir, int test,
+      const std::vector<std::pair<std::string, std::string>>& versions,
+      const std::vector<std::string>& feats, const std::array<std::string, 3>& metric);
+  /** Top views of Test 2 per sequence and extractor. */
+  std::vector<std::string> writeTrajectories(
+      const std::vector<TRunRecord>& records, const std::string& dir);
+  std::optional<std::string> writeTrajectory(
+      const std::string& dir, const std::string& sequence, const std::string& feature,
+      const std::vector<const TRunRecord*>& runs);
+  /** The gnuplot plot clause of run number idx (1-based) of a top view. */
+  std::string trajectoryPlot(
+      const std::string& dir, const std::string& name, int idx, const TRunRecord& run,
+      const io::TTrajectory& gt, int ax, int ay);
 };
 }  // namespace roislam::bench

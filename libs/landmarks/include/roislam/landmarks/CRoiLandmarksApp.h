@@ -98,6 +98,8 @@ class CRoiLandmarksApp
   TSummary run();
 
  private:
+  void progress(const std::string& line) const;
+
   TArguments m_args;
   TPipelineOptions m_options;
 };
