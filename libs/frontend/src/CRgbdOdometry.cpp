@@ -51,7 +51,7 @@ CRgbdOdometry::TRoiHint detectTimed(
   if (image.channels() == 3)
   {
     cv::cvtColor(image, h.grey, cv::COLOR_BGR2GRAY);
-    h.roi = detector.detect(h.grey);
+    h.roi = detector.detect(h.grey, image);
   }
   else
     h.roi = detector.detect(image);

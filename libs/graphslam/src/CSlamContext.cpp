@@ -115,12 +115,28 @@ void CSlamContext::TOptions::validate() const
     badKey("map_max_depth_m", "must be > 0");
 }
 
+namespace
+{
+/** The landmark pipeline's options for the back end's database: its
+ *  database and homography settings, the front end's matcher. */
+landmarks::TPipelineOptions landmarkOptions(const CSlamContext::TConfig& config)
+{
+  landmarks::TPipelineOptions o;
+  o.database = config.database;
+  o.matcher = config.frontEnd.matcher;
+  o.locator = config.locator;
+  o.roi = config.frontEnd.roi;
+  o.features = config.frontEnd.extractor;
+  return o;
+}
+}  // namespace
+
 CSlamContext::CSlamContext() : CSlamContext(TConfig()) {}
 
 CSlamContext::CSlamContext(const TConfig& config)
     : m_config(config),
       m_odometry(config.frontEnd),
-      m_database(config.database, config.frontEnd.matcher, config.locator),
+      m_landmarks(landmarkOptions(config)),
       m_roiDetector(config.frontEnd.roi)
 {
   m_config.backEnd.validate();
@@ -204,40 +220,27 @@ std::vector<std::pair<std::size_t, ELoopSource>> CSlamContext::loopCandidates(
       const auto roiFeatures = kf.features.subset(*m_rois[k]);
       if (roiFeatures.size() < 10)
         continue;
-      const auto q = m_database.query(roiFeatures, *m_rois[k], m_imageSize);
-      landmarks::TLandmarkSighting s;
-      s.frame = kf.frameIndex;
-      s.timestamp = kf.timestamp;
-      s.box = *m_rois[k];
-      int32_t lm = -1;
-      if (q.landmarkId)
+      landmarks::TRegion region;
+      region.frame = kf.frameIndex;
+      region.timestamp = kf.timestamp;
+      region.box = *m_rois[k];
+      region.imageSize = m_imageSize;
+      region.features = roiFeatures;
+      const auto seen = m_landmarks.processRegion(region).result;
+      const int32_t lm = seen.landmarkId;
+      if (!seen.newLandmark && k == id)
       {
-        lm = *q.landmarkId;
-        s.inliers = q.inliers;
-        m_database.addSighting(lm, s);
-        if (k == id)
+        // Most recent earlier sightings first: their relative pose is the
+        // most likely to register.
+        const auto& sightings = m_sightings[lm];
+        for (auto it = sightings.rbegin(); it != sightings.rend(); ++it)
         {
-          // Most recent earlier sightings first: their relative pose is the
-          // most likely to register.
-          const auto& seen = m_sightings[lm];
-          for (auto it = seen.rbegin(); it != seen.rend(); ++it)
-          {
-            if (*it + gap > id || already(*it))
-              continue;
-            out.emplace_back(*it, ELoopSource::Landmark);
-            if (out.size() >= static_cast<std::size_t>(o.max_loop_candidates))
-              break;
-          }
+          if (*it + gap > id || already(*it))
+            continue;
+          out.emplace_back(*it, ELoopSource::Landmark);
+          if (out.size() >= static_cast<std::size_t>(o.max_loop_candidates))
+            break;
         }
-      }
-      else
-      {
-        landmarks::CLandmark l;
-        l.features = roiFeatures;
-        l.box = *m_rois[k];
-        l.imageSize = m_imageSize;
-        l.sightings.push_back(s);
-        lm = m_database.add(std::move(l));
       }
       m_sightings[lm].push_back(k);
     }

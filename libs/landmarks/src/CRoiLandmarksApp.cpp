@@ -15,6 +15,7 @@
 
 #include "CFramePrefetcher.h"
 #include "roislam/io/CFrameSource.h"
+#include "roislam/io/ObservationConversion.h"
 #include "roislam/io/TumTrajectory.h"
 #include "roislam/landmarks/CLandmarkScorer.h"
 #include "roislam/landmarks/CObservationProcessor.h"
@@ -55,44 +56,23 @@ std::string frameName(uint64_t frame)
 /** An RGB-D observation for the annotated rawlog: raw TUM-scaled depth in an
  *  external .bin, the colour image external (the source PNG when it exists,
  *  else a PNG written next to the depth). */
-mrpt::obs::CObservation3DRangeScan makeScan(
+mrpt::obs::CObservation3DRangeScan::Ptr makeScan(
     const io::TRGBDFrame& f, const std::string& imagesDir, const mrpt::poses::CPose3D& sensorPose)
 {
-  mrpt::obs::CObservation3DRangeScan obs;
-  obs.sensorLabel = "RGBD";
-  obs.timestamp = mrpt::Clock::fromDouble(f.timestamp);
-  obs.sensorPose = sensorPose;
-  obs.cameraParams = f.camera;
-  obs.cameraParams.ncols = static_cast<uint32_t>(f.depth.cols);
-  obs.cameraParams.nrows = static_cast<uint32_t>(f.depth.rows);
-  obs.cameraParamsIntensity = obs.cameraParams;
-  obs.range_is_depth = true;
-  obs.maxRange = 10;
-  obs.hasRangeImage = true;
-  obs.rangeUnits = 1.0f / 5000;
-  obs.rangeImage_setSize(f.depth.rows, f.depth.cols);
-  for (int r = 0; r < f.depth.rows; ++r)
-  {
-    const float* row = f.depth.ptr<float>(r);
-    for (int c = 0; c < f.depth.cols; ++c)
-    {
-      const double v = std::isfinite(row[c]) && row[c] > 0 ? std::lround(row[c] * 5000.0) : 0;
-      obs.rangeImage(r, c) = static_cast<uint16_t>(std::min(v, 65535.0));
-    }
-  }
+  auto obs = io::frameToObservation(f);
+  obs->sensorPose = sensorPose;
   const std::string name = frameName(f.index);
-  obs.hasIntensityImage = true;
   std::error_code ec;
   if (!f.rgbSource.empty() && fs::is_regular_file(f.rgbSource, ec))
-    obs.intensityImage.setExternalStorage(fs::absolute(f.rgbSource).string());
+    obs->intensityImage.setExternalStorage(fs::absolute(f.rgbSource).string());
   else
   {
     const std::string png = imagesDir + "/" + name + "_rgb.png";
     if (!cv::imwrite(png, f.rgb))
       throw std::runtime_error(png + ": cannot write");
-    obs.intensityImage.setExternalStorage(name + "_rgb.png");
+    obs->intensityImage.setExternalStorage(name + "_rgb.png");
   }
-  obs.rangeImage_convertToExternalStorage(name + "_depth.bin", imagesDir + "/");
+  obs->rangeImage_convertToExternalStorage(name + "_depth.bin", imagesDir + "/");
   return obs;
 }
 
@@ -408,7 +388,7 @@ TFrameLog processFrames(
     if (rawlog.stream)
     {
       auto ar = mrpt::serialization::archiveFrom(*rawlog.stream);
-      ar << makeScan(*frame, rawlog.imagesDir, sensorPose) << *out.observation;
+      ar << *makeScan(*frame, rawlog.imagesDir, sensorPose) << *out.observation;
     }
     log.add(r);
     if (log.results.size() % 50 == 0 && progress)

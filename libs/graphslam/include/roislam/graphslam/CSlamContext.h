@@ -71,6 +71,7 @@
 #include <roislam/frontend/CRgbdOdometry.h>
 #include <roislam/io/TRGBDFrame.h>
 #include <roislam/landmarks/CLandmarkDatabase.h>
+#include <roislam/landmarks/CObservationProcessor.h>
 #include <roislam/roi/CRoiDetector.h>
 
 #include <cstddef>
@@ -168,7 +169,7 @@ class CSlamContext
 
   frontend::CRgbdOdometry& odometry() { return m_odometry; }
   const frontend::CRgbdOdometry& odometry() const { return m_odometry; }
-  const landmarks::CLandmarkDatabase& database() const { return m_database; }
+  const landmarks::CLandmarkDatabase& database() const { return m_landmarks.tracker().database(); }
   const TConfig& config() const { return m_config; }
 
   /** A ROI detected ahead (CRgbdOdometry::detectRoiAhead) for the frame the
@@ -224,7 +225,9 @@ class CSlamContext
  private:
   TConfig m_config;
   frontend::CRgbdOdometry m_odometry;
-  landmarks::CLandmarkDatabase m_database;
+  /** The landmark database, reached through the observation processor (the
+   *  one path from a region to a landmark, as in roi-landmarks). */
+  landmarks::CObservationProcessor m_landmarks;
   roi::CRoiDetector m_roiDetector;
   std::optional<frontend::TFrameResult> m_last;
   std::optional<frontend::CRgbdOdometry::TRoiHint> m_roiHint;

@@ -6,6 +6,7 @@
 
 #include <mrpt/config/CLoadableOptions.h>
 #include <mrpt/poses/CPose3D.h>
+#include <roislam/io/ObservationConversion.h>
 
 #include <string>
 
@@ -15,11 +16,13 @@ namespace roislam::landmarks
  *  - sensor_label         string (default ROI_LANDMARKS)
  *  - sensor_pose          "[x y z yaw pitch roll]" (m, degrees): pose on the
  *                         robot of MRPT's camera frame (x forward, y left,
- *                         z up) for frames that do not carry one (TRGBDFrame
- *                         input). Default "[0 0 0 0 0 0]": robot frame = MRPT
- *                         camera frame. For TUM optical-frame robot poses use
- *                         "[0 0 0 90 -90 0]". A CObservation3DRangeScan
- *                         input uses its own sensorPose instead.
+ *                         z up): sensorLocationOnRobot of the observations
+ *                         and sensorPose of the annotated rawlog's scans.
+ *                         Default "[0 0 0 90 -90 0]": the robot frame is the
+ *                         optical camera frame (x right, y down, z forward),
+ *                         the convention of every roislam rawlog and of TUM
+ *                         poses (io::tumSensorPose()). "[0 0 0 0 0 0]": the
+ *                         robot frame is MRPT's camera frame.
  *  - min_sensor_distance  metres >= 0 (default 0.1, = RoiLandmarks min_depth)
  *  - max_sensor_distance  metres > min (default 8.0, = RoiLandmarks max_depth)
  *  - sensor_std_range     metres > 0 (default 0.05): one sigma of the range of a
@@ -32,7 +35,7 @@ namespace roislam::landmarks
 struct TObservationOptions : public mrpt::config::CLoadableOptions
 {
   std::string sensor_label = "ROI_LANDMARKS";
-  mrpt::poses::CPose3D sensor_pose;
+  mrpt::poses::CPose3D sensor_pose = io::tumSensorPose();
   double min_sensor_distance = 0.1;
   double max_sensor_distance = 8.0;
   double sensor_std_range = 0.05;
