@@ -45,11 +45,16 @@ TEST(ObservationProcessor, KnownPositionsGiveMrptBearingRange)
 
   // Sensor description.
   EXPECT_EQ(obs->sensorLabel, "ROI_LANDMARKS");
-  EXPECT_FALSE(obs->validCovariances);
+  // Each measurement carries the depth-noise model's covariance.
+  EXPECT_TRUE(obs->validCovariances);
+  const double far = 0.02 * 0.02 + std::pow(1.425e-3 * 16, 2);  // the point at 4 m depth
+  EXPECT_NEAR(obs->sensedData[2].covariance(0, 0), far, 1e-9);
+  EXPECT_NEAR(obs->sensedData[0].covariance(1, 1), 0.01 * 0.01, 1e-12);
+  EXPECT_NEAR(obs->sensedData[0].covariance(2, 2), 0.01 * 0.01, 1e-12);
   EXPECT_NEAR(obs->fieldOfView_yaw, 2 * std::atan(320.0 / 525.0), 1e-5);
   EXPECT_NEAR(obs->fieldOfView_pitch, 2 * std::atan(240.0 / 525.0), 1e-5);
   EXPECT_FLOAT_EQ(obs->maxSensorDistance, 8.0f);
-  EXPECT_FLOAT_EQ(obs->sensor_std_range, 0.05f);
+  EXPECT_FLOAT_EQ(obs->sensor_std_range, 0.02f);
   EXPECT_NEAR(mrpt::Clock::toDouble(obs->timestamp), 12.5, 1e-6);
 }
 

@@ -38,7 +38,10 @@ CObservationProcessor::TOutput CObservationProcessor::finish(
     TFrameResult result, const mrpt::img::TCamera& camera)
 {
   std::vector<std::pair<int32_t, mrpt::math::TPoint3D>> seen;
-  if (result.status == ERoiStatus::Landmark && result.landmarkPosition)
+  // A recall's point is carried by its 3-D alignment; one measured from few
+  // pairs is left out (min_rigid_pairs). New landmarks define their point.
+  const bool supported = result.newLandmark || result.rigidInliers >= m_options.min_rigid_pairs;
+  if (result.status == ERoiStatus::Landmark && result.landmarkPosition && supported)
     seen.emplace_back(result.landmarkId, *result.landmarkPosition);
   TOutput out;
   out.observation =
@@ -63,7 +66,7 @@ mrpt::obs::CObservationBearingRange::Ptr CObservationProcessor::makeObservation(
     obs->fieldOfView_yaw = static_cast<float>(2 * std::atan(0.5 * camera.ncols / camera.fx()));
     obs->fieldOfView_pitch = static_cast<float>(2 * std::atan(0.5 * camera.nrows / camera.fy()));
   }
-  obs->validCovariances = false;
+  obs->validCovariances = true;
   obs->sensor_std_range = static_cast<float>(options.sensor_std_range);
   obs->sensor_std_yaw = static_cast<float>(options.sensor_std_yaw);
   obs->sensor_std_pitch = static_cast<float>(options.sensor_std_pitch);
@@ -79,7 +82,10 @@ mrpt::obs::CObservationBearingRange::Ptr CObservationProcessor::makeObservation(
     m.yaw = static_cast<float>(yaw);
     m.pitch = static_cast<float>(pitch);
     m.covariance.setZero();
-    m.covariance(0, 0) = options.sensor_std_range * options.sensor_std_range;
+    // Depth-noise model: the landmark's spread plus k z^2 (z = depth).
+    const double depthNoise = options.range_std_per_m2 * optical.z * optical.z;
+    m.covariance(0, 0) =
+        options.sensor_std_range * options.sensor_std_range + depthNoise * depthNoise;
     m.covariance(1, 1) = options.sensor_std_yaw * options.sensor_std_yaw;
     m.covariance(2, 2) = options.sensor_std_pitch * options.sensor_std_pitch;
     obs->sensedData.push_back(m);

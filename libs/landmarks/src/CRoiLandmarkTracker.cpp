@@ -65,7 +65,9 @@ TFrameResult CRoiLandmarkTracker::process(
   r.depthMean = r.depthMedian = r.rigidRms = std::numeric_limits<double>::quiet_NaN();
 
   const cv::Mat grey = frame.grey();
-  const auto roi = m_detector.detect(grey, frame.rgb);
+  const auto detection = m_detector.detectDetailed(grey, frame.rgb);
+  const auto& roi = detection.roi;
+  r.rejectedByHue = detection.rejectedByHue();
   r.secondsRoi = lap();
   features::TFeatureSet all = m_extractor.extract(grey);
   r.secondsFeatures = lap();

@@ -14,9 +14,11 @@
 #include <sstream>
 
 #include "CFramePrefetcher.h"
+#include "roislam/common/TextFiles.h"
 #include "roislam/io/CFrameSource.h"
 #include "roislam/io/ObservationConversion.h"
 #include "roislam/io/TumTrajectory.h"
+#include "roislam/kfslam/CKfSlamSession.h"
 #include "roislam/landmarks/CLandmarkScorer.h"
 #include "roislam/landmarks/CObservationProcessor.h"
 
@@ -27,24 +29,6 @@ namespace roislam::landmarks
 namespace
 {
 using detail::CFramePrefetcher;
-
-void writeTextAtomically(const std::string& file, const std::string& text)
-{
-  const std::string tmp = file + ".tmp";
-  {
-    std::ofstream f(tmp, std::ios::binary);
-    if (!f)
-      throw std::runtime_error(file + ": cannot write");
-    f << text;
-    f.close();
-    if (!f)
-      throw std::runtime_error(file + ": cannot write");
-  }
-  std::error_code ec;
-  fs::rename(tmp, file, ec);
-  if (ec)
-    throw std::runtime_error(file + ": cannot write: " + ec.message());
-}
 
 std::string frameName(uint64_t frame)
 {
@@ -212,6 +196,8 @@ void summarize(
   {
     if (r.roi)
       ++sum.framesWithRoi;
+    if (r.rejectedByHue)
+      ++sum.framesRejectedByHue;
     if (r.status == ERoiStatus::Landmark)
     {
       ++sum.confirmedRois;
@@ -315,6 +301,7 @@ nlohmann::json runJson(
   j["feature"] = features::toString(options.features.feature_type);
   j["max_features"] = options.features.max_features;
   j["roi_preset"] = options.roi.preset;
+  j["verify_hue"] = options.roi.verify_hue;
   j["ground_truth"] = gtFile ? nlohmann::json(*gtFile) : nlohmann::json(nullptr);
   j["match_radius"] = options.scoring.match_radius;
   return j;
@@ -325,6 +312,7 @@ nlohmann::json summaryJson(
 {
   j["frames"] = sum.frames;
   j["frames_with_roi"] = sum.framesWithRoi;
+  j["frames_rejected_by_hue"] = sum.framesRejectedByHue;
   j["confirmed_rois"] = sum.confirmedRois;
   j["landmarks"] = sum.landmarks;
   j["recalls"] = sum.recalls;
@@ -345,6 +333,17 @@ nlohmann::json summaryJson(
   j["wall_s"] = sum.wallS;
   j["fps_wall"] = sum.wallS > 0 ? sum.frames / sum.wallS : 0;
   return j;
+}
+
+std::string kfSlamLine(const nlohmann::json& k)
+{
+  const auto m = [&](const char* key)
+  { return k.contains(key) && k[key].is_number() ? fmt(k[key].get<double>()) : "n/a"; };
+  return "kf-slam: " + std::to_string(k.value("landmarks", 0)) + " landmarks, " +
+         std::to_string(k.value("measurements", 0)) + " measurements; ATE RMSE " + m("ate_rmse") +
+         " m (odometry alone " + m("odometry_ate_rmse") + " m), RPE " + m("rpe_trans_rmse") +
+         " m / " + m("rpe_rot_rmse_deg") + " deg (odometry " + m("odometry_rpe_trans_rmse") +
+         " m / " + m("odometry_rpe_rot_rmse_deg") + " deg)";
 }
 
 std::string doneLine(const CRoiLandmarksApp::TSummary& sum, const TScores& scores)
@@ -371,7 +370,7 @@ std::string doneLine(const CRoiLandmarksApp::TSummary& sum, const TScores& score
 TFrameLog processFrames(
     io::CFrameSource& source, std::size_t maxFrames, CObservationProcessor& processor,
     const mrpt::poses::CPose3D& sensorPose, const fs::path& patchesTmp, TAnnotatedRawlog& rawlog,
-    const std::function<void(const std::string&)>& progress)
+    kfslam::CKfSlamSession* kfSlam, const std::function<void(const std::string&)>& progress)
 {
   TFrameLog log;
   CFramePrefetcher frames(source, maxFrames);
@@ -390,6 +389,8 @@ TFrameLog processFrames(
       auto ar = mrpt::serialization::archiveFrom(*rawlog.stream);
       ar << *makeScan(*frame, rawlog.imagesDir, sensorPose) << *out.observation;
     }
+    if (kfSlam)
+      kfSlam->addFrame(*frame, *out.observation);
     log.add(r);
     if (log.results.size() % 50 == 0 && progress)
       progress(
@@ -422,6 +423,20 @@ CRoiLandmarksApp::CRoiLandmarksApp(TArguments arguments) : m_args(std::move(argu
     throw std::invalid_argument("no output folder given");
 }
 
+kfslam::CKfSlamSession::TSetup CRoiLandmarksApp::kfSlamSetup() const
+{
+  kfslam::CKfSlamSession::TSetup s;
+  s.options = m_options.kfSlam;
+  s.iniDir =
+      m_args.iniFile.empty() ? std::string() : fs::path(m_args.iniFile).parent_path().string();
+  s.sensorPose = m_options.observations.sensor_pose;
+  s.outputDir = m_args.outputDir;
+  if (m_args.feature)
+    s.feature = m_options.features.feature_type;
+  s.maxFeatures = m_args.maxFeatures;
+  return s;
+}
+
 void CRoiLandmarksApp::progress(const std::string& line) const
 {
   if (m_args.progress)
@@ -436,19 +451,24 @@ CRoiLandmarksApp::TSummary CRoiLandmarksApp::run()
 
   auto source = io::CFrameSource::open(m_args.input, m_args.camera);
   std::optional<CLandmarkScorer> scorer;
+  std::optional<io::TTrajectory> gt;
   const auto gtFile = source->groundTruthFile();
   if (gtFile && fs::is_regular_file(*gtFile))
-    scorer.emplace(m_options.scoring, io::loadTumTrajectory(*gtFile));
+  {
+    gt = io::loadTumTrajectory(*gtFile);
+    scorer.emplace(m_options.scoring, *gt);
+  }
   progress(
       "roi-landmarks: " + source->name() + ", " + std::to_string(source->size()) + " frames, " +
       features::toString(m_options.features.feature_type) + ", ROI preset " + m_options.roi.preset +
       (scorer ? ", ground truth " + *gtFile : ", no ground truth"));
 
   TAnnotatedRawlog rawlog = openAnnotatedRawlog(m_args.outputRawlog);
+  auto kfSlam = m_args.kfSlam ? std::make_unique<kfslam::CKfSlamSession>(kfSlamSetup()) : nullptr;
   CObservationProcessor processor(m_options);
   const TFrameLog log = processFrames(
       *source, m_args.maxFrames, processor, m_options.observations.sensor_pose, patchesTmp, rawlog,
-      m_args.progress);
+      kfSlam.get(), m_args.progress);
 
   // The primary score uses [LandmarkScoring] recall_position; the other
   // definition is reported beside it (alternative_scoring).
@@ -459,7 +479,7 @@ CRoiLandmarksApp::TSummary CRoiLandmarksApp::run()
   const TScores scores = scoreEvents(log, scorer, pointPrimary);
   summarize(log, scores, processor.tracker().database().size(), sum);
 
-  writeTextAtomically((outDir / "frames.csv").string(), framesCsv(log, scores));
+  common::writeFileAtomically((outDir / "frames.csv").string(), framesCsv(log, scores));
   processor.tracker().database().save((outDir / "landmarks.db").string());
   const fs::path patches = outDir / "landmarks";
   std::error_code ec;
@@ -469,9 +489,18 @@ CRoiLandmarksApp::TSummary CRoiLandmarksApp::run()
     throw std::runtime_error(patches.string() + ": cannot write: " + ec.message());
   commitAnnotatedRawlog(rawlog);
 
+  if (kfSlam)
+  {
+    progress(
+        "roi-landmarks: running MRPT's EKF-SLAM (CRangeBearingKFSLAM) on " + kfSlam->rawlogFile());
+    sum.kfSlam = kfSlam->finish(gt);
+    progress(kfSlamLine(sum.kfSlam));
+  }
   sum.wallS = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
-  const auto j = summaryJson(runJson(m_args, m_options, source->name(), gtFile), sum, scores);
-  writeTextAtomically((outDir / "summary.json").string(), j.dump(2) + "\n");
+  auto j = summaryJson(runJson(m_args, m_options, source->name(), gtFile), sum, scores);
+  if (kfSlam)
+    j["kf_slam"] = sum.kfSlam;
+  common::writeFileAtomically((outDir / "summary.json").string(), j.dump(2) + "\n");
   progress(doneLine(sum, scores));
   return sum;
 }

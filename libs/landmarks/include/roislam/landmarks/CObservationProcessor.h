@@ -19,7 +19,8 @@
  * mapped into this frame by the 3-D alignment of the match inliers, so
  * repeated observations measure one fixed point). Frames without one give an
  * observation with no measurements, so every RGB-D observation has its
- * partner.
+ * partner. Each measurement carries its covariance from the noise model of
+ * TObservationOptions (validCovariances).
  */
 #pragma once
 
