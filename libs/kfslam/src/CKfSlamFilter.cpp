@@ -3,9 +3,11 @@
 #include <mrpt/config/CConfigFileMemory.h>
 #include <mrpt/io/CFileGZInputStream.h>
 #include <mrpt/io/vector_loadsave.h>
+#include <mrpt/obs/CActionCollection.h>
 #include <mrpt/obs/CObservationBearingRange.h>
-#include <mrpt/obs/CRawlog.h>
+#include <mrpt/obs/CSensoryFrame.h>
 #include <mrpt/serialization/CArchive.h>
+#include <mrpt/serialization/CSerializable.h>
 #include <mrpt/slam/CRangeBearingKFSLAM.h>
 #include <mrpt/system/string_utils.h>
 
@@ -32,6 +34,40 @@ void recordStep(
   run.measurements.push_back(obs ? obs->sensedData.size() : 0);
   if (!run.firstLandmarkStep && filter.getNumberOfLandmarksInTheMap() > 0)
     run.firstLandmarkStep = run.robotPath.size() - 1;
+}
+
+/** The next object of a rawlog of (action, sensory frame) pairs, of class T;
+ *  nullptr at the end of the file when endAllowed. MRPT's own
+ *  CRawlog::readActionObservationPair prints and swallows read errors, so a
+ *  corrupt file would look like a short one. */
+template <typename T>
+typename T::Ptr readObject(
+    mrpt::serialization::CArchive& ar, const std::string& file, std::size_t entry, bool endAllowed)
+{
+  mrpt::serialization::CSerializable::Ptr obj;
+  try
+  {
+    obj = ar.ReadObject();
+  }
+  catch (const mrpt::serialization::CExceptionEOF&)
+  {
+    if (endAllowed)
+      return nullptr;
+    throw std::runtime_error(file + ": ends inside entry " + std::to_string(entry));
+  }
+  catch (const std::exception& e)
+  {
+    throw std::runtime_error(
+        file + ": corrupt at entry " + std::to_string(entry) + ": " + firstLine(e.what()));
+  }
+  auto typed = std::dynamic_pointer_cast<T>(obj);
+  if (!typed)
+    throw std::runtime_error(
+        file + ": entry " + std::to_string(entry) + " is a " +
+        (obj ? std::string(obj->GetRuntimeClass()->className) : std::string("null")) +
+        ", expected " + T::GetRuntimeClassIdStatic().className +
+        " (a kf-slam rawlog of action / sensory-frame pairs)");
+  return typed;
 }
 
 std::map<int64_t, mrpt::math::TPoint3D> finalMap(const mrpt::slam::CRangeBearingKFSLAM& filter)
@@ -89,22 +125,13 @@ TKfSlamRun CKfSlamFilter::run(const std::string& rawlog) const
     throw std::runtime_error(rawlog + ": cannot open");
   auto ar = mrpt::serialization::archiveFrom(in);
   TKfSlamRun run;
-  mrpt::obs::CActionCollection::Ptr action;
-  mrpt::obs::CSensoryFrame::Ptr sf;
-  std::size_t entry = 0;
   const auto t0 = std::chrono::steady_clock::now();
-  for (;;)
+  for (std::size_t entry = 0;; entry += 2)
   {
-    try
-    {
-      if (!mrpt::obs::CRawlog::readActionObservationPair(ar, action, sf, entry))
-        break;
-    }
-    catch (const std::exception& e)
-    {
-      throw std::runtime_error(
-          rawlog + ": corrupt at entry " + std::to_string(entry) + ": " + firstLine(e.what()));
-    }
+    auto action = readObject<mrpt::obs::CActionCollection>(ar, rawlog, entry, true);
+    if (!action)
+      break;
+    auto sf = readObject<mrpt::obs::CSensoryFrame>(ar, rawlog, entry + 1, false);
     try
     {
       filter.processActionObservation(action, sf);
@@ -117,6 +144,8 @@ TKfSlamRun CKfSlamFilter::run(const std::string& rawlog) const
     }
     recordStep(filter, *sf, run);
   }
+  if (run.robotPath.empty())
+    throw std::runtime_error(rawlog + ": no (CActionCollection, CSensoryFrame) pairs");
   run.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   run.landmarks = finalMap(filter);
   return run;
