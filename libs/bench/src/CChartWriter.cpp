@@ -124,7 +124,65 @@ std::vector<std::string> CChartWriter::write(
   for (int test : {2, 3})
     append(writeVersionCharts(records, dir, test));
   append(writeTrajectories(records, dir));
+  if (auto png = writeTest4(records, dir))
+    pngs.push_back(*png);
   return pngs;
+}
+
+std::optional<std::string> CChartWriter::writeTest4(
+    const std::vector<TRunRecord>& records, const std::string& dir)
+{
+  // Clustered bars per sequence and extractor: EKF, odometry, graph SLAM.
+  std::vector<std::pair<std::string, std::string>> keys;
+  for (const auto& r : records)
+    if (r.run.test == 4 &&
+        std::find(keys.begin(), keys.end(), std::make_pair(r.run.sequence, r.run.feature)) ==
+            keys.end())
+      keys.emplace_back(r.run.sequence, r.run.feature);
+  if (keys.empty())
+    return std::nullopt;
+  const auto value = [&](const std::string& s, const std::string& f, const std::string& mode,
+                         const std::string& key)
+  {
+    std::optional<double> v;
+    for (const auto& r : records)
+      if (r.run.test == 4 && r.run.sequence == s && r.run.feature == f && r.run.mode == mode &&
+          r.ok)
+        v = r.number(key);
+    return v;
+  };
+  std::ostringstream dat;
+  dat << "run \"EKF-SLAM (kf-slam)\" \"odometry alone\" \"graph SLAM\"\n";
+  double top = 0;
+  for (const auto& [s, f] : keys)
+  {
+    dat << gpQuote(s + " " + upper(f));
+    for (const auto& v :
+         {value(s, f, "kf_slam", "kf_slam.ate_rmse"),
+          value(s, f, "kf_slam", "kf_slam.odometry_ate_rmse"),
+          value(s, f, "graph_slam", "ate_rmse")})
+    {
+      top = std::max(top, v.value_or(0.0));
+      dat << " " << val(v);
+    }
+    dat << "\n";
+  }
+  const std::string name = "test4_ate";
+  writeFileAtomically((fs::path(dir) / (name + ".dat")).string(), dat.str());
+  std::string gp = header(
+      name + ".png", m_options.width, m_options.height,
+      "Test 4: ATE RMSE (m), EKF-SLAM on ROI landmarks vs odometry alone vs graph SLAM "
+      "(missing bar = failed or n/a)");
+  gp +=
+      "set style data histograms\nset style histogram clustered gap 1\n"
+      "set style fill solid 0.8 border -1\nset boxwidth 0.9\n" +
+      (top > 0 ? "set yrange [0:" + std::to_string(top * 1.08) + "]\n"
+               : std::string("set yrange [0:1]\n")) +
+      "set xtics rotate by -20\nset grid ytics\nset ylabel \"ATE RMSE (m)\"\nplot '" + name +
+      ".dat' using 2:xtic(1) title columnheader(2), '' using 3 title columnheader(3), "
+      "'' using 4 title columnheader(4)\n";
+  plot(dir, name, gp);
+  return name + ".png";
 }
 
 std::vector<std::string> CChartWriter::writeTest1(
@@ -133,10 +191,15 @@ std::vector<std::string> CChartWriter::writeTest1(
   // Clustered bars per sequence, one bar per extractor.
   std::vector<std::string> pngs;
   const int W = m_options.width, H = m_options.height;
-  std::vector<std::string> seqs;
+  // One cluster per sequence and variant ("" = plain, e.g. "hue").
+  std::vector<std::pair<std::string, std::string>> seqs;
   for (const auto& r : records)
-    if (r.run.test == 1 && std::find(seqs.begin(), seqs.end(), r.run.sequence) == seqs.end())
-      seqs.push_back(r.run.sequence);
+    if (r.run.test == 1)
+    {
+      const auto key = std::make_pair(r.run.sequence, r.run.variant);
+      if (std::find(seqs.begin(), seqs.end(), key) == seqs.end())
+        seqs.push_back(key);
+    }
   const std::vector<std::pair<std::string, std::string>> t1Metrics{
       {"landmarks", "Test 1: landmarks in the database"},
       {"false_positives", "Test 1: false positives"},
@@ -149,14 +212,15 @@ std::vector<std::string> CChartWriter::writeTest1(
     dat << "sequence SURF SIFT ORB\n";
     bool any = false;
     double top = 0;  // headroom above the highest bar
-    for (const auto& s : seqs)
+    for (const auto& [s, variant] : seqs)
     {
-      dat << gpQuote(s);
+      dat << gpQuote(variant.empty() ? s : s + " (" + variant + ")");
       for (const auto& f : kFeatures)
       {
         std::optional<double> v;
         for (const auto& r : records)
-          if (r.run.test == 1 && r.run.sequence == s && r.run.feature == f && r.ok)
+          if (r.run.test == 1 && r.run.sequence == s && r.run.variant == variant &&
+              r.run.feature == f && r.ok)
             v = r.number(key);
         any = any || v.has_value();
         if (v)

@@ -202,6 +202,18 @@ const TRunRecord* findRun(
   return rec;
 }
 
+/** The record of one sequence, variant ("" = plain) and extractor, or null. */
+const TRunRecord* findVariantRun(
+    const std::vector<const TRunRecord*>& recs, const std::string& seq, const std::string& variant,
+    const std::string& f)
+{
+  const TRunRecord* rec = nullptr;
+  for (const auto* r : recs)
+    if (r->run.sequence == seq && r->run.variant == variant && r->run.feature == f)
+      rec = r;
+  return rec;
+}
+
 /** Table header "| first |" + per extractor " F | F <refLabel> |" and its rule. */
 void featureHeader(
     std::ostream& md, const std::string& first, const std::vector<std::string>& feats,
@@ -214,6 +226,32 @@ void featureHeader(
   for (std::size_t k = 0; k < feats.size(); ++k)
     md << "---|---|";
   md << "\n";
+}
+
+/** " (variant)" for a variant's row, "" for the plain run. */
+std::string variantSuffix(const std::string& variant)
+{
+  return variant.empty() ? std::string() : " (" + variant + ")";
+}
+
+/** "landmarks / false positives / false negatives" of a Test 1 run, each
+ *  value also collected into sums. */
+std::string test1Cell(const TRunRecord* rec, std::array<std::vector<double>, 3>& sums)
+{
+  if (!rec)
+    return "—";
+  if (!rec->ok)
+    return "FAILED";
+  const char* keys[3] = {"landmarks", "false_positives", "false_negatives"};
+  std::string cell;
+  for (int k = 0; k < 3; ++k)
+  {
+    const auto v = rec->number(keys[k]);
+    if (v)
+      sums[k].push_back(*v);
+    cell += (k ? " / " : "") + optNum(v, 0);
+  }
+  return cell;
 }
 
 std::string oneLine(std::string s)
@@ -263,6 +301,7 @@ std::string CReportWriter::render(const std::vector<TRunRecord>& records) const
     renderTest1Landmarks(md, t1);
     renderTest1Matches(md, t1);
     renderTest1Reidentification(md, t1);
+    renderHueVerification(md, t1);
   }
   const auto t2 = select(all, 2);
   if (!t2.empty())
@@ -270,6 +309,9 @@ std::string CReportWriter::render(const std::vector<TRunRecord>& records) const
   const auto t3 = select(all, 3);
   if (!t3.empty())
     renderTest3(md, t3);
+  const auto t4 = select(all, 4);
+  if (!t4.empty())
+    renderTest4(md, t4);
   if (!t2.empty())
     renderSpeed(md, t2);
   renderFailures(md, records);
@@ -325,67 +367,58 @@ void CReportWriter::renderTest1Landmarks(std::ostream& md, const TRecordList& t1
   md << "Landmarks in the database / false positives / false negatives "
         "(n/a: no ground truth for landmark identity).\n\n";
   featureHeader(md, "sequence", feats, "diss.");
-  std::map<std::string, std::array<std::vector<double>, 3>> sums;
+  // Per variant ("" = plain) and extractor: the values of the three columns.
+  std::map<std::string, std::map<std::string, std::array<std::vector<double>, 3>>> sums;
+  const auto variants = distinct(t1, [](const TRunRecord& r) { return r.run.variant; });
   for (const auto& s : distinct(t1, [](const TRunRecord& r) { return r.run.sequence; }))
+    for (const auto& v : variants)
+    {
+      md << "| " << s << variantSuffix(v) << " |";
+      const auto id = v.empty() ? m_ref.sequenceId(s) : std::nullopt;
+      for (const auto& f : feats)
+      {
+        md << " " << test1Cell(findVariantRun(t1, s, v, f), sums[v][f]) << " | ";
+        std::string dcell = "—";
+        if (id)
+          if (const auto d = m_ref.test1(*id, f))
+            dcell = num((*d)[0], 0) + " / " + num((*d)[1], 0) + " / " + num((*d)[2], 0);
+        md << dcell << " |";
+      }
+      md << "\n";
+    }
+  for (const auto& v : variants)
   {
-    md << "| " << s << " |";
-    const auto id = m_ref.sequenceId(s);
+    md << "| **mean" << (v.empty() ? "" : ", " + v) << "** |";
     for (const auto& f : feats)
     {
-      const TRunRecord* rec = nullptr;
-      for (const auto* r : t1)
-        if (r->run.sequence == s && r->run.feature == f)
-          rec = r;
-      std::string cell = "—";
-      if (rec && !rec->ok)
-        cell = "FAILED";
-      else if (rec)
+      std::string cell;
+      for (int k = 0; k < 3; ++k)
       {
-        const char* keys[3] = {"landmarks", "false_positives", "false_negatives"};
-        cell.clear();
-        for (int k = 0; k < 3; ++k)
-        {
-          const auto v = rec->number(keys[k]);
-          if (v)
-            sums[f][k].push_back(*v);
-          cell += (k ? " / " : "") + optNum(v, 0);
-        }
+        const auto ms = meanStd(sums[v][f][k]);
+        cell += (k ? " / " : "") + (ms ? num(ms->mean, 1) : std::string("n/a"));
       }
-      std::string dcell = "—";
-      if (id)
-        if (const auto d = m_ref.test1(*id, f))
-          dcell = num((*d)[0], 0) + " / " + num((*d)[1], 0) + " / " + num((*d)[2], 0);
-      md << " " << cell << " | " << dcell << " |";
+      const auto d = v.empty() ? m_ref.test1Average(f) : std::nullopt;
+      md << " " << cell << " | "
+         << (d ? num((*d)[0], 1) + " / " + num((*d)[1], 1) + " / " + num((*d)[2], 1)
+               : std::string("—"))
+         << " |";
     }
     md << "\n";
   }
-  md << "| **mean** |";
-  for (const auto& f : feats)
-  {
-    std::string cell;
-    for (int k = 0; k < 3; ++k)
-    {
-      const auto ms = meanStd(sums[f][k]);
-      cell += (k ? " / " : "") + (ms ? num(ms->mean, 1) : std::string("n/a"));
-    }
-    const auto d = m_ref.test1Average(f);
-    md << " " << cell << " | "
-       << (d ? num((*d)[0], 1) + " / " + num((*d)[1], 1) + " / " + num((*d)[2], 1)
-             : std::string("—"))
-       << " |";
-  }
-  md << "\n\n";
+  md << "\n";
 }
 
 void CReportWriter::renderTest1Matches(std::ostream& md, const TRecordList& t1) const
 {
-  md << "Matches per frame, false matches per frame, duration and speed.\n\n"
-        "| sequence | extractor | status | frames with ROI | matches/frame | false "
-        "matches/frame | duration (s) | fps |\n|---|---|---|---|---|---|---|---|\n";
+  md << "Matches per frame, false matches per frame, duration and speed (ROI rejected: frames "
+        "whose grey ROI the hue detector did not confirm).\n\n"
+        "| sequence | extractor | status | frames with ROI | ROI rejected | matches/frame | false "
+        "matches/frame | duration (s) | fps |\n|---|---|---|---|---|---|---|---|---|\n";
   for (const auto* r : t1)
-    md << "| " << r->run.sequence << " | " << upper(r->run.feature) << " | "
-       << (r->ok ? "ok" : "FAILED: " + r->failureReason) << " | "
+    md << "| " << r->run.sequence << variantSuffix(r->run.variant) << " | " << upper(r->run.feature)
+       << " | " << (r->ok ? "ok" : "FAILED: " + r->failureReason) << " | "
        << optNum(r->number("frames_with_roi"), 0) << " | "
+       << optNum(r->number("frames_rejected_by_hue"), 0) << " | "
        << optNum(r->number("matches_per_frame"), 1) << " | "
        << optNum(r->number("false_matches_per_frame"), 2) << " | "
        << optNum(r->number("duration_s"), 2) << " | " << optNum(r->number("fps"), 2) << " |\n";
@@ -404,32 +437,67 @@ void CReportWriter::renderTest1Reidentification(std::ostream& md, const TRecordL
   const auto pct = [](std::optional<double> v)
   { return v ? num(100 * *v, 1) + " %" : std::string("—"); };
   for (const auto& f : featuresOf(t1))
-  {
-    TCell p, rc, fps;
-    for (const auto* r : t1)
+    for (const auto& v : distinct(t1, [](const TRunRecord& r) { return r.run.variant; }))
     {
-      if (r->run.feature != f)
-        continue;
-      for (auto* c : {&p, &rc, &fps})
-        ++c->total;
-      if (!r->ok)
+      TCell p, rc, fps;
+      for (const auto* r : t1)
       {
+        if (r->run.feature != f || r->run.variant != v)
+          continue;
         for (auto* c : {&p, &rc, &fps})
-          ++c->failed;
-        continue;
+          ++c->total;
+        if (!r->ok)
+        {
+          for (auto* c : {&p, &rc, &fps})
+            ++c->failed;
+          continue;
+        }
+        if (auto v = r->number("precision"))
+          p.values.push_back(*v);
+        if (auto v = r->number("recall"))
+          rc.values.push_back(*v);
+        if (auto v = r->number("fps"))
+          fps.values.push_back(*v);
       }
-      if (auto v = r->number("precision"))
-        p.values.push_back(*v);
-      if (auto v = r->number("recall"))
-        rc.values.push_back(*v);
-      if (auto v = r->number("fps"))
-        fps.values.push_back(*v);
+      const bool plain = v.empty();
+      md << "| " << upper(f) << variantSuffix(v) << " | " << renderCell(p, 3, true) << " | "
+         << renderCell(rc, 3, true) << " | "
+         << (plain ? pct(m_ref.test1TruePositiveRate(f)) : std::string("—")) << " | "
+         << (plain ? pct(m_ref.test1TrueNegativeRate(f)) : std::string("—")) << " | "
+         << renderCell(fps, 2, true) << " | "
+         << (plain ? optNum(m_ref.test1Fps(f), 2) : std::string("—")) << " |\n";
     }
-    md << "| " << upper(f) << " | " << renderCell(p, 3, true) << " | " << renderCell(rc, 3, true)
-       << " | " << pct(m_ref.test1TruePositiveRate(f)) << " | "
-       << pct(m_ref.test1TrueNegativeRate(f)) << " | " << renderCell(fps, 2, true) << " | "
-       << optNum(m_ref.test1Fps(f), 2) << " |\n";
-  }
+  md << "\n";
+}
+
+void CReportWriter::renderHueVerification(std::ostream& md, const TRecordList& t1) const
+{
+  bool any = false;
+  for (const auto* r : t1)
+    any = any || r->run.variant == "hue";
+  if (!any)
+    return;
+  md << "### ROI verified by the hue detector (variant hue, [RoiDetector] verify_hue)\n\n"
+        "Each cell: without → with verification.\n\n"
+        "| sequence | extractor | landmarks | precision | recall | frames with ROI |\n"
+        "|---|---|---|---|---|---|\n";
+  for (const auto& s : distinct(t1, [](const TRunRecord& r) { return r.run.sequence; }))
+    for (const auto& f : featuresOf(t1))
+    {
+      const TRunRecord* a = findVariantRun(t1, s, "", f);
+      const TRunRecord* b = findVariantRun(t1, s, "hue", f);
+      if (!a && !b)
+        continue;
+      const auto pair = [&](const char* key, int decimals)
+      {
+        const auto get = [&](const TRunRecord* r)
+        { return r && r->ok ? optNum(r->number(key), decimals) : std::string("n/a"); };
+        return get(a) + " → " + get(b);
+      };
+      md << "| " << s << " | " << upper(f) << " | " << pair("landmarks", 0) << " | "
+         << pair("precision", 3) << " | " << pair("recall", 3) << " | "
+         << pair("frames_with_roi", 0) << " |\n";
+    }
   md << "\n";
 }
 
@@ -600,6 +668,54 @@ void CReportWriter::renderSpeed(std::ostream& md, const TRecordList& t2) const
          << num(rss, 0) << " |\n";
     }
   md << "\n";
+}
+
+void CReportWriter::renderTest4(std::ostream& md, const TRecordList& t4) const
+{
+  md << "## Test 4 — EKF-SLAM on ROI landmarks (MRPT kf-slam), odometry alone, graph SLAM\n\n"
+        "EKF: roi-landmarks --kf-slam (MRPT's CRangeBearingKFSLAM on our landmark observations "
+        "and front-end odometry); odometry: the same front end alone (from the same run); graph "
+        "SLAM: roi-graphslam with that front end (big ROI). ATE RMSE (m), RPE translation (m) / "
+        "rotation (deg).\n\n"
+        "| sequence | extractor | EKF ATE | odometry ATE | graph SLAM ATE | EKF RPE | odometry "
+        "RPE | graph SLAM RPE |\n|---|---|---|---|---|---|---|---|\n";
+  std::array<std::vector<double>, 3> ates;
+  for (const auto& s : distinct(t4, [](const TRunRecord& r) { return r.run.sequence; }))
+    for (const auto& f : featuresOf(t4))
+    {
+      const TRunRecord* ekf = findRun(t4, s, "kf_slam", f);
+      const TRunRecord* graph = findRun(t4, s, "graph_slam", f);
+      if (!ekf && !graph)
+        continue;
+      const auto figure = [](const TRunRecord* r, const std::string& key, int decimals,
+                             std::vector<double>* collect = nullptr)
+      {
+        if (!r)
+          return std::string("—");
+        if (!r->ok)
+          return std::string("FAILED");
+        const auto v = r->number(key);
+        if (v && collect)
+          collect->push_back(*v);
+        return optNum(v, decimals);
+      };
+      const auto rpe = [&](const TRunRecord* r, const std::string& prefix)
+      {
+        return figure(r, prefix + "rpe_trans_rmse", 4) + " / " +
+               figure(r, prefix + "rpe_rot_rmse_deg", 2);
+      };
+      md << "| " << s << " | " << upper(f) << " | " << figure(ekf, "kf_slam.ate_rmse", 4, &ates[0])
+         << " | " << figure(ekf, "kf_slam.odometry_ate_rmse", 4, &ates[1]) << " | "
+         << figure(graph, "ate_rmse", 4, &ates[2]) << " | " << rpe(ekf, "kf_slam.") << " | "
+         << rpe(ekf, "kf_slam.odometry_") << " | " << rpe(graph, "") << " |\n";
+    }
+  md << "| **mean** | |";
+  for (const auto& a : ates)
+  {
+    const auto ms = meanStd(a);
+    md << " " << (ms ? num(ms->mean, 4) + " (n=" + std::to_string(ms->n) + ")" : "n/a") << " |";
+  }
+  md << " | | |\n\n";
 }
 
 void CReportWriter::renderFailures(std::ostream& md, const std::vector<TRunRecord>& records) const

@@ -2,7 +2,8 @@
  * per sequence (landmarks, false positives, false negatives), Tests 2-3 bar
  * charts per version x extractor with std error bars (ATE, RPE translation,
  * RPE rotation, duration), and a top-view trajectory plot per sequence and
- * extractor (ground truth vs each version, estimates aligned as for the ATE).
+ * extractor (ground truth vs each version, estimates aligned as for the ATE),
+ * and Test 4's ATE bars (EKF-SLAM, odometry alone, graph SLAM).
  * Each chart's data (.dat) and script (.gp) stay next to its PNG. Called by
  * CBenchApp; a chart whose data are all missing is not drawn.
  *
@@ -66,6 +67,10 @@ class CChartWriter
   std::optional<std::string> writeTrajectory(
       const std::string& dir, const std::string& sequence, const std::string& feature,
       const std::vector<const TRunRecord*>& runs);
+  /** Test 4: ATE of EKF-SLAM, odometry alone and graph SLAM per sequence
+   *  and extractor; nullopt without Test 4 runs. */
+  std::optional<std::string> writeTest4(
+      const std::vector<TRunRecord>& records, const std::string& dir);
   /** The gnuplot plot clause of run number idx (1-based) of a top view. */
   std::string trajectoryPlot(
       const std::string& dir, const std::string& name, int idx, const TRunRecord& run,
