@@ -8,8 +8,9 @@
  * Why not the kf-slam executable or KFSLAMApp: both write the robot path
  * only as one robot_pose file per step, and only together with the full
  * state covariance of that step (full_cov_NNNNN.txt, SAVE_LOG_FREQUENCY
- * drives both): (7 + 3 L)^2 numbers per frame, 250 MB for a 250-frame run
- * with 50 landmarks and tens of GB on full sequences. The integration test
+ * drives both): (7 + 3 L)^2 numbers per frame for L landmarks, 21 MB for
+ * fr1/rpy's 250 frames and 27 landmarks, several GB for full sequences with
+ * a few hundred. The integration test
  * runs the installed kf-slam on the same rawlog and ini and checks that its
  * robot_pose files are this class's path.
  *
