@@ -42,7 +42,10 @@ CBenchApp::CBenchApp(const TOptions& options) : m_options(options)
   md.erase(std::remove(md.begin(), md.end(), std::string()), md.end());
   m_options.plan.tests = CExperimentPlan::parseTests(m_options.tests);
   if (m_options.noDefaultVariants)
+  {
     m_options.plan.variants.clear();
+    m_options.plan.test1_variants.clear();
+  }
   for (const auto& spec : m_options.variantSpecs)
     m_options.plan.variants.push_back(TVariant::parse(spec));
   m_options.plan.validate();

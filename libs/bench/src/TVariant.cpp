@@ -66,6 +66,14 @@ std::vector<TVariant> defaultVariants()
            {{"FrontEnd", "strict_roi", "false"}, {"FrontEnd", "roi_feature_cap", "roi"}}}};
 }
 
+std::vector<TVariant> defaultTest1Variants()
+{
+  return {
+      {"hue",
+       "hue-verified ROI ([RoiDetector] verify_hue = true)",
+       {{"RoiDetector", "verify_hue", "true"}}}};
+}
+
 std::string applyIniOverrides(const std::string& iniText, const std::vector<TIniOverride>& ov)
 {
   std::vector<std::string> lines;

@@ -177,7 +177,7 @@ TPreparedFrame CRgbdOdometry::prepare(const io::TRGBDFrame& frame) const
   // Stage 1: the ROI (traditional mode: only for keyframes, StageKeyframe.cpp).
   if (isRoiMode(m_options.mode))
   {
-    p.roi = m_impl->roiDetector.detect(p.grey);
+    p.roi = m_impl->roiDetector.detect(p.grey, frame.rgb);
     p.roiDetected = true;
     p.roi_ms = msSince(t0);
   }

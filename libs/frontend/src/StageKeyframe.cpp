@@ -120,7 +120,7 @@ void CRgbdOdometry::insertKeyframe(TFrameWork& w, const mrpt::poses::CPose3D& po
     // Traditional mode: stage 1 for keyframes only, whose ROI the back end
     // uses as a landmark.
     const auto t0 = Clock::now();
-    if (const auto r = I.roiDetector.detect(w.in.grey))
+    if (const auto r = I.roiDetector.detect(w.in.grey, w.in.frame.rgb))
       res.roi = r->box;
     res.times.roi_ms += msSince(t0);
   }

@@ -115,12 +115,26 @@ void CSlamContext::TOptions::validate() const
     badKey("map_max_depth_m", "must be > 0");
 }
 
+namespace
+{
+/** The landmark pipeline's options for the back end's database: its
+ *  database and homography settings, the front end's matcher. */
+landmarks::TPipelineOptions landmarkOptions(const CSlamContext::TConfig& config)
+{
+  landmarks::TPipelineOptions o;
+  o.database = config.database;
+  o.matcher = config.frontEnd.matcher;
+  o.locator = config.locator;
+  o.roi = config.frontEnd.roi;
+  o.features = config.frontEnd.extractor;
+  return o;
+}
+}  // namespace
+
 CSlamContext::CSlamContext() : CSlamContext(TConfig()) {}
 
 CSlamContext::CSlamContext(const TConfig& config)
-    : m_config(config),
-      m_odometry(config.frontEnd),
-      m_database(config.database, config.frontEnd.matcher, config.locator)
+    : m_config(config), m_odometry(config.frontEnd), m_landmarks(landmarkOptions(config))
 {
   m_config.backEnd.validate();
 }
@@ -183,29 +197,16 @@ std::optional<int32_t> CSlamContext::observeLandmarks(std::size_t id)
     const auto roiFeatures = kf.features.subset(*kf.roi);
     if (roiFeatures.size() < 10)
       continue;
-    const auto q = m_database.query(roiFeatures, *kf.roi, m_imageSize);
-    landmarks::TLandmarkSighting s;
-    s.frame = kf.frameIndex;
-    s.timestamp = kf.timestamp;
-    s.box = *kf.roi;
-    int32_t lm = -1;
-    if (q.landmarkId)
-    {
-      lm = *q.landmarkId;
-      s.inliers = q.inliers;
-      m_database.addSighting(lm, s);
-      if (k == id)
-        recalled = lm;
-    }
-    else
-    {
-      landmarks::CLandmark l;
-      l.features = roiFeatures;
-      l.box = *kf.roi;
-      l.imageSize = m_imageSize;
-      l.sightings.push_back(s);
-      lm = m_database.add(std::move(l));
-    }
+    landmarks::TRegion region;
+    region.frame = kf.frameIndex;
+    region.timestamp = kf.timestamp;
+    region.box = *kf.roi;
+    region.imageSize = m_imageSize;
+    region.features = roiFeatures;
+    const auto seen = m_landmarks.processRegion(region).result;
+    const int32_t lm = seen.landmarkId;
+    if (!seen.newLandmark && k == id)
+      recalled = lm;
     m_sightings[lm].push_back(k);
   }
   return recalled;

@@ -3,6 +3,7 @@
 #include <mrpt/math/CMatrixFixed.h>
 #include <mrpt/poses/CPose3DQuat.h>
 
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <array>
 #include <cctype>
@@ -96,5 +97,34 @@ void saveTumTrajectory(
         << ' ' << formatDouble(y) << ' ' << formatDouble(z) << ' ' << formatDouble(w) << '\n';
   }
   tumtext::writeAtomically(file, out.str());
+}
+std::optional<mrpt::poses::CPose3D> poseAt(
+    const TTrajectory& gt, double t, double maxDifference, bool interpolate)
+{
+  if (gt.empty())
+    return std::nullopt;
+  // First stamp >= t; the nearest stamp is it or its predecessor.
+  const auto it = std::lower_bound(
+      gt.begin(), gt.end(), t, [](const TPoseStamped& p, double v) { return p.timestamp < v; });
+  const std::size_t hi = static_cast<std::size_t>(it - gt.begin());
+  std::size_t nearest = hi;
+  if (hi == gt.size() || (hi > 0 && t - gt[hi - 1].timestamp < gt[hi].timestamp - t))
+    nearest = hi - 1;
+  if (std::abs(gt[nearest].timestamp - t) > maxDifference)
+    return std::nullopt;
+  if (!interpolate || hi == 0 || hi == gt.size() || gt[hi].timestamp == t)
+    return gt[nearest].pose;
+
+  const auto& a = gt[hi - 1];
+  const auto& b = gt[hi];
+  const double s = (t - a.timestamp) / (b.timestamp - a.timestamp);
+  const Eigen::Quaterniond qa(a.pose.getRotationMatrix().asEigen());
+  const Eigen::Quaterniond qb(b.pose.getRotationMatrix().asEigen());
+  const Eigen::Matrix3d R = qa.slerp(s, qb).toRotationMatrix();
+  const auto ta = a.pose.translation();
+  const auto tb = b.pose.translation();
+  mrpt::math::CMatrixDouble33 Rm;
+  Rm.asEigen() = R;
+  return mrpt::poses::CPose3D(Rm, mrpt::math::CVectorFixedDouble<3>(ta + (tb - ta) * s));
 }
 }  // namespace roislam::io

@@ -4,6 +4,7 @@
 #include <mrpt/math/geometry.h>
 #include <mrpt/poses/CPose3DQuat.h>
 #include <mrpt/tfest/se3.h>
+#include <roislam/io/ObservationConversion.h>
 
 #include <algorithm>
 #include <cmath>
@@ -211,8 +212,7 @@ mrpt::math::TPoint3D opticalToMrptCamera(const mrpt::math::TPoint3D& p)
 
 mrpt::poses::CPose3D mrptCameraInOptical()
 {
-  // CPose3D(0,0,0,-90deg,0,-90deg) maps optical coordinates to MRPT camera
-  // coordinates, i.e. it is the optical frame seen from the MRPT frame.
-  return -mrpt::poses::CPose3D(0, 0, 0, mrpt::DEG2RAD(-90.0), 0, mrpt::DEG2RAD(-90.0));
+  // The convention of every roislam rawlog (io/ObservationConversion.h).
+  return io::tumSensorPose();
 }
 }  // namespace roislam::landmarks

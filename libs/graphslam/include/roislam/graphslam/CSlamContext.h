@@ -71,6 +71,7 @@
 #include <roislam/frontend/CRgbdOdometry.h>
 #include <roislam/io/TRGBDFrame.h>
 #include <roislam/landmarks/CLandmarkDatabase.h>
+#include <roislam/landmarks/CObservationProcessor.h>
 
 #include <cstddef>
 #include <map>
@@ -167,7 +168,7 @@ class CSlamContext
 
   frontend::CRgbdOdometry& odometry() { return m_odometry; }
   const frontend::CRgbdOdometry& odometry() const { return m_odometry; }
-  const landmarks::CLandmarkDatabase& database() const { return m_database; }
+  const landmarks::CLandmarkDatabase& database() const { return m_landmarks.tracker().database(); }
   const TConfig& config() const { return m_config; }
 
   /** Keeps what the back end needs of a front-end result: a new keyframe's
@@ -228,7 +229,9 @@ class CSlamContext
  private:
   TConfig m_config;
   frontend::CRgbdOdometry m_odometry;
-  landmarks::CLandmarkDatabase m_database;
+  /** The landmark database, reached through the observation processor (the
+   *  one path from a region to a landmark, as in roi-landmarks). */
+  landmarks::CObservationProcessor m_landmarks;
   std::optional<frontend::TFrameResult> m_last;
   std::vector<mrpt::maps::CColouredPointsMap> m_clouds;
   cv::Size m_imageSize;

@@ -20,14 +20,22 @@
  *                   wall_s/fps_wall: whole run)
  *  - optionally an annotated rawlog: per frame the CObservation3DRangeScan
  *    followed by its CObservationBearingRange (observation-only format).
+ *  - with kfSlam (--kf-slam): kf-slam.rawlog (per frame the front end's
+ *    odometry as a CActionRobotMovement3D and a CSensoryFrame with the
+ *    frame's CObservationBearingRange), kf-slam/trajectory.txt (MRPT's
+ *    EKF-SLAM, TUM), kf-slam/odometry.txt, kf-slam/landmarks.txt,
+ *    kf-slam.landmarks_gt.txt with ground truth, and summary.json's
+ *    "kf_slam" object (kfslam::CKfSlamSession; [KfSlam] options).
  * Every file is written under a temporary name and renamed when complete.
  * Called by apps/roi-landmarks (thin main) and the tests.
  */
 #pragma once
 
+#include <roislam/kfslam/CKfSlamSession.h>
 #include <roislam/landmarks/TPipelineOptions.h>
 
 #include <functional>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 
@@ -52,6 +60,8 @@ class CRoiLandmarksApp
     std::string camera = "auto";
     /** Process at most this many frames (0 = all). */
     std::size_t maxFrames = 0;
+    /** Also run MRPT's EKF-SLAM on the landmarks ([KfSlam] options). */
+    bool kfSlam = false;
     /** Progress lines (e.g. to stderr); may be empty. */
     std::function<void(const std::string&)> progress;
   };
@@ -61,6 +71,9 @@ class CRoiLandmarksApp
   {
     std::size_t frames = 0;
     std::size_t framesWithRoi = 0;
+    /** [RoiDetector] verify_hue: frames whose grey ROI the hue detector
+     *  did not confirm (they count as frames without a ROI). */
+    std::size_t framesRejectedByHue = 0;
     std::size_t confirmedRois = 0;
     std::size_t landmarks = 0;
     std::size_t recalls = 0;
@@ -86,6 +99,8 @@ class CRoiLandmarksApp
     double cpuS = 0;
     /** Wall time of the whole run including reading and writing. */
     double wallS = 0;
+    /** With kfSlam: summary.json's "kf_slam" object, else null. */
+    nlohmann::json kfSlam;
   };
 
   explicit CRoiLandmarksApp(TArguments arguments);
@@ -98,6 +113,9 @@ class CRoiLandmarksApp
   TSummary run();
 
  private:
+  void progress(const std::string& line) const;
+  kfslam::CKfSlamSession::TSetup kfSlamSetup() const;
+
   TArguments m_args;
   TPipelineOptions m_options;
 };

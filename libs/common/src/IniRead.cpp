@@ -1,11 +1,13 @@
-#include "IniRead.h"
+#include "roislam/common/IniRead.h"
+
+#include <roislam/common/IniErrors.h>
 
 #include <algorithm>
 #include <cctype>
 #include <sstream>
 #include <stdexcept>
 
-namespace roislam::landmarks::detail
+namespace roislam::common
 {
 namespace
 {
@@ -18,11 +20,6 @@ std::string trim(const std::string& s)
   return s.substr(b, e - b + 1);
 }
 }  // namespace
-
-void throwBadValue(const std::string& section, const std::string& key, const std::string& what)
-{
-  throw std::invalid_argument("[" + section + "] " + key + ": " + what);
-}
 
 std::string readString(
     const mrpt::config::CConfigFileBase& cfg, const std::string& section, const std::string& key,
@@ -50,7 +47,7 @@ double readDouble(
   }
   catch (const std::exception&)
   {
-    throwBadValue(section, key, "not a number '" + s + "'");
+    throwBadIniKey(section, key, "not a number '" + s + "'");
   }
 }
 
@@ -71,7 +68,7 @@ int readInt(
   }
   catch (const std::exception&)
   {
-    throwBadValue(section, key, "not an integer '" + s + "'");
+    throwBadIniKey(section, key, "not an integer '" + s + "'");
   }
 }
 
@@ -87,10 +84,10 @@ bool readBool(
     return true;
   if (s == "false" || s == "0" || s == "no" || s == "off")
     return false;
-  throwBadValue(section, key, "not a boolean '" + s + "'");
+  throwBadIniKey(section, key, "not a boolean '" + s + "'");
 }
 
-void require(
+void requireIni(
     bool ok, const std::string& section, const std::string& key, double value,
     const std::string& what)
 {
@@ -98,6 +95,6 @@ void require(
     return;
   std::ostringstream os;
   os << "must be " << what << " (got " << value << ")";
-  throwBadValue(section, key, os.str());
+  throwBadIniKey(section, key, os.str());
 }
-}  // namespace roislam::landmarks::detail
+}  // namespace roislam::common
