@@ -1,5 +1,7 @@
 #include <gtest/gtest.h>
+#include <mrpt/config/CConfigFileMemory.h>
 #include <roislam/common/IniErrors.h>
+#include <roislam/common/IniKeyCheck.h>
 #include <roislam/common/ProcessTuning.h>
 #include <roislam/common/StringLists.h>
 
@@ -39,6 +41,37 @@ TEST(IniErrors, MessageNamesSectionAndKey)
   {
     EXPECT_STREQ(e.what(), "[FrontEnd] min_inliers: must be >= 3");
   }
+}
+
+namespace
+{
+// Options that, like the front end's, save a sub-component into a fixed section.
+struct TNested : public mrpt::config::CLoadableOptions
+{
+  void loadFromConfigFile(const mrpt::config::CConfigFileBase&, const std::string&) override {}
+  void saveToConfigFile(mrpt::config::CConfigFileBase& c, const std::string& s) const override
+  {
+    c.write(s, "alpha", 1);
+    c.write(s, "Beta", 2);
+    c.write("Child", "gamma", 3);
+  }
+};
+}  // namespace
+
+TEST(IniKeyCheck, KnownKeysOfTheOwnAndOfAFixedSubSection)
+{
+  const TNested o;
+  EXPECT_EQ(knownIniKeys(o), (std::vector<std::string>{"alpha", "Beta"}));
+  EXPECT_EQ(knownIniKeys(o, "Parent"), (std::vector<std::string>{"alpha", "Beta"}));
+  EXPECT_EQ(knownIniKeys(o, "Parent", "Child"), (std::vector<std::string>{"gamma"}));
+  EXPECT_TRUE(knownIniKeys(o, "Parent", "Other").empty());
+
+  mrpt::config::CConfigFileMemory cfg;
+  cfg.write("Parent", "ALPHA", 5);  // case-insensitive, as MRPT's reader
+  EXPECT_NO_THROW(checkIniKeys(cfg, "Parent", knownIniKeys(o, "Parent"), "t.ini"));
+  cfg.write("Child", "alpha", 5);
+  EXPECT_THROW(
+      checkIniKeys(cfg, "Child", knownIniKeys(o, "Parent", "Child"), "t.ini"), std::runtime_error);
 }
 
 TEST(ProcessTuning, LargeImageBuffersComeFromTheHeap)

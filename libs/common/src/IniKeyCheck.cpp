@@ -17,13 +17,14 @@ std::string lower(std::string s)
 }
 }  // namespace
 
-std::vector<std::string> knownIniKeys(const mrpt::config::CLoadableOptions& options)
+std::vector<std::string> knownIniKeys(
+    const mrpt::config::CLoadableOptions& options, const std::string& section,
+    const std::string& keysSection)
 {
   mrpt::config::CConfigFileMemory mem;
-  const std::string section = "S";
   options.saveToConfigFile(mem, section);
   std::vector<std::string> keys;
-  mem.getAllKeys(section, keys);
+  mem.getAllKeys(keysSection.empty() ? section : keysSection, keys);
   return keys;
 }
 
