@@ -1,5 +1,6 @@
 #include "roislam/bench/CChartWriter.h"
 
+#include <mrpt/system/string_utils.h>
 #include <roislam/bench/CReportWriter.h>
 #include <roislam/bench/ProcessUtils.h>
 #include <roislam/evaluation/CTrajectoryEvaluator.h>
@@ -21,13 +22,6 @@ namespace roislam::bench
 namespace
 {
 const std::vector<std::string> kFeatures{"surf", "sift", "orb"};
-
-std::string upper(std::string s)
-{
-  for (char& c : s)
-    c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
-  return s;
-}
 
 std::string shortVersion(const TRunRecord& r)
 {
@@ -190,7 +184,7 @@ std::vector<std::string> CChartWriter::write(
       std::ostringstream dat;
       dat << "# version";
       for (const auto& f : feats)
-        dat << " " << upper(f) << " " << upper(f) << "_std";
+        dat << " " << mrpt::system::upperCase(f) << " " << mrpt::system::upperCase(f) << "_std";
       dat << "\n";
       bool any = false;
       double top = 0;  // highest mean + std: gnuplot's autoscale ignores error bars
@@ -236,7 +230,7 @@ std::vector<std::string> CChartWriter::write(
       {
         gp += (k ? ", '' " : "'" + name + ".dat' ") + std::string("using ") +
               std::to_string(2 + 2 * k) + ":" + std::to_string(3 + 2 * k) +
-              (k == 0 ? ":xtic(1)" : "") + " title " + gpQuote(upper(feats[k]));
+              (k == 0 ? ":xtic(1)" : "") + " title " + gpQuote(mrpt::system::upperCase(feats[k]));
       }
       gp += "\n";
       plot(dir, name, gp);
@@ -338,7 +332,7 @@ std::vector<std::string> CChartWriter::write(
     }
     std::string gp = header(
         name + ".png", W, H,
-        "Top view, " + key.first + ", " + upper(key.second) +
+        "Top view, " + key.first + ", " + mrpt::system::upperCase(key.second) +
             " (estimates aligned to the ground truth as for the ATE)");
     gp += "set key below\nset size ratio -1\nset grid\nset xlabel " +
           gpQuote(std::string(axisName[ax]) + " (m)") + "\nset ylabel " +

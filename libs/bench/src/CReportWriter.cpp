@@ -1,5 +1,6 @@
 #include "roislam/bench/CReportWriter.h"
 
+#include <mrpt/system/string_utils.h>
 #include <roislam/bench/ProcessUtils.h>
 
 #include <algorithm>
@@ -35,13 +36,6 @@ std::optional<TMeanStd> meanStd(const std::vector<double>& values)
 namespace
 {
 const std::vector<std::string> kFeatures{"surf", "sift", "orb"};
-
-std::string upper(std::string s)
-{
-  for (char& c : s)
-    c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
-  return s;
-}
 
 std::string num(double v, int decimals)
 {
@@ -209,7 +203,7 @@ std::string CReportWriter::render(const std::vector<TRunRecord>& records) const
     md << "Landmarks in the database / false positives / false negatives "
           "(n/a: no ground truth for landmark identity).\n\n| sequence |";
     for (const auto& f : feats)
-      md << " " << upper(f) << " | " << upper(f) << " diss. |";
+      md << " " << mrpt::system::upperCase(f) << " | " << mrpt::system::upperCase(f) << " diss. |";
     md << "\n|---|";
     for (std::size_t k = 0; k < feats.size(); ++k)
       md << "---|---|";
@@ -269,7 +263,7 @@ std::string CReportWriter::render(const std::vector<TRunRecord>& records) const
           "| sequence | extractor | status | frames with ROI | matches/frame | false "
           "matches/frame | duration (s) | fps |\n|---|---|---|---|---|---|---|---|\n";
     for (const auto* r : t1)
-      md << "| " << r->run.sequence << " | " << upper(r->run.feature) << " | "
+      md << "| " << r->run.sequence << " | " << mrpt::system::upperCase(r->run.feature) << " | "
          << (r->ok ? "ok" : "FAILED: " + r->failureReason) << " | "
          << optNum(r->number("frames_with_roi"), 0) << " | "
          << optNum(r->number("matches_per_frame"), 1) << " | "
@@ -308,8 +302,8 @@ std::string CReportWriter::render(const std::vector<TRunRecord>& records) const
       }
       const auto pct = [](std::optional<double> v)
       { return v ? num(100 * *v, 1) + " %" : std::string("—"); };
-      md << "| " << upper(f) << " | " << renderCell(p, 3, true) << " | " << renderCell(rc, 3, true)
-         << " | " << pct(m_ref.test1TruePositiveRate(f)) << " | "
+      md << "| " << mrpt::system::upperCase(f) << " | " << renderCell(p, 3, true) << " | "
+         << renderCell(rc, 3, true) << " | " << pct(m_ref.test1TruePositiveRate(f)) << " | "
          << pct(m_ref.test1TrueNegativeRate(f)) << " | " << renderCell(fps, 2, true) << " | "
          << optNum(m_ref.test1Fps(f), 2) << " |\n";
     }
@@ -387,7 +381,8 @@ std::string CReportWriter::render(const std::vector<TRunRecord>& records) const
     {
       md << "### " << title << "\n\n| version |";
       for (const auto& f : feats)
-        md << " " << upper(f) << " | " << upper(f) << " " << refLabel << " |";
+        md << " " << mrpt::system::upperCase(f) << " | " << mrpt::system::upperCase(f) << " "
+           << refLabel << " |";
       md << "\n|---|";
       for (std::size_t k = 0; k < feats.size(); ++k)
         md << "---|---|";
@@ -428,7 +423,7 @@ std::string CReportWriter::render(const std::vector<TRunRecord>& records) const
 
     md << "### Per sequence: ATE RMSE (m) / duration (s)\n\n| sequence | version |";
     for (const auto& f : feats)
-      md << " " << upper(f) << " |";
+      md << " " << mrpt::system::upperCase(f) << " |";
     md << "\n|---|---|";
     for (std::size_t k = 0; k < feats.size(); ++k)
       md << "---|";
@@ -468,7 +463,8 @@ std::string CReportWriter::render(const std::vector<TRunRecord>& records) const
   {
     const std::string f = t3.front()->run.feature;
     const int cap = t3.front()->run.maxFeatures;
-    md << "## Test 3 — reduced features: " << upper(f) << " capped at " << cap << "\n\n";
+    md << "## Test 3 — reduced features: " << mrpt::system::upperCase(f) << " capped at " << cap
+       << "\n\n";
     md << "| version | ATE RMSE (m) | diss. | RPE trans (m) | diss. | RPE rot (deg) | diss. | "
           "duration (s) | diss. (min) |\n|---|---|---|---|---|---|---|---|---|\n";
     for (const auto& vk : versionKeys(t3))
@@ -530,9 +526,10 @@ std::string CReportWriter::render(const std::vector<TRunRecord>& records) const
               any = true;
             }
         }
-        md << "| " << labelOf(t2, vk) << " | " << upper(f) << " | " << renderCell(fps, 2, true)
-           << " | " << (any && sumT > 0 ? num(sumV / sumT, 2) : std::string("n/a")) << " | "
-           << num(rss, 0) << " |\n";
+        md << "| " << labelOf(t2, vk) << " | " << mrpt::system::upperCase(f) << " | "
+           << renderCell(fps, 2, true) << " | "
+           << (any && sumT > 0 ? num(sumV / sumT, 2) : std::string("n/a")) << " | " << num(rss, 0)
+           << " |\n";
       }
     md << "\n";
   }

@@ -1,22 +1,13 @@
 #include "roislam/common/IniKeyCheck.h"
 
 #include <mrpt/config/CConfigFileMemory.h>
+#include <mrpt/system/string_utils.h>
 
 #include <algorithm>
-#include <cctype>
 #include <stdexcept>
 
 namespace roislam::common
 {
-namespace
-{
-std::string lower(std::string s)
-{
-  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return std::tolower(c); });
-  return s;
-}
-}  // namespace
-
 std::vector<std::string> knownIniKeys(
     const mrpt::config::CLoadableOptions& options, const std::string& section,
     const std::string& keysSection)
@@ -38,9 +29,9 @@ void checkIniKeys(
   cfg.getAllKeys(section, present);
   for (const auto& key : present)
   {
-    const std::string k = lower(key);
     const bool known = std::any_of(
-        knownKeys.begin(), knownKeys.end(), [&](const std::string& s) { return lower(s) == k; });
+        knownKeys.begin(), knownKeys.end(),
+        [&](const std::string& s) { return mrpt::system::strCmpI(s, key); });
     if (!known)
       throw std::runtime_error(
           "ini " + fileLabel + ": [" + section + "] unknown key '" + key + "'");

@@ -1,6 +1,7 @@
 #include "roislam/evaluation/CTrajectoryEvaluator.h"
 
 #include <mrpt/config/CConfigFileBase.h>
+#include <mrpt/system/string_utils.h>
 #include <roislam/io/StampAssociation.h>
 
 #include <Eigen/Dense>
@@ -114,9 +115,7 @@ double parseDouble(
     const mrpt::config::CConfigFileBase& cfg, const std::string& section, const std::string& key,
     double def)
 {
-  std::string text = cfg.read_string(section, key, "", false);
-  text.erase(0, text.find_first_not_of(" \t\r"));
-  text.erase(text.find_last_not_of(" \t\r") + 1);
+  const std::string text = mrpt::system::trim(cfg.read_string(section, key, "", false));
   if (text.empty())
     return def;
   double v = 0;

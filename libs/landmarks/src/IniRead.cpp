@@ -1,24 +1,12 @@
 #include "IniRead.h"
 
-#include <algorithm>
-#include <cctype>
+#include <mrpt/system/string_utils.h>
+
 #include <sstream>
 #include <stdexcept>
 
 namespace roislam::landmarks::detail
 {
-namespace
-{
-std::string trim(const std::string& s)
-{
-  const auto b = s.find_first_not_of(" \t\r\n");
-  if (b == std::string::npos)
-    return {};
-  const auto e = s.find_last_not_of(" \t\r\n");
-  return s.substr(b, e - b + 1);
-}
-}  // namespace
-
 void throwBadValue(const std::string& section, const std::string& key, const std::string& what)
 {
   throw std::invalid_argument("[" + section + "] " + key + ": " + what);
@@ -30,7 +18,7 @@ std::string readString(
 {
   if (!cfg.keyExists(section, key))
     return defaultValue;
-  return trim(cfg.read_string(section, key, defaultValue));
+  return mrpt::system::trim(cfg.read_string(section, key, defaultValue));
 }
 
 double readDouble(
@@ -79,10 +67,9 @@ bool readBool(
     const mrpt::config::CConfigFileBase& cfg, const std::string& section, const std::string& key,
     bool defaultValue)
 {
-  std::string s = readString(cfg, section, key, "");
+  const std::string s = mrpt::system::lowerCase(readString(cfg, section, key, ""));
   if (s.empty())
     return defaultValue;
-  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return std::tolower(c); });
   if (s == "true" || s == "1" || s == "yes" || s == "on")
     return true;
   if (s == "false" || s == "0" || s == "no" || s == "off")

@@ -1,6 +1,7 @@
 // CRgbdSimulator::TOptions: the [RgbdSimulator] ini section, read strictly
 // (every value must parse completely, unknown keys are errors), and checked.
 #include <mrpt/config/CConfigFileBase.h>
+#include <mrpt/system/string_utils.h>
 
 #include <cmath>
 #include <cstdint>
@@ -19,14 +20,6 @@ namespace roislam::sim
 {
 namespace
 {
-std::string trim(const std::string& s)
-{
-  const auto b = s.find_first_not_of(" \t\r\n");
-  if (b == std::string::npos)
-    return "";
-  return s.substr(b, s.find_last_not_of(" \t\r\n") - b + 1);
-}
-
 std::string fmtDouble(double v)
 {
   std::ostringstream o;
@@ -49,7 +42,7 @@ class CKeyReader
     m_known.insert(key);
     if (!m_cfg.keyExists(m_sec, key))
       return;
-    const std::string s = trim(m_cfg.read_string(m_sec, key, ""));
+    const std::string s = mrpt::system::trim(m_cfg.read_string(m_sec, key, ""));
     if (!parse(s, value))
       throw std::invalid_argument(
           "[" + m_sec + "] " + key + ": cannot parse '" + s + "' as " + typeName(value));
