@@ -2,6 +2,7 @@
 
 #include <mrpt/config/CConfigFileBase.h>
 #include <mrpt/system/string_utils.h>
+#include <roislam/geometry/RigidAlignment.h>
 #include <roislam/io/StampAssociation.h>
 
 #include <Eigen/Dense>
@@ -225,24 +226,12 @@ TEvaluationResult CTrajectoryEvaluator::evaluate(
     data.col(k) << g.x(), g.y(), g.z();
     model.col(k) << e.x(), e.y(), e.z();
   }
-  const Eigen::Vector3d modelMean = model.rowwise().mean();
-  const Eigen::Vector3d dataMean = data.rowwise().mean();
-  Eigen::Matrix3d W = Eigen::Matrix3d::Zero();
-  for (std::size_t k = 0; k < n; ++k)
-    W += (model.col(k) - modelMean) * (data.col(k) - dataMean).transpose();
-  // As align(): svd(W^T) = U diag(d) Vh, rot = U S Vh.
-  Eigen::JacobiSVD<Eigen::Matrix3d> svd(W.transpose(), Eigen::ComputeFullU | Eigen::ComputeFullV);
-  const Eigen::Matrix3d U = svd.matrixU();
-  const Eigen::Matrix3d V = svd.matrixV();
-  Eigen::Matrix3d S = Eigen::Matrix3d::Identity();
-  if (U.determinant() * V.determinant() < 0)
-    S(2, 2) = -1;
-  const Eigen::Matrix3d rot = U * S * V.transpose();
-  const Eigen::Vector3d trans = dataMean - rot * modelMean;
-
+  // align(): the least-squares rotation and translation (no scale) by SVD,
+  // which is what geometry::alignRigid (Eigen::umeyama) computes.
+  const geometry::TRigid T = geometry::alignRigid(data, model);
   std::vector<double> ateErrors(n);
   for (std::size_t k = 0; k < n; ++k)
-    ateErrors[k] = (rot * model.col(k) + trans - data.col(k)).norm();
+    ateErrors[k] = (T * model.col(k) - data.col(k)).norm();
   const TStats ate = computeStats(ateErrors);
   result.ate.rmse = ate.rmse;
   result.ate.mean = ate.mean;
@@ -251,15 +240,7 @@ TEvaluationResult CTrajectoryEvaluator::evaluate(
   result.ate.min = ate.min;
   result.ate.max = ate.max;
   result.ate.pairs = n;
-  mrpt::math::CMatrixDouble33 R;
-  mrpt::math::CVectorFixedDouble<3> t;
-  for (int r = 0; r < 3; ++r)
-  {
-    t[r] = trans[r];
-    for (int c = 0; c < 3; ++c)
-      R(r, c) = rot(r, c);
-  }
-  result.ate.alignment = mrpt::poses::CPose3D(R, t);
+  result.ate.alignment = T.toPose();
   result.aligned.reserve(est.size());
   for (const auto& p : est)
     result.aligned.push_back(io::TPoseStamped{p.timestamp, result.ate.alignment + p.pose});

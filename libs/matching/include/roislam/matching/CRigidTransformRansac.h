@@ -1,8 +1,10 @@
 /* 3-D rigid transform from putative point correspondences: minimal-sample
- * (3 pairs) RANSAC with Horn's closed-form absolute orientation, adaptive
- * number of iterations, and a least-squares fit on the final inliers.
- * Used by the SLAM front end (frame-to-keyframe motion, keyframe-to-keyframe
- * verification). Our own implementation rather than mrpt::tfest::se3_l2_robust
+ * (3 pairs) RANSAC with the closed-form alignment of geometry::alignRigid
+ * (Eigen::umeyama), adaptive number of iterations, and least-squares refits
+ * on the inliers. The one robust rigid estimator of the project: used by the
+ * SLAM front end (frame-to-keyframe motion, keyframe-to-keyframe
+ * verification) and the landmark database's 3-D recall check
+ * (landmarks::fitRigid). Our own implementation rather than mrpt::tfest::se3_l2_robust
  * because that one needs ~80 ms for 300 pairs (findings) and we need < 1 ms.
  */
 #pragma once
@@ -64,14 +66,6 @@ class CRigidTransformRansac
   std::optional<TRigidRansacResult> estimate(
       const std::vector<mrpt::math::TPoint3D>& target,
       const std::vector<mrpt::math::TPoint3D>& source) const;
-
-  /** Closed-form least-squares T (Horn / Umeyama, no scale) over the given
-   *  pair indices (all pairs when indices is empty); nullopt when degenerate
-   *  (fewer than 3 pairs or collinear points). */
-  static std::optional<mrpt::poses::CPose3D> fitLeastSquares(
-      const std::vector<mrpt::math::TPoint3D>& target,
-      const std::vector<mrpt::math::TPoint3D>& source,
-      const std::vector<std::size_t>& indices = {});
 
   const TOptions& options() const { return m_options; }
 

@@ -1,0 +1,216 @@
+/* roislam-rigid-bench: the closed-form rigid alignment (geometry::alignRigid)
+ * (Eigen::umeyama without scale, plus its degeneracy test) against the raw
+ * library candidates, Eigen::umeyama and mrpt::tfest::se3_l2 (Horn's
+ * quaternion method), and against the hand-written SVD loop the RANSAC had
+ * (svd_loop), on the uses it serves:
+ *  - Align/<method>/3: one minimal RANSAC sample (3 pairs out of 300, as
+ *    CRigidTransformRansac draws them);
+ *  - Align/<method>/<n>, n = 100, 250, 500: a least-squares refit on the n
+ *    inliers out of 500 pairs (CRigidTransformRansac's final refits) or an
+ *    ATE alignment of n associated poses (CTrajectoryEvaluator).
+ * Each method is given what its caller holds (Eigen points and an index list)
+ * and gathers what it needs, as it would in the caller.
+ * Counters: rot_err_urad / trans_err_um = mean error against the true motion
+ * (points 1-4 m ahead, 5 mm Gaussian noise, 64 random problems), and
+ * rot_vs_ours_urad = mean rotation difference from alignRigid's answer.
+ * Figures: libs/geometry/include/roislam/geometry/RigidAlignment.h.
+ * Run: build/tests/benchmark/roislam-rigid-bench --benchmark_repetitions=3
+ */
+#include <benchmark/benchmark.h>
+#include <mrpt/math/TPoint3D.h>
+#include <mrpt/poses/CPose3DQuat.h>
+#include <mrpt/tfest/se3.h>
+#include <roislam/geometry/RigidAlignment.h>
+
+#include <Eigen/Geometry>
+#include <cmath>
+#include <random>
+#include <vector>
+
+namespace
+{
+using roislam::geometry::TRigid;
+
+struct TProblem
+{
+  std::vector<Eigen::Vector3d> a, b;  // a ~= truth * b
+  std::vector<std::size_t> idx;       // the pairs to align
+  TRigid truth;
+};
+
+std::vector<TProblem> makeProblems(std::size_t pairs, std::size_t used)
+{
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(-1, 1);
+  std::normal_distribution<double> noise(0, 0.005);
+  std::vector<TProblem> out(64);
+  for (auto& p : out)
+  {
+    const Eigen::Vector3d axis = Eigen::Vector3d(u(rng), u(rng), u(rng)).normalized();
+    p.truth.R = Eigen::AngleAxisd(0.3 * u(rng), axis).toRotationMatrix();
+    p.truth.t = Eigen::Vector3d(u(rng), u(rng), u(rng)) * 0.2;
+    for (std::size_t i = 0; i < pairs; ++i)
+    {
+      const Eigen::Vector3d b(1.5 * u(rng), 1.0 * u(rng), 2.5 + 1.5 * u(rng));
+      p.b.push_back(b);
+      p.a.push_back(p.truth * b + Eigen::Vector3d(noise(rng), noise(rng), noise(rng)));
+    }
+    std::vector<std::size_t> all(pairs);
+    for (std::size_t i = 0; i < pairs; ++i)
+      all[i] = i;
+    std::shuffle(all.begin(), all.end(), rng);
+    p.idx.assign(all.begin(), all.begin() + static_cast<long>(used));
+  }
+  return out;
+}
+
+double angle(const Eigen::Matrix3d& R)
+{
+  return Eigen::AngleAxisd(R).angle();
+}
+
+TRigid ours(const TProblem& p)
+{
+  if (p.idx.size() == 3)
+  {
+    // As CRigidTransformRansac's minimal samples.
+    Eigen::Matrix3d A, B;
+    for (Eigen::Index k = 0; k < 3; ++k)
+    {
+      A.col(k) = p.a[p.idx[static_cast<std::size_t>(k)]];
+      B.col(k) = p.b[p.idx[static_cast<std::size_t>(k)]];
+    }
+    return roislam::geometry::alignRigid(A, B);
+  }
+  const auto [A, B] = roislam::geometry::gatherPairs(p.a, p.b, p.idx);
+  return roislam::geometry::alignRigid(A, B);
+}
+
+// The hand-written SVD loop the RANSAC had before (for the record).
+TRigid svdLoop(const TProblem& p)
+{
+  const std::size_t n = p.idx.size();
+  Eigen::Vector3d ca = Eigen::Vector3d::Zero(), cb = Eigen::Vector3d::Zero();
+  for (auto i : p.idx)
+  {
+    ca += p.a[i];
+    cb += p.b[i];
+  }
+  ca /= static_cast<double>(n);
+  cb /= static_cast<double>(n);
+  Eigen::Matrix3d S = Eigen::Matrix3d::Zero();
+  for (auto i : p.idx)
+    S += (p.a[i] - ca) * (p.b[i] - cb).transpose();
+  Eigen::JacobiSVD<Eigen::Matrix3d> svd(S, Eigen::ComputeFullU | Eigen::ComputeFullV);
+  Eigen::Matrix3d D = Eigen::Matrix3d::Identity();
+  if ((svd.matrixU() * svd.matrixV().transpose()).determinant() < 0)
+    D(2, 2) = -1;
+  TRigid T;
+  T.R = svd.matrixU() * D * svd.matrixV().transpose();
+  T.t = ca - T.R * cb;
+  return T;
+}
+
+TRigid umeyama(const TProblem& p)
+{
+  const auto n = static_cast<Eigen::Index>(p.idx.size());
+  Eigen::Matrix4d M;
+  if (n == 3)
+  {
+    Eigen::Matrix3d src, dst;
+    for (Eigen::Index k = 0; k < 3; ++k)
+    {
+      src.col(k) = p.b[p.idx[k]];
+      dst.col(k) = p.a[p.idx[k]];
+    }
+    M = Eigen::umeyama(src, dst, false);
+  }
+  else
+  {
+    Eigen::Matrix3Xd src(3, n), dst(3, n);
+    for (Eigen::Index k = 0; k < n; ++k)
+    {
+      src.col(k) = p.b[p.idx[k]];
+      dst.col(k) = p.a[p.idx[k]];
+    }
+    M = Eigen::umeyama(src, dst, false);
+  }
+  TRigid T;
+  T.R = M.topLeftCorner<3, 3>();
+  T.t = M.topRightCorner<3, 1>();
+  return T;
+}
+
+TRigid horn(const TProblem& p)
+{
+  std::vector<mrpt::math::TPoint3D> sa, sb;
+  sa.reserve(p.idx.size());
+  sb.reserve(p.idx.size());
+  for (auto i : p.idx)
+  {
+    sa.emplace_back(p.a[i].x(), p.a[i].y(), p.a[i].z());
+    sb.emplace_back(p.b[i].x(), p.b[i].y(), p.b[i].z());
+  }
+  mrpt::poses::CPose3DQuat q;
+  double scale = 1;
+  mrpt::tfest::se3_l2(sa, sb, q, scale, true);
+  const mrpt::poses::CPose3D pose(q);
+  return TRigid::fromPose(pose);
+}
+
+template <TRigid (*Method)(const TProblem&)>
+void Align(benchmark::State& state)
+{
+  const auto used = static_cast<std::size_t>(state.range(0));
+  const auto problems = makeProblems(used == 3 ? 300 : 500, used);
+  std::size_t i = 0;
+  for (auto _ : state)
+  {
+    const TRigid T = Method(problems[i++ % problems.size()]);
+    benchmark::DoNotOptimize(T.R.data());
+  }
+  double rotErr = 0, transErr = 0, vsOurs = 0;
+  for (const auto& p : problems)
+  {
+    const TRigid T = Method(p), O = ours(p);
+    rotErr += angle(T.R * p.truth.R.transpose());
+    transErr += (T.t - p.truth.t).norm();
+    vsOurs += angle(T.R * O.R.transpose());
+  }
+  const double n = static_cast<double>(problems.size());
+  state.counters["rot_err_urad"] = 1e6 * rotErr / n;
+  state.counters["trans_err_um"] = 1e6 * transErr / n;
+  state.counters["rot_vs_ours_urad"] = 1e6 * vsOurs / n;
+}
+// The degeneracy test the RANSAC adds to each minimal sample and refit.
+void Collinear(benchmark::State& state)
+{
+  const auto used = static_cast<std::size_t>(state.range(0));
+  const auto problems = makeProblems(used == 3 ? 300 : 500, used);
+  std::vector<Eigen::Matrix3Xd> sets;
+  for (const auto& p : problems)
+    sets.push_back(roislam::geometry::gatherPairs(p.a, p.b, p.idx).second);
+  std::size_t i = 0;
+  for (auto _ : state)
+  {
+    const auto& B = sets[i++ % sets.size()];
+    bool c = false;
+    if (used == 3)
+    {
+      const Eigen::Matrix3d B3 = B;
+      c = roislam::geometry::collinear(B3);
+    }
+    else
+      c = roislam::geometry::collinear(B);
+    benchmark::DoNotOptimize(c);
+  }
+}
+}  // namespace
+
+BENCHMARK(Collinear)->Arg(3)->Arg(250);
+BENCHMARK_TEMPLATE(Align, ours)->Name("Align/ours")->Arg(3)->Arg(100)->Arg(250)->Arg(500);
+BENCHMARK_TEMPLATE(Align, svdLoop)->Name("Align/svd_loop")->Arg(3)->Arg(100)->Arg(250)->Arg(500);
+BENCHMARK_TEMPLATE(Align, umeyama)->Name("Align/umeyama")->Arg(3)->Arg(100)->Arg(250)->Arg(500);
+BENCHMARK_TEMPLATE(Align, horn)->Name("Align/se3_l2")->Arg(3)->Arg(100)->Arg(250)->Arg(500);
+
+BENCHMARK_MAIN();
