@@ -2,14 +2,6 @@
 
 namespace roislam::frontend::detail
 {
-TRigid fromPose(const mrpt::poses::CPose3D& p)
-{
-  TRigid T;
-  T.R = p.getRotationMatrix().asEigen();
-  T.t = Eigen::Vector3d(p.x(), p.y(), p.z());
-  return T;
-}
-
 mrpt::poses::CPose3D toPose(const TRigid& T)
 {
   // Re-orthonormalise: repeated small updates accumulate rounding.
