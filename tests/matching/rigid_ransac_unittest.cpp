@@ -100,6 +100,31 @@ TEST(RigidRansac, DegenerateInputs)
   EXPECT_THROW(CRigidTransformRansac().estimate(line, {}), std::invalid_argument);
 }
 
+TEST(RigidRansac, MinSampleSpreadAndSmallRegions)
+{
+  // 40 pairs within a 6 cm cube (a ROI's features), 4 cm inlier gate: the
+  // default spread (2 x 4 cm) skips nearly every sample, 0 keeps them.
+  const CPose3D truth(0.05, -0.02, 0.01, 0.1, 0.05, -0.03);
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> u(-0.03, 0.03);
+  std::vector<TPoint3D> target, source;
+  for (int i = 0; i < 40; ++i)
+  {
+    source.emplace_back(u(rng), u(rng), 1.5 + u(rng));
+    target.push_back(truth.composePoint(source.back()));
+  }
+  CRigidTransformRansac::TOptions o;
+  o.threshold_m = 0.04;
+  EXPECT_FALSE(CRigidTransformRansac(o).estimate(target, source).has_value());
+  o.min_sample_spread = 0;
+  const auto r = CRigidTransformRansac(o).estimate(target, source);
+  ASSERT_TRUE(r.has_value());
+  EXPECT_EQ(r->inliers.size(), 40u);
+  EXPECT_LT((r->transform.translation() - truth.translation()).norm(), 1e-9);
+  o.min_sample_spread = -1;
+  EXPECT_THROW(CRigidTransformRansac{o}, std::invalid_argument);
+}
+
 TEST(RigidRansac, Deterministic)
 {
   const auto d = makeData(CPose3D(0.1, 0.2, 0.3, 0.2, 0.1, 0.0), 200, 0.5, 0.005, 11);
@@ -130,10 +155,12 @@ TEST(RigidRansac, OptionsValidationAndIni)
   CRigidTransformRansac::TOptions o3;
   o3.threshold_m = 0.05;
   o3.seed = 42;
+  o3.min_sample_spread = 0.5;
   mrpt::config::CConfigFileMemory out;
   o3.saveToConfigFile(out, "RigidRansac");
   CRigidTransformRansac::TOptions o4;
   o4.loadFromConfigFile(out, "RigidRansac");
   EXPECT_DOUBLE_EQ(o4.threshold_m, 0.05);
   EXPECT_EQ(o4.seed, 42u);
+  EXPECT_DOUBLE_EQ(o4.min_sample_spread, 0.5);
 }

@@ -1,15 +1,12 @@
 #include "roislam/landmarks/FeatureGeometry.h"
 
 #include <mrpt/core/bits_math.h>
-#include <mrpt/math/geometry.h>
-#include <mrpt/poses/CPose3DQuat.h>
-#include <mrpt/tfest/se3.h>
+#include <roislam/matching/CRigidTransformRansac.h>
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <opencv2/calib3d.hpp>
-#include <random>
 
 namespace roislam::landmarks
 {
@@ -98,78 +95,22 @@ std::optional<TRigidFit> fitRigid(
       va.push_back(a[i]);
       vb.push_back(b[i]);
     }
-  const std::size_t n = va.size();
-  if (n < 3)
+  matching::CRigidTransformRansac::TOptions o;
+  o.threshold_m = threshold;
+  o.max_iterations = iterations;
+  o.min_inliers = 3;  // the caller judges the count (min_rigid_inliers)
+  // A ROI's features lie within a few centimetres of each other: the front
+  // end's minimum sample spread (2 x threshold) rejected most samples and
+  // stored 56 landmarks instead of 27 on fr1/rpy (roi-landmarks, ORB, big).
+  o.min_sample_spread = 0;
+  const auto r = matching::CRigidTransformRansac(o).estimate(va, vb);
+  if (!r)
     return std::nullopt;
-
-  auto fit = [&](const std::vector<std::size_t>& idx) -> std::optional<mrpt::poses::CPose3D>
-  {
-    std::vector<mrpt::math::TPoint3D> sa, sb;
-    for (auto i : idx)
-    {
-      sa.push_back(va[i]);
-      sb.push_back(vb[i]);
-    }
-    mrpt::poses::CPose3DQuat q;
-    double scale = 1;
-    if (!mrpt::tfest::se3_l2(sa, sb, q, scale, true))
-      return std::nullopt;
-    const mrpt::poses::CPose3D p(q);
-    if (!std::isfinite(p.x()) || !std::isfinite(p.yaw()))
-      return std::nullopt;
-    return p;
-  };
-  auto inliersOf = [&](const mrpt::poses::CPose3D& p)
-  {
-    std::vector<std::size_t> in;
-    for (std::size_t i = 0; i < n; ++i)
-      if ((p.composePoint(vb[i]) - va[i]).norm() <= threshold)
-        in.push_back(i);
-    return in;
-  };
-
-  std::mt19937 rng(12345);  // deterministic: same input, same answer
-  std::uniform_int_distribution<std::size_t> pick(0, n - 1);
-  std::vector<std::size_t> best;
-  for (int it = 0; it < iterations; ++it)
-  {
-    const std::size_t i = pick(rng), j = pick(rng), k = pick(rng);
-    if (i == j || j == k || i == k)
-      continue;
-    // Nearly collinear samples give an ill-defined rotation.
-    const auto u = vb[j] - vb[i], v = vb[k] - vb[i];
-    if (mrpt::math::crossProduct3D(u, v).norm() < 1e-6)
-      continue;
-    const auto p = fit({i, j, k});
-    if (!p)
-      continue;
-    auto in = inliersOf(*p);
-    if (in.size() > best.size())
-      best = std::move(in);
-    if (best.size() == n)
-      break;
-  }
-  if (best.size() < 3)
-    return std::nullopt;
-  // Refit on the consensus set, then recount once with the refined pose.
-  auto p = fit(best);
-  if (!p)
-    return std::nullopt;
-  auto in = inliersOf(*p);
-  if (in.size() >= 3 && in.size() >= best.size())
-  {
-    if (auto p2 = fit(in))
-      p = p2;
-    best = std::move(in);
-  }
   TRigidFit out;
-  out.pose = *p;
-  out.pairs = static_cast<int>(n);
-  out.inliers = static_cast<int>(best.size());
-  double sq = 0;
-  for (auto i : best)
-    sq += (p->composePoint(vb[i]) - va[i]).sqrNorm();
-  out.rms = std::sqrt(sq / best.size());
+  out.pose = r->transform;
+  out.pairs = static_cast<int>(va.size());
+  out.inliers = static_cast<int>(r->inliers.size());
+  out.rms = r->rmse;
   return out;
 }
 

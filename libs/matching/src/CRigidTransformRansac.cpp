@@ -25,6 +25,8 @@ void check(const CRigidTransformRansac::TOptions& o, const std::string& s)
     common::throwBadIniKey(s, "confidence", "must be in (0, 1)");
   if (o.min_inliers < 3)
     common::throwBadIniKey(s, "min_inliers", "must be >= 3");
+  if (!(o.min_sample_spread >= 0))
+    common::throwBadIniKey(s, "min_sample_spread", "must be >= 0");
 }
 
 inline Eigen::Vector3d toEigen(const mrpt::math::TPoint3D& p)
@@ -56,6 +58,7 @@ void CRigidTransformRansac::TOptions::loadFromConfigFile(
   if (sd < 0)
     common::throwBadIniKey(s, "seed", "must be >= 0");
   seed = static_cast<std::uint32_t>(sd);
+  min_sample_spread = c.read_double(s, "min_sample_spread", min_sample_spread);
   check(*this, s);
 }
 
@@ -67,6 +70,7 @@ void CRigidTransformRansac::TOptions::saveToConfigFile(
   c.write(s, "confidence", confidence);
   c.write(s, "min_inliers", min_inliers);
   c.write(s, "seed", static_cast<int>(seed));
+  c.write(s, "min_sample_spread", min_sample_spread);
 }
 
 CRigidTransformRansac::CRigidTransformRansac() : CRigidTransformRansac(TOptions()) {}
@@ -95,6 +99,7 @@ std::optional<TRigidRansacResult> CRigidTransformRansac::estimate(
   }
   const double thr = m_options.threshold_m;
   const double thr2 = thr * thr;
+  const double minSpread = m_options.min_sample_spread * thr;
 
   auto countInliers = [&](const geometry::TRigid& T, std::vector<std::size_t>* out, double* sumSq)
   {
@@ -140,7 +145,7 @@ std::optional<TRigidRansacResult> CRigidTransformRansac::estimate(
     {
       const int q = (p + 1) % 3;
       const double da = (a[s[p]] - a[s[q]]).norm(), db = (b[s[p]] - b[s[q]]).norm();
-      if (std::abs(da - db) > 2 * thr || db < 2 * thr)
+      if (std::abs(da - db) > 2 * thr || db < minSpread)
         consistent = false;
     }
     if (!consistent)

@@ -65,11 +65,11 @@ struct TRigidFit
   double rms = 0;
 };
 
-/** Rigid transform between corresponding 3-D points: RANSAC over minimal
- *  3-pair samples (deterministic seed) with inlier distance `threshold`
- *  (metres), then Horn's closed form (mrpt::tfest::se3_l2) refitted on the
- *  inliers. Pairs with an invalid point are ignored. nullopt with fewer than
- *  3 valid pairs or no non-degenerate sample. */
+/** Rigid transform between corresponding 3-D points by
+ *  matching::CRigidTransformRansac (minimal 3-pair samples, deterministic
+ *  seed, at most `iterations` hypotheses, inlier distance `threshold` in
+ *  metres, least-squares refits on the inliers). Pairs with an invalid point
+ *  are ignored. nullopt with fewer than 3 valid pairs or agreeing inliers. */
 std::optional<TRigidFit> fitRigid(
     const std::vector<mrpt::math::TPoint3D>& a, const std::vector<mrpt::math::TPoint3D>& b,
     double threshold, int iterations = 100);

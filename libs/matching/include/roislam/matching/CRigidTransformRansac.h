@@ -41,6 +41,11 @@ class CRigidTransformRansac
    *                     reaches this, in (0,1)
    *  - min_inliers      fewer inliers -> no result, int >= 3    (default 8)
    *  - seed             random seed (deterministic runs)        (default 1)
+   *  - min_sample_spread  a minimal sample whose source points come closer
+   *                     to each other than this many threshold_m is
+   *                     skipped (its rotation is ill-conditioned), >= 0;
+   *                     0 keeps every non-collinear sample, as points in a
+   *                     small region need (a ROI landmark's)  (default 2)
    */
   struct TOptions : public mrpt::config::CLoadableOptions
   {
@@ -49,6 +54,7 @@ class CRigidTransformRansac
     double confidence = 0.995;
     int min_inliers = 8;
     std::uint32_t seed = 1;
+    double min_sample_spread = 2;
 
     void loadFromConfigFile(
         const mrpt::config::CConfigFileBase& source, const std::string& section) override;
