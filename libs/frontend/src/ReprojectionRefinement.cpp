@@ -1,5 +1,7 @@
 #include "ReprojectionRefinement.h"
 
+#include <mrpt/math/geometry.h>
+
 #include <algorithm>
 #include <cmath>
 
@@ -7,13 +9,6 @@ namespace roislam::frontend::detail
 {
 namespace
 {
-inline Eigen::Matrix3d skew(const Eigen::Vector3d& v)
-{
-  Eigen::Matrix3d S;
-  S << 0, -v.z(), v.y(), v.z(), 0, -v.x(), -v.y(), v.x(), 0;
-  return S;
-}
-
 // Projection and its Jacobian w.r.t. the 3-D point.
 inline bool project(
     const TPinhole& cam, const Eigen::Vector3d& X, Eigen::Vector2d& u,
@@ -53,7 +48,7 @@ void buildSystem(
         const double n = r.norm();
         const double w = n <= huber ? 1.0 : huber / n;
         Eigen::Matrix<double, 3, 6> Jx;
-        Jx << Eigen::Matrix3d::Identity(), -skew(X);
+        Jx << Eigen::Matrix3d::Identity(), mrpt::math::skew_symmetric3_neg(X).asEigen();
         const Eigen::Matrix<double, 2, 6> J = is * Jp * Jx;
         H.noalias() += w * J.transpose() * J;
         g.noalias() += w * J.transpose() * r;
@@ -71,7 +66,7 @@ void buildSystem(
         const double n = r.norm();
         const double w = n <= huber ? 1.0 : huber / n;
         Eigen::Matrix<double, 3, 6> Jx;
-        Jx << Eigen::Matrix3d::Identity(), -skew(c.a[i]);
+        Jx << Eigen::Matrix3d::Identity(), mrpt::math::skew_symmetric3_neg(c.a[i]).asEigen();
         const Eigen::Matrix<double, 2, 6> J = -is * Jp * Tinv.R * Jx;
         H.noalias() += w * J.transpose() * J;
         g.noalias() += w * J.transpose() * r;

@@ -1,5 +1,7 @@
 #include "RollingShutter.h"
 
+#include <roislam/geometry/Rotation.h>
+
 #include <cmath>
 
 namespace roislam::frontend::detail
@@ -22,8 +24,7 @@ TCameraRate cameraRate(const mrpt::poses::CPose3D& motion, double dt)
   TCameraRate r;
   if (!(dt > 0))
     return r;
-  const Eigen::AngleAxisd aa(motion.getRotationMatrix().asEigen());
-  r.omega = aa.axis() * (aa.angle() / dt);
+  r.omega = geometry::logSO3(motion.getRotationMatrix().asEigen()) / dt;
   r.linear = Eigen::Vector3d(motion.x(), motion.y(), motion.z()) / dt;
   if (!r.omega.allFinite() || !r.linear.allFinite() || r.omega.norm() > maxTurn ||
       r.linear.norm() > maxSpeed)
@@ -35,14 +36,10 @@ Eigen::Vector3d rectifyPoint(
     const cv::Point2f& rawPixel, double rawZ, double s, const TCameraRate& rate,
     const TPinhole& pinhole)
 {
-  Eigen::Vector3d X(
+  const Eigen::Vector3d X(
       (rawPixel.x - pinhole.cx) / pinhole.fx * rawZ, (rawPixel.y - pinhole.cy) / pinhole.fy * rawZ,
       rawZ);
-  const Eigen::Vector3d w = rate.omega * s;
-  const double a = w.norm();
-  if (a > 0)
-    X = Eigen::AngleAxisd(a, w / a) * X;
-  return X + rate.linear * s;
+  return geometry::expSO3(rate.omega * s) * X + rate.linear * s;
 }
 
 void rectifyRollingShutter(

@@ -5,7 +5,7 @@
  * as evaluate_ate.py's align(), which is the same SVD method).
  *
  * It is Eigen::umeyama without scale. Measured (tests/benchmark/
- * rigid_alignment_benchmark.cpp, 5 mm noise) all three candidates reach the
+ * geometry_benchmark.cpp, 5 mm noise) all three candidates reach the
  * same optimum: rotations agree with each other to 1e-10 rad. Wall time per
  * call on the 2-core development machine (shared, median of 6):
  * 3 pairs: umeyama 0.56 us, mrpt::tfest::se3_l2 0.82 us, our former

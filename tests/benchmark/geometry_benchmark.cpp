@@ -1,4 +1,6 @@
-/* roislam-rigid-bench: the closed-form rigid alignment (geometry::alignRigid)
+/* roislam-geometry-bench: libs/geometry against the library alternatives.
+ *
+ * 1. The closed-form rigid alignment (geometry::alignRigid)
  * (Eigen::umeyama without scale, plus its degeneracy test) against the raw
  * library candidates, Eigen::umeyama and mrpt::tfest::se3_l2 (Horn's
  * quaternion method), and against the hand-written SVD loop the RANSAC had
@@ -14,13 +16,23 @@
  * (points 1-4 m ahead, 5 mm Gaussian noise, 64 random problems), and
  * rot_vs_ours_urad = mean rotation difference from alignRigid's answer.
  * Figures: libs/geometry/include/roislam/geometry/RigidAlignment.h.
- * Run: build/tests/benchmark/roislam-rigid-bench --benchmark_repetitions=3
+ *
+ * 2. SO(3) exp and log (geometry::expSO3 / logSO3, Eigen::AngleAxisd) against
+ *    mrpt::poses::Lie::SO<3>: So3Exp|So3Log/<method>/<k>, rotation vectors of
+ *    1e-k rad (k = 9, 6, 3, 0) about 1000 random axes. Counters: exp_err =
+ *    largest entry error against Rodrigues' formula in long double, log_rel_err
+ *    = largest |log(R) - w| / |w| for R that formula's matrix.
+ *    Figures: libs/geometry/include/roislam/geometry/Rotation.h.
+ *
+ * Run: build/tests/benchmark/roislam-geometry-bench --benchmark_repetitions=3
  */
 #include <benchmark/benchmark.h>
 #include <mrpt/math/TPoint3D.h>
 #include <mrpt/poses/CPose3DQuat.h>
+#include <mrpt/poses/Lie/SO.h>
 #include <mrpt/tfest/se3.h>
 #include <roislam/geometry/RigidAlignment.h>
+#include <roislam/geometry/Rotation.h>
 
 #include <Eigen/Geometry>
 #include <cmath>
@@ -205,8 +217,99 @@ void Collinear(benchmark::State& state)
     benchmark::DoNotOptimize(c);
   }
 }
+// ---- SO(3) ----
+Eigen::Matrix3d rodriguesLongDouble(const Eigen::Vector3d& w)
+{
+  using L = long double;
+  const L x = w.x(), y = w.y(), z = w.z();
+  const L a = std::sqrt(x * x + y * y + z * z);
+  const L s = std::sin(a) / a, h = std::sin(a / 2), c = 2 * h * h / (a * a);  // (1 - cos a) / a^2
+  const L W[3][3] = {{0, -z, y}, {z, 0, -x}, {-y, x, 0}};
+  Eigen::Matrix3d R;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j)
+    {
+      L w2 = 0;
+      for (int k = 0; k < 3; ++k)
+        w2 += W[i][k] * W[k][j];
+      R(i, j) = static_cast<double>((i == j ? 1 : 0) + s * W[i][j] + c * w2);
+    }
+  return R;
+}
+
+std::vector<Eigen::Vector3d> rotationVectors(int k)
+{
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(-1, 1);
+  std::vector<Eigen::Vector3d> out(1000);
+  for (auto& w : out)
+    w = Eigen::Vector3d(u(rng), u(rng), u(rng)).normalized() * std::pow(10.0, -k);
+  return out;
+}
+
+Eigen::Matrix3d expEigen(const Eigen::Vector3d& w)
+{
+  return roislam::geometry::expSO3(w);
+}
+Eigen::Matrix3d expMrpt(const Eigen::Vector3d& w)
+{
+  mrpt::math::CVectorFixedDouble<3> v;
+  v[0] = w.x();
+  v[1] = w.y();
+  v[2] = w.z();
+  const mrpt::math::CMatrixDouble33 R = mrpt::poses::Lie::SO<3>::exp(v);
+  return R.asEigen();
+}
+Eigen::Vector3d logEigen(const Eigen::Matrix3d& R)
+{
+  return roislam::geometry::logSO3(R);
+}
+Eigen::Vector3d logMrpt(const Eigen::Matrix3d& R)
+{
+  const auto v = mrpt::poses::Lie::SO<3>::log(mrpt::math::CMatrixDouble33(R));
+  return {v[0], v[1], v[2]};
+}
+
+template <Eigen::Matrix3d (*Exp)(const Eigen::Vector3d&)>
+void So3Exp(benchmark::State& state)
+{
+  const auto ws = rotationVectors(static_cast<int>(state.range(0)));
+  std::size_t i = 0;
+  for (auto _ : state)
+  {
+    const Eigen::Matrix3d R = Exp(ws[i++ % ws.size()]);
+    benchmark::DoNotOptimize(R.data());
+  }
+  double err = 0;
+  for (const auto& w : ws)
+    err = std::max(err, (Exp(w) - rodriguesLongDouble(w)).cwiseAbs().maxCoeff());
+  state.counters["exp_err"] = err;
+}
+
+template <Eigen::Vector3d (*Log)(const Eigen::Matrix3d&)>
+void So3Log(benchmark::State& state)
+{
+  const auto ws = rotationVectors(static_cast<int>(state.range(0)));
+  std::vector<Eigen::Matrix3d> Rs;
+  for (const auto& w : ws)
+    Rs.push_back(rodriguesLongDouble(w));
+  std::size_t i = 0;
+  for (auto _ : state)
+  {
+    const Eigen::Vector3d w = Log(Rs[i++ % Rs.size()]);
+    benchmark::DoNotOptimize(w.data());
+  }
+  double err = 0;
+  for (std::size_t k = 0; k < ws.size(); ++k)
+    err = std::max(err, (Log(Rs[k]) - ws[k]).norm() / ws[k].norm());
+  state.counters["log_rel_err"] = err;
+}
 }  // namespace
 
+BENCHMARK_TEMPLATE(So3Exp, expEigen)->Name("So3Exp/angleaxis")->Arg(9)->Arg(6)->Arg(3)->Arg(0);
+BENCHMARK_TEMPLATE(So3Exp, expMrpt)->Name("So3Exp/mrpt_lie")->Arg(9)->Arg(6)->Arg(3)->Arg(0);
+BENCHMARK_TEMPLATE(So3Log, logEigen)->Name("So3Log/angleaxis")->Arg(9)->Arg(6)->Arg(3)->Arg(0);
+BENCHMARK_TEMPLATE(So3Log, logMrpt)->Name("So3Log/mrpt_lie")->Arg(9)->Arg(6)->Arg(3)->Arg(0);
 BENCHMARK(Collinear)->Arg(3)->Arg(250);
 BENCHMARK_TEMPLATE(Align, ours)->Name("Align/ours")->Arg(3)->Arg(100)->Arg(250)->Arg(500);
 BENCHMARK_TEMPLATE(Align, svdLoop)->Name("Align/svd_loop")->Arg(3)->Arg(100)->Arg(250)->Arg(500);
