@@ -24,6 +24,16 @@
  *    = largest |log(R) - w| / |w| for R that formula's matrix.
  *    Figures: libs/geometry/include/roislam/geometry/Rotation.h.
  *
+ * 3. Keypoint lifting (geometry::liftPixels + TPinhole::backProject) against
+ *    cv::rgbd::depthTo3dSparse: Lift/<method> on 10 frames of the shared
+ *    fr1/rpy sequence (every 25th; 600 ORB keypoints each; fr1 intrinsics
+ *    and distortion). depthTo3dSparse gets the keypoints' pixels and keeps
+ *    the points within the depth range. Counters: points per frame, and for
+ *    keypoints both lift: mean / max 3-D distance from liftPixels' point (mm)
+ *    and the share whose depth reading differs (it truncates the pixel).
+ *    Skipped without the shared data.
+ *    Figures: libs/geometry/include/roislam/geometry/KeypointLifting.h.
+ *
  * Run: build/tests/benchmark/roislam-geometry-bench --benchmark_repetitions=3
  */
 #include <benchmark/benchmark.h>
@@ -31,11 +41,16 @@
 #include <mrpt/poses/CPose3DQuat.h>
 #include <mrpt/poses/Lie/SO.h>
 #include <mrpt/tfest/se3.h>
+#include <roislam/geometry/KeypointLifting.h>
 #include <roislam/geometry/RigidAlignment.h>
 #include <roislam/geometry/Rotation.h>
 
 #include <Eigen/Geometry>
 #include <cmath>
+#include <filesystem>
+#include <opencv2/features2d.hpp>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/rgbd.hpp>
 #include <random>
 #include <vector>
 
@@ -304,8 +319,125 @@ void So3Log(benchmark::State& state)
     err = std::max(err, (Log(Rs[k]) - ws[k]).norm() / ws[k].norm());
   state.counters["log_rel_err"] = err;
 }
+// ---- Keypoint lifting ----
+struct TLiftData
+{
+  std::vector<cv::Mat> depth;                    // CV_32FC1 metres
+  std::vector<std::vector<cv::Point2f>> pixels;  // ORB keypoints
+};
+
+const TLiftData& liftData()
+{
+  static const TLiftData data = []
+  {
+    namespace fs = std::filesystem;
+    TLiftData d;
+    const fs::path seq =
+        fs::path(ROISLAM_SHARED_DATA_DIR) / "tum" / "rgbd_dataset_freiburg1_rpy_first250";
+    std::vector<fs::path> rgb, depth;
+    std::error_code ec;
+    for (const auto& [dir, out] : {std::pair{"rgb", &rgb}, std::pair{"depth", &depth}})
+      for (const auto& e : fs::directory_iterator(seq / dir, ec))
+        out->push_back(e.path());
+    std::sort(rgb.begin(), rgb.end());
+    std::sort(depth.begin(), depth.end());
+    auto orb = cv::ORB::create(600);
+    for (std::size_t i = 0; i < rgb.size() && i < depth.size(); i += 25)
+    {
+      const cv::Mat grey = cv::imread(rgb[i].string(), cv::IMREAD_GRAYSCALE);
+      const cv::Mat raw = cv::imread(depth[i].string(), cv::IMREAD_UNCHANGED);
+      if (grey.empty() || raw.type() != CV_16UC1)
+        continue;
+      cv::Mat z;
+      raw.convertTo(z, CV_32F, 1.0 / 5000);
+      std::vector<cv::KeyPoint> kps;
+      orb->detect(grey, kps);
+      std::vector<cv::Point2f> px;
+      for (const auto& k : kps)
+        px.push_back(k.pt);
+      d.depth.push_back(z);
+      d.pixels.push_back(px);
+    }
+    return d;
+  }();
+  return data;
+}
+
+// fr1 colour intrinsics and distortion (the shared data's README).
+const roislam::geometry::TPinhole kFr1{517.306408, 516.469215, 318.643040, 255.313989};
+const cv::Matx33d kFr1K(kFr1.fx, 0, kFr1.cx, 0, kFr1.fy, kFr1.cy, 0, 0, 1);
+const cv::Vec<double, 5> kFr1Dist(0.262383, -0.953104, -0.005358, 0.002628, 1.163314);
+
+/** Per keypoint: its point, NaN where it has none. */
+std::vector<Eigen::Vector3d> liftOurs(const cv::Mat& depth, const std::vector<cv::Point2f>& px)
+{
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  std::vector<Eigen::Vector3d> out(px.size(), Eigen::Vector3d::Constant(nan));
+  const auto l =
+      roislam::geometry::liftPixels(px, depth, kFr1K, kFr1Dist, roislam::geometry::TDepthRule());
+  for (int i : l.valid)
+    out[static_cast<std::size_t>(i)] = kFr1.backProject(
+        l.undistorted[static_cast<std::size_t>(i)], l.z[static_cast<std::size_t>(i)]);
+  return out;
+}
+
+std::vector<Eigen::Vector3d> liftSparse(const cv::Mat& depth, const std::vector<cv::Point2f>& px)
+{
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  std::vector<Eigen::Vector3d> out(px.size(), Eigen::Vector3d::Constant(nan));
+  cv::Mat p3;
+  cv::rgbd::depthTo3dSparse(depth, cv::Mat(kFr1K), px, p3);
+  const roislam::geometry::TDepthRule rule;
+  for (std::size_t i = 0; i < px.size(); ++i)
+  {
+    const cv::Vec3f& X = p3.at<cv::Vec3f>(static_cast<int>(i));
+    if (X[2] >= rule.min_depth_m && X[2] <= rule.max_depth_m)
+      out[i] = Eigen::Vector3d(X[0], X[1], X[2]);
+  }
+  return out;
+}
+
+template <std::vector<Eigen::Vector3d> (*Lifter)(const cv::Mat&, const std::vector<cv::Point2f>&)>
+void Lift(benchmark::State& state)
+{
+  const TLiftData& d = liftData();
+  if (d.depth.empty())
+  {
+    state.SkipWithError("no shared fr1/rpy data (ROISLAM_SHARED_DATA_DIR)");
+    return;
+  }
+  std::size_t i = 0;
+  for (auto _ : state)
+  {
+    const auto k = i++ % d.depth.size();
+    const auto pts = Lifter(d.depth[k], d.pixels[k]);
+    benchmark::DoNotOptimize(pts.data());
+  }
+  double lifted = 0, both = 0, sum = 0, worst = 0, depthDiffers = 0;
+  for (std::size_t k = 0; k < d.depth.size(); ++k)
+  {
+    const auto mine = liftOurs(d.depth[k], d.pixels[k]), theirs = Lifter(d.depth[k], d.pixels[k]);
+    for (std::size_t j = 0; j < mine.size(); ++j)
+    {
+      lifted += std::isfinite(theirs[j].z()) ? 1 : 0;
+      if (!std::isfinite(mine[j].z()) || !std::isfinite(theirs[j].z()))
+        continue;
+      const double e = (mine[j] - theirs[j]).norm();
+      both += 1;
+      sum += e;
+      worst = std::max(worst, e);
+      depthDiffers += std::abs(mine[j].z() - theirs[j].z()) > 1e-6 ? 1 : 0;
+    }
+  }
+  state.counters["points_per_frame"] = lifted / static_cast<double>(d.depth.size());
+  state.counters["mean_diff_mm"] = both > 0 ? 1e3 * sum / both : 0;
+  state.counters["max_diff_mm"] = 1e3 * worst;
+  state.counters["depth_differs"] = both > 0 ? depthDiffers / both : 0;
+}
 }  // namespace
 
+BENCHMARK_TEMPLATE(Lift, liftOurs)->Name("Lift/ours");
+BENCHMARK_TEMPLATE(Lift, liftSparse)->Name("Lift/depthTo3dSparse");
 BENCHMARK_TEMPLATE(So3Exp, expEigen)->Name("So3Exp/angleaxis")->Arg(9)->Arg(6)->Arg(3)->Arg(0);
 BENCHMARK_TEMPLATE(So3Exp, expMrpt)->Name("So3Exp/mrpt_lie")->Arg(9)->Arg(6)->Arg(3)->Arg(0);
 BENCHMARK_TEMPLATE(So3Log, logEigen)->Name("So3Log/angleaxis")->Arg(9)->Arg(6)->Arg(3)->Arg(0);

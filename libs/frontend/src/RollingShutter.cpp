@@ -6,16 +6,6 @@
 
 namespace roislam::frontend::detail
 {
-namespace
-{
-cv::Point2f project(const Eigen::Vector3d& X, const TPinhole& pinhole)
-{
-  return {
-      static_cast<float>(pinhole.fx * X.x() / X.z() + pinhole.cx),
-      static_cast<float>(pinhole.fy * X.y() / X.z() + pinhole.cy)};
-}
-}  // namespace
-
 // Beyond a full turn or 3 m per second (no hand-held camera) the motion is
 // taken as a failed registration: zero.
 TCameraRate cameraRate(const mrpt::poses::CPose3D& motion, double dt)
@@ -36,9 +26,7 @@ Eigen::Vector3d rectifyPoint(
     const cv::Point2f& rawPixel, double rawZ, double s, const TCameraRate& rate,
     const TPinhole& pinhole)
 {
-  const Eigen::Vector3d X(
-      (rawPixel.x - pinhole.cx) / pinhole.fx * rawZ, (rawPixel.y - pinhole.cy) / pinhole.fy * rawZ,
-      rawZ);
+  const Eigen::Vector3d X = pinhole.backProject(rawPixel, rawZ);
   return geometry::expSO3(rate.omega * s) * X + rate.linear * s;
 }
 
@@ -59,7 +47,7 @@ void rectifyRollingShutter(
     if (!(X.z() > 0))
       continue;
     lifted.z[k] = static_cast<float>(X.z());
-    lifted.undistorted[k] = project(X, pinhole);
+    lifted.undistorted[k] = pinhole.project(X);
   }
 }
 
@@ -89,7 +77,7 @@ void correctKeyframe(
     if (!(X.z() > 0))  // as in rectifyRollingShutter
       continue;
     k.points[j] = mrpt::math::TPoint3D(X.x(), X.y(), X.z());
-    k.pixels[j] = project(X, pinhole);
+    k.pixels[j] = pinhole.project(X);
   }
 }
 }  // namespace roislam::frontend::detail

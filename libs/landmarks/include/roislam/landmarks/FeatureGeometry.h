@@ -32,10 +32,10 @@ struct TFeatureDepth
 };
 
 /** Depth statistics and robust 3-D position of keypoints. depth: CV_32FC1
- *  metres (0 = none), registered to the colour camera; a keypoint without a
- *  reading at its pixel takes the median of the valid readings in its 3x3
- *  neighbourhood. Readings outside [minDepth, maxDepth] are ignored. Pixels are
- *  undistorted with the camera's distortion before back-projection. */
+ *  metres (0 = none), registered to the colour camera; which keypoints have a
+ *  depth is the project's one rule (geometry::liftPixels: the reading at the
+ *  keypoint's pixel within [minDepth, maxDepth], not on a depth edge); rays
+ *  go through the undistorted pixels. */
 TFeatureDepth featureDepth(
     const std::vector<cv::KeyPoint>& keypoints, const cv::Mat& depth,
     const mrpt::img::TCamera& camera, double minDepth, double maxDepth);
