@@ -147,7 +147,7 @@ TEST(FeatureGeometry, OpticalToMrptCamera)
 TEST(ObservationProcessor, ScanToFrameConversion)
 {
   mrpt::obs::CObservation3DRangeScan scan;
-  EXPECT_THROW(CObservationProcessor::frameFromScan(scan), std::invalid_argument);
+  EXPECT_THROW(CObservationProcessor::frameFromScan(scan), std::runtime_error);
   scan.timestamp = mrpt::Clock::fromDouble(42.0);
   scan.cameraParams = scan.cameraParamsIntensity = test::testCamera();
   scan.hasIntensityImage = true;
@@ -164,8 +164,14 @@ TEST(ObservationProcessor, ScanToFrameConversion)
   EXPECT_NEAR(f.depth.at<float>(100, 200), 1.5f, 1e-6);
   ASSERT_EQ(f.rgb.type(), CV_8UC3);
   EXPECT_EQ(f.rgb.at<cv::Vec3b>(5, 5), cv::Vec3b(10, 20, 30));
+  // Ranges along the pixel rays become depths along the optical axis.
   scan.range_is_depth = false;
-  EXPECT_THROW(CObservationProcessor::frameFromScan(scan), std::invalid_argument);
+  const auto cam = test::testCamera();
+  const int u = 600, v = 50;
+  const double kx = (u - cam.cx()) / cam.fx(), ky = (v - cam.cy()) / cam.fy();
+  EXPECT_NEAR(
+      CObservationProcessor::frameFromScan(scan).depth.at<float>(v, u),
+      1.5 / std::sqrt(1 + kx * kx + ky * ky), 1e-6);
 }
 
 TEST(ObservationProcessor, ProcessesFramesAndScansEndToEnd)

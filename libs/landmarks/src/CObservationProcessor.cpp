@@ -1,10 +1,9 @@
 #include "roislam/landmarks/CObservationProcessor.h"
 
 #include <mrpt/system/datetime.h>
+#include <roislam/io/ObservationConversion.h>
 
 #include <cmath>
-#include <opencv2/imgproc.hpp>
-#include <stdexcept>
 
 #include "roislam/landmarks/FeatureGeometry.h"
 
@@ -84,38 +83,6 @@ mrpt::obs::CObservationBearingRange::Ptr CObservationProcessor::makeObservation(
 
 io::TRGBDFrame CObservationProcessor::frameFromScan(const mrpt::obs::CObservation3DRangeScan& scan)
 {
-  if (!scan.hasIntensityImage)
-    throw std::invalid_argument(
-        "CObservation3DRangeScan '" + scan.sensorLabel + "' has no intensity image");
-  if (!scan.hasRangeImage)
-    throw std::invalid_argument(
-        "CObservation3DRangeScan '" + scan.sensorLabel + "' has no range image");
-  if (!scan.range_is_depth)
-    throw std::invalid_argument(
-        "CObservation3DRangeScan '" + scan.sensorLabel +
-        "': range images must hold depth (range_is_depth)");
-  io::TRGBDFrame f;
-  f.timestamp = mrpt::Clock::toDouble(scan.timestamp);
-  f.depthTimestamp = f.timestamp;
-  f.camera = scan.cameraParamsIntensity;
-  const cv::Mat img = scan.intensityImage.asCvMat<cv::Mat>(mrpt::img::SHALLOW_COPY);
-  if (img.channels() == 1)
-    cv::cvtColor(img, f.rgb, cv::COLOR_GRAY2BGR);
-  else
-    f.rgb = img.clone();
-  const auto& range = scan.rangeImage;
-  f.depth.create(static_cast<int>(range.rows()), static_cast<int>(range.cols()), CV_32FC1);
-  for (int r = 0; r < f.depth.rows; ++r)
-  {
-    float* row = f.depth.ptr<float>(r);
-    for (int c = 0; c < f.depth.cols; ++c)
-      row[c] = range(r, c) * scan.rangeUnits;
-  }
-  if (f.depth.size() != f.rgb.size())
-    throw std::invalid_argument(
-        "CObservation3DRangeScan '" + scan.sensorLabel + "': range image " +
-        std::to_string(f.depth.cols) + "x" + std::to_string(f.depth.rows) +
-        " does not match the intensity image");
-  return f;
+  return io::observationToFrame(scan, "CObservation3DRangeScan '" + scan.sensorLabel + "'");
 }
 }  // namespace roislam::landmarks

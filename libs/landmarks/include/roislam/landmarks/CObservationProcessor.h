@@ -68,7 +68,8 @@ class CObservationProcessor
       const mrpt::img::TCamera& camera, double timestamp, const mrpt::poses::CPose3D& sensorPose,
       const TObservationOptions& options);
 
-  /** A TRGBDFrame from a scan (colour -> BGR, range image -> metres). */
+  /** A TRGBDFrame from a scan: io::observationToFrame (the one conversion;
+   *  std::runtime_error naming the sensor label on a bad scan). */
   static io::TRGBDFrame frameFromScan(const mrpt::obs::CObservation3DRangeScan& scan);
 
   const CRoiLandmarkTracker& tracker() const { return m_tracker; }
