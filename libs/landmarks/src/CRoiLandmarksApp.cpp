@@ -6,19 +6,15 @@
 
 #include <chrono>
 #include <cmath>
-#include <condition_variable>
 #include <cstdio>
-#include <deque>
-#include <exception>
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
-#include <mutex>
 #include <nlohmann/json.hpp>
 #include <opencv2/imgcodecs.hpp>
 #include <sstream>
-#include <thread>
 
+#include "roislam/io/CFramePrefetcher.h"
 #include "roislam/io/CFrameSource.h"
 #include "roislam/io/TumTrajectory.h"
 #include "roislam/landmarks/CLandmarkScorer.h"
@@ -30,80 +26,6 @@ namespace roislam::landmarks
 {
 namespace
 {
-/** Reads frames on a second thread (PNG decoding costs about as much as the
- *  ORB pipeline), a few frames ahead of the consumer. */
-class CFramePrefetcher
-{
- public:
-  CFramePrefetcher(io::CFrameSource& source, std::size_t maxFrames)
-      : m_thread([this, &source, maxFrames] { run(source, maxFrames); })
-  {
-  }
-  ~CFramePrefetcher()
-  {
-    {
-      std::lock_guard<std::mutex> lock(m_mutex);
-      m_stop = true;
-    }
-    m_cv.notify_all();
-    m_thread.join();
-  }
-
-  /** The next frame, nullopt at the end; rethrows the reader's exception. */
-  std::optional<io::TRGBDFrame> next()
-  {
-    std::unique_lock<std::mutex> lock(m_mutex);
-    m_cv.wait(lock, [&] { return !m_queue.empty() || m_done; });
-    if (m_queue.empty())
-    {
-      if (m_error)
-        std::rethrow_exception(m_error);
-      return std::nullopt;
-    }
-    io::TRGBDFrame f = std::move(m_queue.front());
-    m_queue.pop_front();
-    m_cv.notify_all();
-    return f;
-  }
-
- private:
-  void run(io::CFrameSource& source, std::size_t maxFrames)
-  {
-    try
-    {
-      for (std::size_t n = 0; maxFrames == 0 || n < maxFrames; ++n)
-      {
-        auto f = source.next();
-        std::unique_lock<std::mutex> lock(m_mutex);
-        if (!f || m_stop)
-          break;
-        m_queue.push_back(std::move(*f));
-        m_cv.notify_all();
-        m_cv.wait(lock, [&] { return m_queue.size() < kDepth || m_stop; });
-        if (m_stop)
-          break;
-      }
-    }
-    catch (...)
-    {
-      std::lock_guard<std::mutex> lock(m_mutex);
-      m_error = std::current_exception();
-    }
-    std::lock_guard<std::mutex> lock(m_mutex);
-    m_done = true;
-    m_cv.notify_all();
-  }
-
-  static constexpr std::size_t kDepth = 4;
-  std::mutex m_mutex;
-  std::condition_variable m_cv;
-  std::deque<io::TRGBDFrame> m_queue;
-  bool m_done = false;
-  bool m_stop = false;
-  std::exception_ptr m_error;
-  std::thread m_thread;  // last: starts after the other members exist
-};
-
 void writeTextAtomically(const std::string& file, const std::string& text)
 {
   const std::string tmp = file + ".tmp";
@@ -264,10 +186,12 @@ CRoiLandmarksApp::TSummary CRoiLandmarksApp::run()
   std::vector<std::size_t> eventRow;
   TSummary sum;
   {
-    CFramePrefetcher frames(*source, m_args.maxFrames);
-    while (auto frame = frames.next())
+    // Decoding a frame costs about as much as the ORB pipeline: a few ahead.
+    io::CFramePrefetcher<> frames(*source, 4, {}, m_args.maxFrames);
+    while (auto item = frames.next())
     {
-      auto out = processor.process(*frame);
+      const io::TRGBDFrame& frame = item->frame;
+      auto out = processor.process(frame);
       const TFrameResult& r = out.result;
       sum.durationS += r.seconds;
       sum.cpuS += r.cpuSeconds;
@@ -287,7 +211,7 @@ CRoiLandmarksApp::TSummary CRoiLandmarksApp::run()
       if (rawlog)
       {
         auto ar = mrpt::serialization::archiveFrom(*rawlog);
-        ar << makeScan(*frame, imagesDir, m_options.observations.sensor_pose) << *out.observation;
+        ar << makeScan(frame, imagesDir, m_options.observations.sensor_pose) << *out.observation;
       }
       results.push_back(r);
       if (results.size() % 50 == 0)
