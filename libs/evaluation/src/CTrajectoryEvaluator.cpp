@@ -1,20 +1,18 @@
 #include "roislam/evaluation/CTrajectoryEvaluator.h"
 
 #include <mrpt/config/CConfigFileBase.h>
-#include <mrpt/system/string_utils.h>
+#include <roislam/common/IniRead.h>
 #include <roislam/geometry/RigidAlignment.h>
 #include <roislam/io/StampAssociation.h>
 
 #include <Eigen/Dense>
 #include <algorithm>
-#include <charconv>
 #include <cmath>
 #include <limits>
 #include <numeric>
 #include <set>
 #include <sstream>
 #include <stdexcept>
-#include <system_error>
 
 namespace roislam::evaluation
 {
@@ -111,23 +109,6 @@ std::string num(double v)
   ss << v;
   return ss.str();
 }
-
-double parseDouble(
-    const mrpt::config::CConfigFileBase& cfg, const std::string& section, const std::string& key,
-    double def)
-{
-  const std::string text = mrpt::system::trim(cfg.read_string(section, key, "", false));
-  if (text.empty())
-    return def;
-  double v = 0;
-  const char* first = text.data();
-  if (*first == '+')
-    ++first;
-  const auto [ptr, ec] = std::from_chars(first, text.data() + text.size(), v);
-  if (ec != std::errc() || ptr != text.data() + text.size() || !std::isfinite(v))
-    throw std::invalid_argument("[" + section + "] " + key + ": not a number: '" + text + "'");
-  return v;
-}
 }  // namespace
 
 std::string toString(CTrajectoryEvaluator::TDeltaUnit unit)
@@ -158,9 +139,9 @@ void CTrajectoryEvaluator::TOptions::validate(const std::string& section) const
 void CTrajectoryEvaluator::TOptions::loadFromConfigFile(
     const mrpt::config::CConfigFileBase& cfg, const std::string& section)
 {
-  max_difference = parseDouble(cfg, section, "max_difference", max_difference);
-  offset = parseDouble(cfg, section, "offset", offset);
-  delta = parseDouble(cfg, section, "delta", delta);
+  max_difference = common::readDouble(cfg, section, "max_difference", max_difference);
+  offset = common::readDouble(cfg, section, "offset", offset);
+  delta = common::readDouble(cfg, section, "delta", delta);
   const std::string unit = cfg.read_string(section, "delta_unit", toString(delta_unit), false);
   try
   {

@@ -2,12 +2,14 @@
 // (every value must parse completely, unknown keys are errors), and checked.
 #include <mrpt/config/CConfigFileBase.h>
 #include <mrpt/system/string_utils.h>
+#include <roislam/common/IniRead.h>
 
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
 #include <iomanip>
 #include <limits>
+#include <optional>
 #include <set>
 #include <sstream>
 #include <stdexcept>
@@ -58,33 +60,21 @@ class CKeyReader
   }
 
  private:
-  static bool parse(const std::string& s, double& v)
+  // The text rules are common's (common/IniRead.h); the policy (a present
+  // key must hold a value) is this reader's.
+  template <typename T>
+  static bool assign(const std::optional<T>& parsed, T& v)
   {
-    if (s.empty())
-      return false;
-    char* end = nullptr;
-    v = std::strtod(s.c_str(), &end);
-    return *end == '\0' && std::isfinite(v);
+    if (parsed)
+      v = *parsed;
+    return parsed.has_value();
   }
+  static bool parse(const std::string& s, double& v) { return assign(common::parseDouble(s), v); }
   static bool parse(const std::string& s, unsigned& v)
   {
-    if (s.empty() || s[0] == '-')
-      return false;
-    char* end = nullptr;
-    const unsigned long long x = std::strtoull(s.c_str(), &end, 10);
-    if (*end != '\0' || x > std::numeric_limits<uint32_t>::max())
-      return false;
-    v = static_cast<unsigned>(x);
-    return true;
+    return assign(common::parseUnsigned(s), v);
   }
-  static bool parse(const std::string& s, bool& v)
-  {
-    if (s == "true" || s == "1" || s == "yes" || s == "on")
-      return v = true, true;
-    if (s == "false" || s == "0" || s == "no" || s == "off")
-      return v = false, true;
-    return false;
-  }
+  static bool parse(const std::string& s, bool& v) { return assign(common::parseBool(s), v); }
   static bool parse(const std::string& s, std::string& v)
   {
     v = s;
