@@ -43,9 +43,14 @@ T readWith(
 }
 }  // namespace
 
+std::optional<double> parseNumber(const std::string& text)
+{
+  return parseWhole<double>(text);
+}
+
 std::optional<double> parseDouble(const std::string& text)
 {
-  const auto v = parseWhole<double>(text);
+  const auto v = parseNumber(text);
   if (!v || !std::isfinite(*v))
     return std::nullopt;
   return v;

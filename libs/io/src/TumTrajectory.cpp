@@ -2,6 +2,7 @@
 
 #include <mrpt/math/CMatrixFixed.h>
 #include <mrpt/poses/CPose3DQuat.h>
+#include <roislam/common/IniRead.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -20,20 +21,6 @@ namespace roislam::io
 {
 namespace
 {
-/** Parses one number like Python's float() on a stripped token (an optional
- *  leading '+' is allowed; "nan" is accepted and later skips the line). */
-bool parseNumber(const std::string& token, double& value)
-{
-  const char* first = token.data();
-  const char* last = token.data() + token.size();
-  if (first != last && *first == '+')
-    ++first;
-  if (first == last)
-    return false;
-  const auto [ptr, ec] = std::from_chars(first, last, value);
-  return ec == std::errc() && ptr == last;
-}
-
 /** Pose from a (not necessarily unit) quaternion, built as the benchmark's
  *  evaluate_rpe.py transform44() does: q scaled by sqrt(2/|q|^2), then the
  *  outer-product form of the rotation matrix; a near-zero |q|^2 gives identity. */
@@ -111,9 +98,12 @@ TTrajectory loadTumTrajectory(const std::string& file)
     bool hasNan = false;
     for (std::size_t k = 0; k < 8; ++k)
     {
-      if (!parseNumber(tokens[k], v[k]))
+      // As Python's float(): "nan" is accepted and later skips the line.
+      const auto parsed = common::parseNumber(tokens[k]);
+      if (!parsed)
         throw std::runtime_error(
             file + ":" + std::to_string(lineNo) + ": not a number: '" + tokens[k] + "'");
+      v[k] = *parsed;
       if (std::isnan(v[k]))
         hasNan = true;
       else if (std::isinf(v[k]))

@@ -4,8 +4,9 @@
  * std::invalid_argument "[<section>] <key>: not a number: '<text>'" (the
  * throwBadIniKey format). An absent or empty key gives the default. The
  * parse* functions are the text rules alone, for readers with their own
- * policy (the simulator's). Used by the landmarks, the simulator and the
- * trajectory evaluator.
+ * policy (the simulator's) and for text files (io's TUM lists and
+ * trajectories). Used by the landmarks, the simulator, the trajectory
+ * evaluator and io.
  */
 #pragma once
 
@@ -16,6 +17,9 @@
 
 namespace roislam::common
 {
+/** All of text is a decimal number, "inf" or "nan" (an optional leading
+ *  '+'), as Python's float() of a stripped token. */
+std::optional<double> parseNumber(const std::string& text);
 /** All of text is a finite decimal number (an optional leading '+'). */
 std::optional<double> parseDouble(const std::string& text);
 /** All of text is a decimal integer of int's range (an optional sign). */
