@@ -33,22 +33,6 @@ using namespace roislam::iotest;
 
 namespace
 {
-template <typename F>
-void expectError(F&& fn, const std::string& part)
-{
-  try
-  {
-    fn();
-    ADD_FAILURE() << "no exception, expected one mentioning '" << part << "'";
-  }
-  catch (const std::exception& e)
-  {
-    const std::string what = e.what();
-    EXPECT_NE(what.find(part), std::string::npos) << "message: " << what;
-    EXPECT_EQ(what.find('\n'), std::string::npos) << "not one line: " << what;
-  }
-}
-
 CTum2RawlogApp::TResult convert(const std::string& in, const std::string& out)
 {
   CTum2RawlogApp::TOptions o;

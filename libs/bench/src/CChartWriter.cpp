@@ -1,5 +1,6 @@
 #include "roislam/bench/CChartWriter.h"
 
+#include <mrpt/system/string_utils.h>
 #include <roislam/bench/CReportWriter.h>
 #include <roislam/bench/ProcessUtils.h>
 #include <roislam/evaluation/CTrajectoryEvaluator.h>
@@ -21,13 +22,6 @@ namespace roislam::bench
 namespace
 {
 const std::vector<std::string> kFeatures{"surf", "sift", "orb"};
-
-std::string upper(std::string s)
-{
-  for (char& c : s)
-    c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
-  return s;
-}
 
 std::string shortVersion(const TRunRecord& r)
 {
@@ -156,7 +150,7 @@ std::optional<std::string> CChartWriter::writeTest4(
   double top = 0;
   for (const auto& [s, f] : keys)
   {
-    dat << gpQuote(s + " " + upper(f));
+    dat << gpQuote(s + " " + mrpt::system::upperCase(f));
     for (const auto& v :
          {value(s, f, "kf_slam", "kf_slam.ate_rmse"),
           value(s, f, "kf_slam", "kf_slam.odometry_ate_rmse"),
@@ -294,7 +288,7 @@ std::optional<std::string> CChartWriter::writeVersionChart(
   std::ostringstream dat;
   dat << "# version";
   for (const auto& f : feats)
-    dat << " " << upper(f) << " " << upper(f) << "_std";
+    dat << " " << mrpt::system::upperCase(f) << " " << mrpt::system::upperCase(f) << "_std";
   dat << "\n";
   bool any = false;
   double top = 0;  // highest mean + std: gnuplot's autoscale ignores error bars
@@ -341,7 +335,7 @@ std::optional<std::string> CChartWriter::writeVersionChart(
   {
     gp += (k ? ", '' " : "'" + name + ".dat' ") + std::string("using ") +
           std::to_string(2 + 2 * k) + ":" + std::to_string(3 + 2 * k) + (k == 0 ? ":xtic(1)" : "") +
-          " title " + gpQuote(upper(feats[k]));
+          " title " + gpQuote(mrpt::system::upperCase(feats[k]));
   }
   gp += "\n";
   plot(dir, name, gp);
@@ -406,7 +400,7 @@ std::optional<std::string> CChartWriter::writeTrajectory(
     plots += trajectoryPlot(dir, name, ++idx, *r, gt, ax, ay);
   std::string gp = header(
       name + ".png", m_options.width, m_options.height,
-      "Top view, " + sequence + ", " + upper(feature) +
+      "Top view, " + sequence + ", " + mrpt::system::upperCase(feature) +
           " (estimates aligned to the ground truth as for the ATE)");
   gp += "set key below\nset size ratio -1\nset grid\nset xlabel " +
         gpQuote(std::string(axisName[ax]) + " (m)") + "\nset ylabel " +

@@ -1,6 +1,7 @@
 #include "roislam/bench/ProcessUtils.h"
 
 #include <fcntl.h>
+#include <mrpt/system/string_utils.h>
 #include <signal.h>
 #include <spawn.h>
 #include <sys/resource.h>
@@ -147,12 +148,10 @@ std::optional<std::string> findOnPath(const std::string& name)
   const char* path = std::getenv("PATH");
   if (!path || name.empty())
     return std::nullopt;
-  std::stringstream ss(path);
-  std::string dir;
-  while (std::getline(ss, dir, ':'))
+  std::vector<std::string> dirs;
+  mrpt::system::tokenize(path, ":", dirs);
+  for (const auto& dir : dirs)
   {
-    if (dir.empty())
-      continue;
     const fs::path p = fs::path(dir) / name;
     if (fs::is_regular_file(p) && access(p.c_str(), X_OK) == 0)
       return p.string();

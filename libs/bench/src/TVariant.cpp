@@ -1,5 +1,7 @@
 #include "roislam/bench/TVariant.h"
 
+#include <mrpt/system/string_utils.h>
+
 #include <cctype>
 #include <sstream>
 #include <stdexcept>
@@ -8,13 +10,11 @@ namespace roislam::bench
 {
 namespace
 {
+// Lines of raw ini text end in '\r' in CRLF files, which mrpt::system::trim
+// (blanks and tabs) keeps.
 std::string trim(const std::string& s)
 {
-  const auto b = s.find_first_not_of(" \t\r");
-  if (b == std::string::npos)
-    return {};
-  const auto e = s.find_last_not_of(" \t\r");
-  return s.substr(b, e - b + 1);
+  return mrpt::system::trim(!s.empty() && s.back() == '\r' ? s.substr(0, s.size() - 1) : s);
 }
 }  // namespace
 

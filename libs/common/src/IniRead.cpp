@@ -1,25 +1,85 @@
 #include "roislam/common/IniRead.h"
 
+#include <mrpt/system/string_utils.h>
 #include <roislam/common/IniErrors.h>
 
-#include <algorithm>
-#include <cctype>
+#include <charconv>
+#include <cmath>
+#include <limits>
 #include <sstream>
-#include <stdexcept>
+#include <system_error>
 
 namespace roislam::common
 {
 namespace
 {
-std::string trim(const std::string& s)
+/** from_chars over all of text, after an optional '+' (which it refuses). */
+template <typename T>
+std::optional<T> parseWhole(const std::string& text)
 {
-  const auto b = s.find_first_not_of(" \t\r\n");
-  if (b == std::string::npos)
-    return {};
-  const auto e = s.find_last_not_of(" \t\r\n");
-  return s.substr(b, e - b + 1);
+  const char* first = text.data();
+  const char* last = text.data() + text.size();
+  if (first != last && *first == '+')
+    ++first;
+  T v{};
+  const auto [ptr, ec] = std::from_chars(first, last, v);
+  if (first == last || ec != std::errc() || ptr != last)
+    return std::nullopt;
+  return v;
+}
+
+template <typename T, typename Parse>
+T readWith(
+    const mrpt::config::CConfigFileBase& cfg, const std::string& section, const std::string& key,
+    T defaultValue, Parse parse, const char* what)
+{
+  const std::string s = readString(cfg, section, key, "");
+  if (s.empty())
+    return defaultValue;
+  const auto v = parse(s);
+  if (!v)
+    throwBadIniKey(section, key, std::string("not ") + what + ": '" + s + "'");
+  return *v;
 }
 }  // namespace
+
+std::optional<double> parseNumber(const std::string& text)
+{
+  return parseWhole<double>(text);
+}
+
+std::optional<double> parseDouble(const std::string& text)
+{
+  const auto v = parseNumber(text);
+  if (!v || !std::isfinite(*v))
+    return std::nullopt;
+  return v;
+}
+
+std::optional<int> parseInt(const std::string& text)
+{
+  return parseWhole<int>(text);
+}
+
+std::optional<unsigned> parseUnsigned(const std::string& text)
+{
+  if (!text.empty() && text[0] == '-')
+    return std::nullopt;
+  const auto v = parseWhole<unsigned long long>(text);
+  if (!v || *v > std::numeric_limits<uint32_t>::max())
+    return std::nullopt;
+  return static_cast<unsigned>(*v);
+}
+
+std::optional<bool> parseBool(const std::string& text)
+{
+  const std::string s = mrpt::system::lowerCase(text);
+  if (s == "true" || s == "1" || s == "yes" || s == "on")
+    return true;
+  if (s == "false" || s == "0" || s == "no" || s == "off")
+    return false;
+  return std::nullopt;
+}
 
 std::string readString(
     const mrpt::config::CConfigFileBase& cfg, const std::string& section, const std::string& key,
@@ -27,67 +87,31 @@ std::string readString(
 {
   if (!cfg.keyExists(section, key))
     return defaultValue;
-  return trim(cfg.read_string(section, key, defaultValue));
+  return mrpt::system::trim(cfg.read_string(section, key, defaultValue));
 }
 
 double readDouble(
     const mrpt::config::CConfigFileBase& cfg, const std::string& section, const std::string& key,
     double defaultValue)
 {
-  const std::string s = readString(cfg, section, key, "");
-  if (s.empty())
-    return defaultValue;
-  try
-  {
-    std::size_t used = 0;
-    const double v = std::stod(s, &used);
-    if (used != s.size())
-      throw std::invalid_argument(s);
-    return v;
-  }
-  catch (const std::exception&)
-  {
-    throwBadIniKey(section, key, "not a number '" + s + "'");
-  }
+  return readWith(cfg, section, key, defaultValue, parseDouble, "a number");
 }
 
 int readInt(
     const mrpt::config::CConfigFileBase& cfg, const std::string& section, const std::string& key,
     int defaultValue)
 {
-  const std::string s = readString(cfg, section, key, "");
-  if (s.empty())
-    return defaultValue;
-  try
-  {
-    std::size_t used = 0;
-    const int v = std::stoi(s, &used);
-    if (used != s.size())
-      throw std::invalid_argument(s);
-    return v;
-  }
-  catch (const std::exception&)
-  {
-    throwBadIniKey(section, key, "not an integer '" + s + "'");
-  }
+  return readWith(cfg, section, key, defaultValue, parseInt, "an integer");
 }
 
 bool readBool(
     const mrpt::config::CConfigFileBase& cfg, const std::string& section, const std::string& key,
     bool defaultValue)
 {
-  std::string s = readString(cfg, section, key, "");
-  if (s.empty())
-    return defaultValue;
-  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return std::tolower(c); });
-  if (s == "true" || s == "1" || s == "yes" || s == "on")
-    return true;
-  if (s == "false" || s == "0" || s == "no" || s == "off")
-    return false;
-  throwBadIniKey(section, key, "not a boolean '" + s + "'");
+  return readWith(cfg, section, key, defaultValue, parseBool, "a boolean");
 }
 
-void requireIni(
+void require(
     bool ok, const std::string& section, const std::string& key, double value,
     const std::string& what)
 {

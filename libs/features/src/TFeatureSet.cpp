@@ -1,15 +1,14 @@
 #include "roislam/features/TFeatureSet.h"
 
-#include <algorithm>
-#include <cctype>
+#include <mrpt/system/string_utils.h>
+
 #include <stdexcept>
 
 namespace roislam::features
 {
 EFeatureType featureTypeFromString(const std::string& s)
 {
-  std::string l(s);
-  std::transform(l.begin(), l.end(), l.begin(), [](unsigned char c) { return std::tolower(c); });
+  const std::string l = mrpt::system::lowerCase(s);
   if (l == "sift")
     return EFeatureType::SIFT;
   if (l == "surf")

@@ -1,5 +1,6 @@
 /* Keypoints to 3-D points with the registered depth image: which keypoints
- * have usable depth, and the feature sets (TKeyframe layout) built from them.
+ * have usable depth (the project's one depth rule, geometry::liftPixels), and
+ * the feature sets (TKeyframe layout) built from them.
  * The rolling-shutter correction of the lifted points is in RollingShutter.h.
  */
 #pragma once

@@ -1,4 +1,3 @@
-#include <mrpt/config/CConfigFileMemory.h>
 #include <mrpt/containers/yaml.h>
 #include <mrpt/graphslam/levmarq.h>
 #include <mrpt/system/CTicTac.h>
@@ -368,19 +367,6 @@ std::map<const void*, std::shared_ptr<CSlamContext>>& registry()
   static std::map<const void*, std::shared_ptr<CSlamContext>> r;
   return r;
 }
-
-/** Keys a TOptions writes into each section (saveToConfigFile is symmetric
- *  with loadFromConfigFile for all our options). */
-std::vector<std::string> keysOf(
-    const mrpt::config::CLoadableOptions& o, const std::string& saveSection,
-    const std::string& section)
-{
-  mrpt::config::CConfigFileMemory mem;
-  o.saveToConfigFile(mem, saveSection);
-  std::vector<std::string> keys;
-  mem.getAllKeys(section, keys);
-  return keys;
-}
 }  // namespace
 
 std::shared_ptr<CSlamContext> CSlamContext::forGraph(const void* graph)
@@ -407,14 +393,12 @@ CSlamContext::TConfig CSlamContext::loadConfig(
   TConfig c;
   // Front-end options save their sub-component sections under fixed names.
   for (const std::string s : {"FrontEnd", "RoiDetector", "FeatureExtractor", "FeatureMatcher"})
-    common::checkIniKeys(cfg, s, keysOf(c.frontEnd, "FrontEnd", s), fileLabel);
-  common::checkIniKeys(cfg, "GraphSlam", keysOf(c.backEnd, "GraphSlam", "GraphSlam"), fileLabel);
+    common::checkIniKeys(cfg, s, common::knownIniKeys(c.frontEnd, "FrontEnd", s), fileLabel);
+  common::checkIniKeys(cfg, "GraphSlam", common::knownIniKeys(c.backEnd, "GraphSlam"), fileLabel);
   common::checkIniKeys(
-      cfg, "LandmarkDatabase", keysOf(c.database, "LandmarkDatabase", "LandmarkDatabase"),
-      fileLabel);
+      cfg, "LandmarkDatabase", common::knownIniKeys(c.database, "LandmarkDatabase"), fileLabel);
   common::checkIniKeys(
-      cfg, "HomographyLocator", keysOf(c.locator, "HomographyLocator", "HomographyLocator"),
-      fileLabel);
+      cfg, "HomographyLocator", common::knownIniKeys(c.locator, "HomographyLocator"), fileLabel);
   try
   {
     c.frontEnd.loadFromConfigFile(cfg, "FrontEnd");

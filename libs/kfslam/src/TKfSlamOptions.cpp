@@ -36,11 +36,11 @@ void TKfSlamOptions::validate(const std::string& s) const
   if (odometry_covariance != "frontend" && odometry_covariance != "fixed")
     common::throwBadIniKey(
         s, "odometry_covariance", "expected frontend or fixed, got '" + odometry_covariance + "'");
-  common::requireIni(odometry_sigma_m >= 0, s, "odometry_sigma_m", odometry_sigma_m, ">= 0");
-  common::requireIni(odometry_sigma_deg >= 0, s, "odometry_sigma_deg", odometry_sigma_deg, ">= 0");
+  common::require(odometry_sigma_m >= 0, s, "odometry_sigma_m", odometry_sigma_m, ">= 0");
+  common::require(odometry_sigma_deg >= 0, s, "odometry_sigma_deg", odometry_sigma_deg, ">= 0");
   if (odometry_covariance == "fixed" && odometry_sigma_m == 0 && odometry_sigma_deg == 0)
     common::throwBadIniKey(s, "odometry_sigma_m", "odometry_covariance = fixed needs a sigma > 0");
-  common::requireIni(weak_sigma_m > 0, s, "weak_sigma_m", weak_sigma_m, "> 0");
-  common::requireIni(weak_sigma_deg > 0, s, "weak_sigma_deg", weak_sigma_deg, "> 0");
+  common::require(weak_sigma_m > 0, s, "weak_sigma_m", weak_sigma_m, "> 0");
+  common::require(weak_sigma_deg > 0, s, "weak_sigma_deg", weak_sigma_deg, "> 0");
 }
 }  // namespace roislam::kfslam

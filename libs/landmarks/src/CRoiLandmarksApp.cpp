@@ -13,7 +13,7 @@
 #include <opencv2/imgcodecs.hpp>
 #include <sstream>
 
-#include "CFramePrefetcher.h"
+#include "roislam/io/CFramePrefetcher.h"
 #include "roislam/common/TextFiles.h"
 #include "roislam/io/CFrameSource.h"
 #include "roislam/io/ObservationConversion.h"
@@ -28,7 +28,6 @@ namespace roislam::landmarks
 {
 namespace
 {
-using detail::CFramePrefetcher;
 
 std::string frameName(uint64_t frame)
 {
@@ -373,9 +372,11 @@ TFrameLog processFrames(
     kfslam::CKfSlamSession* kfSlam, const std::function<void(const std::string&)>& progress)
 {
   TFrameLog log;
-  CFramePrefetcher frames(source, maxFrames);
-  while (auto frame = frames.next())
+  // Decoding a frame costs about as much as the ORB pipeline: a few ahead.
+  io::CFramePrefetcher<> frames(source, 4, {}, maxFrames);
+  while (auto item = frames.next())
   {
+    const io::TRGBDFrame* frame = &item->frame;
     auto out = processor.process(*frame);
     const TFrameResult& r = out.result;
     if (r.newLandmark)

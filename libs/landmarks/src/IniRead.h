@@ -1,5 +1,5 @@
-/* Private: the strict ini readers (roislam/common/IniRead.h) under the names
- * the landmark pipeline's loaders use. */
+/* Private: the landmarks' TOptions loaders read their values strictly with
+ * common's readers (common/IniRead.h); errors name the section and key. */
 #pragma once
 
 #include <roislam/common/IniErrors.h>
@@ -13,17 +13,11 @@ using common::readBool;
 using common::readDouble;
 using common::readInt;
 using common::readString;
+using common::require;
 
 [[noreturn]] inline void throwBadValue(
     const std::string& section, const std::string& key, const std::string& what)
 {
   common::throwBadIniKey(section, key, what);
-}
-
-inline void require(
-    bool ok, const std::string& section, const std::string& key, double value,
-    const std::string& what)
-{
-  common::requireIni(ok, section, key, value, what);
 }
 }  // namespace roislam::landmarks::detail

@@ -66,18 +66,18 @@ void CRoiDetector::TOptions::loadFromConfigFile(
     common::throwBadIniKey(s, "canny_high", "must be >= canny_low");
   if (!(min_area_fraction >= 0 && min_area_fraction < 1))
     common::throwBadIniKey(s, "min_area_fraction", "must be in [0, 1)");
-  common::requireIni(
+  common::require(
       hue_canny_low_deg > 0 && hue_canny_low_deg <= 180, s, "hue_canny_low_deg", hue_canny_low_deg,
       "in (0, 180]");
-  common::requireIni(
+  common::require(
       hue_canny_high_deg >= hue_canny_low_deg && hue_canny_high_deg <= 180, s, "hue_canny_high_deg",
       hue_canny_high_deg, "in [hue_canny_low_deg, 180]");
-  common::requireIni(
+  common::require(
       hue_min_saturation >= 0 && hue_min_saturation <= 1, s, "hue_min_saturation",
       hue_min_saturation, "in [0, 1]");
-  common::requireIni(
+  common::require(
       hue_min_value >= 0 && hue_min_value <= 1, s, "hue_min_value", hue_min_value, "in [0, 1]");
-  common::requireIni(
+  common::require(
       hue_min_iou > 0 && hue_min_iou <= 1, s, "hue_min_iou", hue_min_iou, "in (0, 1]");
 }
 
