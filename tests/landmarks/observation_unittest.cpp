@@ -95,14 +95,16 @@ TEST(FeatureGeometry, DepthStatisticsAndPositionOnAPlane)
     kps.emplace_back(cv::Point2f(400 + 10 * i, 300), 5.f);
   kps.emplace_back(cv::Point2f(100, 100), 5.f);  // left half, 1 m
   kps.emplace_back(cv::Point2f(-5, 100), 5.f);   // outside the image: ignored
-  depth.at<float>(301, 600) = 0;                 // no reading...
-  kps.emplace_back(cv::Point2f(600, 301), 5.f);  // ...takes its neighbours' 2 m
+  depth.at<float>(301, 600) = 0;                 // no reading: no depth (the
+  kps.emplace_back(cv::Point2f(600, 301), 5.f);  // neighbours' is not borrowed)
+  depth.at<float>(200, 501) = 0;                 // a hole beside a keypoint...
+  kps.emplace_back(cv::Point2f(500, 200), 5.f);  // ...does not matter (no edge test)
   const auto d = featureDepth(kps, depth, cam, 0.1, 8.0);
   EXPECT_EQ(d.valid, 7);
   EXPECT_NEAR(d.mean, (6 * 2.0 + 1.0) / 7, 1e-6);
   EXPECT_NEAR(d.median, 2.0, 1e-6);
   ASSERT_TRUE(d.position);
-  // Median x over u = 400..440 (2 m), 600 (2 m), 100 (1 m): u = 420 at 2 m.
+  // Median x over u = 400..440 (2 m), 500 (2 m), 100 (1 m): u = 420 at 2 m.
   EXPECT_NEAR(d.position->x, (420 - cam.cx()) * 2.0 / cam.fx(), 1e-3);
   EXPECT_NEAR(d.position->y, (300 - cam.cy()) * 2.0 / cam.fy(), 1e-3);
   EXPECT_NEAR(d.position->z, 2.0, 1e-6);

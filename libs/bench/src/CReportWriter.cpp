@@ -215,7 +215,8 @@ void featureHeader(
 {
   md << "| " << first << " |";
   for (const auto& f : feats)
-    md << " " << mrpt::system::upperCase(f) << " | " << mrpt::system::upperCase(f) << " " << refLabel << " |";
+    md << " " << mrpt::system::upperCase(f) << " | " << mrpt::system::upperCase(f) << " "
+       << refLabel << " |";
   md << "\n|---|";
   for (std::size_t k = 0; k < feats.size(); ++k)
     md << "---|---|";
@@ -409,8 +410,9 @@ void CReportWriter::renderTest1Matches(std::ostream& md, const TRecordList& t1) 
         "| sequence | extractor | status | frames with ROI | ROI rejected | matches/frame | false "
         "matches/frame | duration (s) | fps |\n|---|---|---|---|---|---|---|---|---|\n";
   for (const auto* r : t1)
-    md << "| " << r->run.sequence << variantSuffix(r->run.variant) << " | " << mrpt::system::upperCase(r->run.feature)
-       << " | " << (r->ok ? "ok" : "FAILED: " + r->failureReason) << " | "
+    md << "| " << r->run.sequence << variantSuffix(r->run.variant) << " | "
+       << mrpt::system::upperCase(r->run.feature) << " | "
+       << (r->ok ? "ok" : "FAILED: " + r->failureReason) << " | "
        << optNum(r->number("frames_with_roi"), 0) << " | "
        << optNum(r->number("frames_rejected_by_hue"), 0) << " | "
        << optNum(r->number("matches_per_frame"), 1) << " | "
@@ -454,8 +456,8 @@ void CReportWriter::renderTest1Reidentification(std::ostream& md, const TRecordL
           fps.values.push_back(*v);
       }
       const bool plain = v.empty();
-      md << "| " << mrpt::system::upperCase(f) << variantSuffix(v) << " | " << renderCell(p, 3, true) << " | "
-         << renderCell(rc, 3, true) << " | "
+      md << "| " << mrpt::system::upperCase(f) << variantSuffix(v) << " | "
+         << renderCell(p, 3, true) << " | " << renderCell(rc, 3, true) << " | "
          << (plain ? pct(m_ref.test1TruePositiveRate(f)) : std::string("—")) << " | "
          << (plain ? pct(m_ref.test1TrueNegativeRate(f)) : std::string("—")) << " | "
          << renderCell(fps, 2, true) << " | "
@@ -488,8 +490,8 @@ void CReportWriter::renderHueVerification(std::ostream& md, const TRecordList& t
         { return r && r->ok ? optNum(r->number(key), decimals) : std::string("n/a"); };
         return get(a) + " → " + get(b);
       };
-      md << "| " << s << " | " << mrpt::system::upperCase(f) << " | " << pair("landmarks", 0) << " | "
-         << pair("precision", 3) << " | " << pair("recall", 3) << " | "
+      md << "| " << s << " | " << mrpt::system::upperCase(f) << " | " << pair("landmarks", 0)
+         << " | " << pair("precision", 3) << " | " << pair("recall", 3) << " | "
          << pair("frames_with_roi", 0) << " |\n";
     }
   md << "\n";
@@ -597,7 +599,8 @@ void CReportWriter::renderTest3(std::ostream& md, const TRecordList& t3) const
 {
   const std::string f = t3.front()->run.feature;
   const int cap = t3.front()->run.maxFeatures;
-  md << "## Test 3 — reduced features: " << mrpt::system::upperCase(f) << " capped at " << cap << "\n\n";
+  md << "## Test 3 — reduced features: " << mrpt::system::upperCase(f) << " capped at " << cap
+     << "\n\n";
   md << "| version | ATE RMSE (m) | diss. | RPE trans (m) | diss. | RPE rot (deg) | diss. | "
         "duration (s) | diss. (min) |\n|---|---|---|---|---|---|---|---|---|\n";
   for (const auto& vk : versionKeys(t3))
@@ -657,9 +660,10 @@ void CReportWriter::renderSpeed(std::ostream& md, const TRecordList& t2) const
             any = true;
           }
       }
-      md << "| " << labelOf(t2, vk) << " | " << mrpt::system::upperCase(f) << " | " << renderCell(fps, 2, true)
-         << " | " << (any && sumT > 0 ? num(sumV / sumT, 2) : std::string("n/a")) << " | "
-         << num(rss, 0) << " |\n";
+      md << "| " << labelOf(t2, vk) << " | " << mrpt::system::upperCase(f) << " | "
+         << renderCell(fps, 2, true) << " | "
+         << (any && sumT > 0 ? num(sumV / sumT, 2) : std::string("n/a")) << " | " << num(rss, 0)
+         << " |\n";
     }
   md << "\n";
 }
@@ -698,8 +702,9 @@ void CReportWriter::renderTest4(std::ostream& md, const TRecordList& t4) const
         return figure(r, prefix + "rpe_trans_rmse", 4) + " / " +
                figure(r, prefix + "rpe_rot_rmse_deg", 2);
       };
-      md << "| " << s << " | " << mrpt::system::upperCase(f) << " | " << figure(ekf, "kf_slam.ate_rmse", 4, &ates[0])
-         << " | " << figure(ekf, "kf_slam.odometry_ate_rmse", 4, &ates[1]) << " | "
+      md << "| " << s << " | " << mrpt::system::upperCase(f) << " | "
+         << figure(ekf, "kf_slam.ate_rmse", 4, &ates[0]) << " | "
+         << figure(ekf, "kf_slam.odometry_ate_rmse", 4, &ates[1]) << " | "
          << figure(graph, "ate_rmse", 4, &ates[2]) << " | " << rpe(ekf, "kf_slam.") << " | "
          << rpe(ekf, "kf_slam.odometry_") << " | " << rpe(graph, "") << " |\n";
     }

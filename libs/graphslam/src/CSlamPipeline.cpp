@@ -21,47 +21,32 @@ CSlamPipeline::CSlamPipeline(
   m_nrd.setGraphPtr(&m_graph);
   m_erd.setGraphPtr(&m_graph);
   m_records.reserve(m_source->size());
-  startFetch();
+  // Only const members of the odometry are used on the prefetch thread
+  // (prepare(): checks, grey image, stage 1), while step() runs process() on
+  // the caller's.
+  const frontend::CRgbdOdometry& odo = m_ctx->odometry();
+  m_prefetch = std::make_unique<io::CFramePrefetcher<frontend::TPreparedFrame>>(
+      *m_source, 1, [&odo](const io::TRGBDFrame& f) { return odo.prepare(f); });
 }
 
 CSlamPipeline::~CSlamPipeline()
 {
-  // The decoding thread uses the source and the context: let it finish.
-  if (m_next.valid())
-    m_next.wait();
-}
-
-void CSlamPipeline::startFetch()
-{
-  // Only const members of the odometry are used on this thread (prepare():
-  // checks, grey image, stage 1), while step() runs process() on the caller's.
-  const frontend::CRgbdOdometry& odo = m_ctx->odometry();
-  io::CFrameSource* src = m_source.get();
-  m_next = std::async(
-      std::launch::async,
-      [src, &odo]() -> std::optional<frontend::TPreparedFrame>
-      {
-        auto frame = src->next();
-        if (!frame)
-          return std::nullopt;
-        return odo.prepare(*frame);
-      });
+  // The prefetch thread uses the source and the context: stop it first.
+  m_prefetch.reset();
 }
 
 bool CSlamPipeline::step()
 {
-  if (!m_next.valid())
+  const auto item = m_prefetch->next();
+  if (!item)
     return false;
-  const auto prepared = m_next.get();
-  if (!prepared)
-    return false;
-  startFetch();
+  const frontend::TPreparedFrame& prepared = item->prepared;
 
   // Front end, then the back end with its result; the back end's correction
   // comes back once, after an optimisation (optimize()).
   TFrameRecord rec;
-  rec.result = m_ctx->odometry().process(*prepared);
-  m_ctx->recordFrame(rec.result, prepared->frame);
+  rec.result = m_ctx->odometry().process(prepared);
+  m_ctx->recordFrame(rec.result, prepared.frame);
   const bool registered = m_nrd.registerFrame(rec.result);
   mrpt::system::CTicTac be;
   if (registered)

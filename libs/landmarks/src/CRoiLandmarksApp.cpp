@@ -13,8 +13,8 @@
 #include <opencv2/imgcodecs.hpp>
 #include <sstream>
 
-#include "roislam/io/CFramePrefetcher.h"
 #include "roislam/common/TextFiles.h"
+#include "roislam/io/CFramePrefetcher.h"
 #include "roislam/io/CFrameSource.h"
 #include "roislam/io/ObservationConversion.h"
 #include "roislam/io/TumTrajectory.h"

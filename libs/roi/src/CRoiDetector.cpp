@@ -77,8 +77,7 @@ void CRoiDetector::TOptions::loadFromConfigFile(
       hue_min_saturation, "in [0, 1]");
   common::require(
       hue_min_value >= 0 && hue_min_value <= 1, s, "hue_min_value", hue_min_value, "in [0, 1]");
-  common::require(
-      hue_min_iou > 0 && hue_min_iou <= 1, s, "hue_min_iou", hue_min_iou, "in (0, 1]");
+  common::require(hue_min_iou > 0 && hue_min_iou <= 1, s, "hue_min_iou", hue_min_iou, "in (0, 1]");
 }
 
 THueEdgeParams CRoiDetector::TOptions::hueParams() const

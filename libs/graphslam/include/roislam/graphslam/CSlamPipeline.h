@@ -27,10 +27,10 @@
 #include <roislam/graphslam/CKeyframeERD.h>
 #include <roislam/graphslam/CKeyframeNRD.h>
 #include <roislam/graphslam/CSlamContext.h>
+#include <roislam/io/CFramePrefetcher.h>
 #include <roislam/io/CFrameSource.h>
 #include <roislam/io/TumTrajectory.h>
 
-#include <future>
 #include <memory>
 #include <optional>
 #include <utility>
@@ -64,11 +64,7 @@ class CSlamPipeline
   /** Blocks until the next frame is decoded (and its ROI detected): the time
    *  the next step() would wait for it. For benchmarks that time steps of
    *  several pipelines in turn. */
-  void waitForPrefetch() const
-  {
-    if (m_next.valid())
-      m_next.wait();
-  }
+  void waitForPrefetch() const { m_prefetch->waitReady(); }
 
   /** Final optimisation (call once, after the last step). */
   TOptimizationReport finish();
@@ -91,7 +87,6 @@ class CSlamPipeline
   const io::CFrameSource& source() const { return *m_source; }
 
  private:
-  void startFetch();
   /** The optimisation schedule after a keyframe that brought closures
    *  (those from index firstNewLoop of the context's loopClosures()). */
   void optimizeForClosures(std::size_t firstNewLoop);
@@ -105,11 +100,13 @@ class CSlamPipeline
   TGraph m_graph;
   CKeyframeNRD m_nrd;
   CKeyframeERD m_erd;
-  std::future<std::optional<frontend::TPreparedFrame>> m_next;
   std::vector<TFrameRecord> m_records;
   std::size_t m_optimizations = 0;
   std::size_t m_windowedOptimizations = 0;
   /** Keyframes that brought loop closures since the last optimisation. */
   std::size_t m_pendingLoopKeyframes = 0;
+  /** Decodes and prepares frame i+1 while i is processed (last: it reads
+   *  the source and the context, and stops before they go). */
+  std::unique_ptr<io::CFramePrefetcher<frontend::TPreparedFrame>> m_prefetch;
 };
 }  // namespace roislam::graphslam
