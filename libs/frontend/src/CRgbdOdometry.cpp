@@ -57,11 +57,6 @@ matching::CRigidTransformRansac::TOptions ransacOptions(const CRgbdOdometry::TOp
   return r;
 }
 
-bool sameCamera(const mrpt::img::TCamera& a, const mrpt::img::TCamera& b)
-{
-  return a.ncols == b.ncols && a.nrows == b.nrows && a.fx() == b.fx() && a.fy() == b.fy() &&
-         a.cx() == b.cx() && a.cy() == b.cy() && a.dist == b.dist;
-}
 }  // namespace
 
 CRgbdOdometry::TImpl::TImpl(const TOptions& o)
@@ -71,7 +66,9 @@ CRgbdOdometry::TImpl::TImpl(const TOptions& o)
 
 void CRgbdOdometry::TImpl::useCamera(const mrpt::img::TCamera& cam, const TOptions& o)
 {
-  if (haveCamera && sameCamera(camera, cam))
+  // MRPT's comparison: size, intrinsics, distortion and its model (also the
+  // names, which at worst costs a rebuild).
+  if (haveCamera && camera == cam)
     return;
   camera = cam;
   K = (cv::Mat_<double>(3, 3) << cam.fx(), 0, cam.cx(), 0, cam.fy(), cam.cy(), 0, 0, 1);
