@@ -59,33 +59,14 @@ CFeatureExtractor::CFeatureExtractor(const TOptions& options) : m_options(option
 {
   if (m_options.max_features < 0)
     throw std::invalid_argument("CFeatureExtractor: max_features must be >= 0");
-  switch (m_options.feature_type)
-  {
-    case EFeatureType::SIFT:
-      // nfeatures = 0 keeps all, otherwise OpenCV keeps the best N by response.
-      m_detector = cv::SIFT::create(m_options.max_features);
-      m_uncapped =
-          m_options.max_features > 0 ? cv::Ptr<cv::Feature2D>(cv::SIFT::create(0)) : m_detector;
-      break;
-    case EFeatureType::ORB:
-      m_detector = cv::ORB::create(m_options.max_features > 0 ? m_options.max_features : 500);
-      m_uncapped = cv::ORB::create(std::max(5000, 10 * m_options.max_features));
-      break;
-    case EFeatureType::SURF:
-    {
-      CSurf::TParams p;
-      p.hessianThreshold = m_options.surf_hessian_threshold;
-      p.nOctaves = m_options.surf_octaves;
-      p.nOctaveLayers = m_options.surf_octave_layers;
-      p.extended = m_options.surf_extended;
-      p.upright = m_options.surf_upright;
-      p.maxFeatures = m_options.max_features;
-      m_detector = CSurf::create(p);
-      p.maxFeatures = 0;
-      m_uncapped = CSurf::create(p);
-      break;
-    }
-  }
+  // SIFT and SURF: cap 0 keeps all, otherwise the best N by response. ORB
+  // needs a budget: without a cap, extractAll() allows 10 x max_features
+  // (at least 5000).
+  m_detector = detectorWithCap(m_options.max_features);
+  if (m_options.feature_type == EFeatureType::ORB)
+    m_uncapped = detectorWithCap(std::max(5000, 10 * m_options.max_features));
+  else
+    m_uncapped = m_options.max_features > 0 ? detectorWithCap(0) : m_detector;
 }
 
 namespace
