@@ -98,6 +98,13 @@ TEST(Config, BadValuesNameSectionAndKey)
   EXPECT_TRUE(contains(e4, "[ObservationProcessor] sensor_pose")) << e4;
   const std::string e5 = loadError("[LandmarkDatabase]\nmax_candidates = 2.5\n");
   EXPECT_TRUE(contains(e5, "[LandmarkDatabase] max_candidates")) << e5;
+  const std::string e6 = loadError("[ObservationProcessor]\nlandmark_points = both\n");
+  EXPECT_TRUE(contains(e6, "[ObservationProcessor] landmark_points")) << e6;
+  const std::string e7 =
+      loadError("[ObservationProcessor]\npoints_per_sighting = 8\nmax_points_per_landmark = 4\n");
+  EXPECT_TRUE(contains(e7, "[ObservationProcessor] max_points_per_landmark")) << e7;
+  const std::string e8 = loadError("[ObservationProcessor]\npoint_max_residual = 0\n");
+  EXPECT_TRUE(contains(e8, "[ObservationProcessor] point_max_residual")) << e8;
 }
 
 TEST(Config, MissingFileIsNamed)

@@ -9,6 +9,7 @@
 
 #include <cmath>
 #include <limits>
+#include <set>
 
 #include "SyntheticScene.h"
 
@@ -221,4 +222,62 @@ TEST(ObservationProcessor, ProcessesFramesEndToEnd)
   ASSERT_EQ(out.result.status, ERoiStatus::Landmark);
   EXPECT_EQ(out.result.landmarkId, 0);
   EXPECT_EQ(out.observation->sensorLocationOnRobot, io::tumSensorPose());
+}
+
+TEST(ObservationProcessor, FeaturePointsAreLandmarksWithTheirOwnIds)
+{
+  // landmark_points = features: the ROI landmark's feature points are point
+  // landmarks (ID = ROI landmark * stride + feature index), at most
+  // points_per_sighting a frame and max_points_per_landmark ever; a recall
+  // measures points already in the map first.
+  TPipelineOptions o;
+  o.observations.landmark_points = "features";
+  o.observations.points_per_sighting = 5;
+  o.observations.max_points_per_landmark = 7;
+  const cv::Mat base = test::onCanvas(test::texturePatch(3), {200, 150});
+  CObservationProcessor proc(o);
+  std::vector<CObservationProcessor::TOutput> outs;
+  for (int i = 0; i < 4; ++i)
+    outs.push_back(
+        proc.process(test::makeFrame(i, test::warped(base, 2.0 * i, {6.f * i, 3.f * i}))));
+  std::set<int32_t> all, first;
+  for (int i : {1, 2, 3})
+  {
+    ASSERT_EQ(outs[i].result.status, ERoiStatus::Landmark) << i;
+    const auto& data = outs[i].observation->sensedData;
+    ASSERT_FALSE(data.empty()) << i;
+    EXPECT_LE(data.size(), 5u) << i;
+    std::set<int32_t> ids;
+    for (const auto& m : data)
+    {
+      EXPECT_EQ(m.landmarkID / CObservationProcessor::kPointIdStride, 0);
+      EXPECT_TRUE(ids.insert(m.landmarkID).second) << "one measurement per point";
+      // Points of the plane at 1.5 m.
+      EXPECT_GE(m.range, 1.5f - 1e-4f);
+      EXPECT_LT(m.range, 1.8f);
+      EXPECT_NEAR(std::sqrt(m.covariance(1, 1)), 1.0 / 525, 1e-3);
+    }
+    if (i == 1)
+      first = ids;
+    all.insert(ids.begin(), ids.end());
+  }
+  EXPECT_EQ(outs[1].observation->sensedData.size(), 5u);
+  EXPECT_LE(all.size(), 7u);
+  // Every point of the map the recall saw is measured before any new one.
+  std::size_t seenAgain = 0, again = 0;
+  for (const auto& p : outs[2].result.landmarkPoints)
+    seenAgain += first.count(p.feature) > 0;
+  for (const auto& m : outs[2].observation->sensedData)
+    again += first.count(m.landmarkID) > 0;
+  EXPECT_GT(seenAgain, 0u);
+  EXPECT_EQ(again, std::min<std::size_t>(seenAgain, 5)) << "the map's points first";
+}
+
+TEST(ObservationProcessor, PointLandmarkIdsStayInRange)
+{
+  EXPECT_EQ(CObservationProcessor::pointLandmarkId(3, 17), 30017);
+  EXPECT_FALSE(CObservationProcessor::pointLandmarkId(3, CObservationProcessor::kPointIdStride));
+  EXPECT_FALSE(CObservationProcessor::pointLandmarkId(-1, 0));
+  EXPECT_FALSE(
+      CObservationProcessor::pointLandmarkId(std::numeric_limits<int32_t>::max() / 100, 0));
 }

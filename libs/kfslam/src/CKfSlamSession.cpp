@@ -122,6 +122,7 @@ void CKfSlamSession::addFrame(
   sf.insert(std::make_shared<mrpt::obs::CObservationBearingRange>(observation));
   m_rawlog->write(actions);
   m_rawlog->write(sf);
+  logStep(observation, move.poseChange);
 
   m_odometryRobot.push_back(
       result.pose ? m_increments.robotPose(*result.pose)
@@ -139,6 +140,27 @@ void CKfSlamSession::addFrame(
         m_stamps.back(),
         m_increments.cameraPose(mrpt::poses::CPose3D()).inverseComposePoint(inRobot)};
   }
+}
+
+void CKfSlamSession::logStep(
+    const mrpt::obs::CObservationBearingRange& observation,
+    const mrpt::poses::CPose3DPDFGaussian& motion)
+{
+  const double t = mrpt::Clock::toDouble(observation.timestamp);
+  m_measurementLog << std::setprecision(17) << std::defaultfloat;
+  for (const auto& m : observation.sensedData)
+    m_measurementLog << t << ' ' << m.landmarkID << ' ' << std::setprecision(9) << m.range << ' '
+                     << m.yaw << ' ' << m.pitch << ' ' << std::sqrt(m.covariance(0, 0)) << ' '
+                     << std::sqrt(m.covariance(1, 1)) << ' ' << std::sqrt(m.covariance(2, 2))
+                     << '\n'
+                     << std::setprecision(17);
+  m_motionLog << std::setprecision(17) << t << std::setprecision(9);
+  for (int k = 0; k < 6; ++k)
+    m_motionLog << ' ' << motion.mean[k];
+  for (int r = 0; r < 6; ++r)
+    for (int c = 0; c < 6; ++c)
+      m_motionLog << ' ' << motion.cov(r, c);
+  m_motionLog << '\n';
 }
 
 nlohmann::json CKfSlamSession::finish(const std::optional<io::TTrajectory>& gt)
@@ -224,5 +246,14 @@ void CKfSlamSession::writeOutputs(
     }
   }
   common::writeFileAtomically((dir / "landmarks.txt").string(), map.str());
+  common::writeFileAtomically(
+      (dir / "measurements.txt").string(),
+      "# stamp id range yaw pitch sigma_range sigma_yaw sigma_pitch (m, rad; MRPT sensor frame)\n" +
+          m_measurementLog.str());
+  common::writeFileAtomically(
+      (dir / "motions.txt").string(),
+      "# stamp x y z yaw pitch roll (robot motion since the previous frame, m, rad) and its "
+      "6x6 covariance, row-major\n" +
+          m_motionLog.str());
 }
 }  // namespace roislam::kfslam

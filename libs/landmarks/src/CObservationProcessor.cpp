@@ -2,6 +2,7 @@
 
 #include <mrpt/system/datetime.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -41,12 +42,64 @@ CObservationProcessor::TOutput CObservationProcessor::finish(
   // A recall's point is carried by its 3-D alignment; one measured from few
   // pairs is left out (min_rigid_pairs). New landmarks define their point.
   const bool supported = result.newLandmark || result.rigidInliers >= m_options.min_rigid_pairs;
-  if (result.status == ERoiStatus::Landmark && result.landmarkPosition && supported)
-    seen.emplace_back(result.landmarkId, *result.landmarkPosition);
+  if (result.status == ERoiStatus::Landmark && supported)
+  {
+    if (m_options.landmark_points == "features")
+      seen = selectPoints(result);
+    else if (result.landmarkPosition)
+      seen.emplace_back(result.landmarkId, *result.landmarkPosition);
+  }
   TOutput out;
   out.observation =
       makeObservation(seen, camera, result.timestamp, m_options.sensor_pose, m_options);
   out.result = std::move(result);
+  return out;
+}
+
+std::optional<int32_t> CObservationProcessor::pointLandmarkId(int32_t roi, int feature)
+{
+  if (roi < 0 || feature < 0 || feature >= kPointIdStride ||
+      roi > (std::numeric_limits<int32_t>::max() - feature) / kPointIdStride)
+    return std::nullopt;
+  return roi * kPointIdStride + feature;
+}
+
+std::vector<std::pair<int32_t, mrpt::math::TPoint3D>> CObservationProcessor::selectPoints(
+    const TFrameResult& r)
+{
+  auto& measured = m_measuredPoints[r.landmarkId];
+  std::vector<const TFrameResult::TLandmarkPoint*> order;
+  for (const auto& p : r.landmarkPoints)
+    if (pointLandmarkId(r.landmarkId, p.feature))
+      order.push_back(&p);
+  // Points of the map first (they tie this frame to earlier ones), then by
+  // response; the index breaks ties so the choice is deterministic.
+  std::sort(
+      order.begin(), order.end(),
+      [&](const auto* a, const auto* b)
+      {
+        const bool ma = measured.count(a->feature) > 0, mb = measured.count(b->feature) > 0;
+        if (ma != mb)
+          return ma;
+        if (a->response != b->response)
+          return a->response > b->response;
+        return a->feature < b->feature;
+      });
+  std::vector<std::pair<int32_t, mrpt::math::TPoint3D>> out;
+  const auto perSighting = static_cast<std::size_t>(m_options.points_per_sighting);
+  const auto cap = static_cast<std::size_t>(m_options.max_points_per_landmark);
+  for (const auto* p : order)
+  {
+    if (out.size() >= perSighting)
+      break;
+    if (!measured.count(p->feature))
+    {
+      if (measured.size() >= cap)
+        continue;
+      measured.insert(p->feature);
+    }
+    out.emplace_back(*pointLandmarkId(r.landmarkId, p->feature), p->optical);
+  }
   return out;
 }
 
@@ -71,6 +124,12 @@ mrpt::obs::CObservationBearingRange::Ptr CObservationProcessor::makeObservation(
   obs->sensor_std_yaw = static_cast<float>(options.sensor_std_yaw);
   obs->sensor_std_pitch = static_cast<float>(options.sensor_std_pitch);
 
+  const bool points = options.landmark_points == "features";
+  const double rangeFloor = points ? options.point_std_range : options.sensor_std_range;
+  const double pixelBearing =
+      camera.fx() > 0 ? options.point_std_pixels / camera.fx() : options.sensor_std_yaw;
+  const double stdYaw = points ? pixelBearing : options.sensor_std_yaw;
+  const double stdPitch = points ? pixelBearing : options.sensor_std_pitch;
   const mrpt::poses::CPose3D origin;
   for (const auto& [id, optical] : landmarks)
   {
@@ -84,10 +143,9 @@ mrpt::obs::CObservationBearingRange::Ptr CObservationProcessor::makeObservation(
     m.covariance.setZero();
     // Depth-noise model: the landmark's spread plus k z^2 (z = depth).
     const double depthNoise = options.range_std_per_m2 * optical.z * optical.z;
-    m.covariance(0, 0) =
-        options.sensor_std_range * options.sensor_std_range + depthNoise * depthNoise;
-    m.covariance(1, 1) = options.sensor_std_yaw * options.sensor_std_yaw;
-    m.covariance(2, 2) = options.sensor_std_pitch * options.sensor_std_pitch;
+    m.covariance(0, 0) = rangeFloor * rangeFloor + depthNoise * depthNoise;
+    m.covariance(1, 1) = stdYaw * stdYaw;
+    m.covariance(2, 2) = stdPitch * stdPitch;
     obs->sensedData.push_back(m);
   }
   return obs;

@@ -1,5 +1,6 @@
 #include "roislam/landmarks/CRoiLandmarkTracker.h"
 
+#include <algorithm>
 #include <chrono>
 #include <ctime>
 #include <limits>
@@ -119,6 +120,12 @@ TRegion CRoiLandmarkTracker::makeRegion(
   region.points = featurePoints(
       region.features.keypoints, frame.depth, frame.camera, m_options.tracker.min_depth,
       m_options.tracker.max_depth);
+  const double edge = m_options.observations.point_depth_discontinuity;
+  if (edge > 0)
+    for (const auto& p : featurePoints(
+             region.features.keypoints, frame.depth, frame.camera, m_options.tracker.min_depth,
+             m_options.tracker.max_depth, edge))
+      region.onSurface.push_back(isValidPoint(p));
   region.position = depthStatistics(region.points).position;
   if (cameraPose && region.position)
     region.worldPosition = cameraPose->composePoint(*region.position);
@@ -178,6 +185,7 @@ void CRoiLandmarkTracker::identify(const TRegion& region, TFrameResult& r)
       r.rigidInliers = q.rigid->inliers;
       r.rigidRms = q.rigid->rms;
     }
+    r.landmarkPoints = recalledPoints(region, q);
     sighting.inliers = q.inliers;
     m_database.addSighting(*q.landmarkId, sighting);
     return;
@@ -199,10 +207,40 @@ void CRoiLandmarkTracker::identify(const TRegion& region, TFrameResult& r)
     lm.hasPositionWorld = true;
   }
   lm.sightings.push_back(sighting);
+  for (std::size_t i = 0; i < region.points.size() && i < region.features.size(); ++i)
+    if (isValidPoint(region.points[i]) && (region.onSurface.empty() || region.onSurface[i]))
+      r.landmarkPoints.push_back(
+          {static_cast<int>(i), region.points[i], region.features.keypoints[i].response});
   r.landmarkBox = region.box;
   r.landmarkPosition = region.position;
   r.landmarkId = m_database.add(std::move(lm));
   r.newLandmark = true;
+}
+
+std::vector<TFrameResult::TLandmarkPoint> CRoiLandmarkTracker::recalledPoints(
+    const TRegion& region, const CLandmarkDatabase::TQueryResult& q) const
+{
+  // The same gate as the alignment's inliers: a pair it does not explain is
+  // a wrong match or a bad depth reading, not a measurement of the point.
+  std::vector<TFrameResult::TLandmarkPoint> out;
+  if (!q.rigid)
+    return out;
+  const CLandmark& lm = m_database.landmark(*q.landmarkId);
+  const double gate =
+      std::min(m_database.options().rigid_threshold, m_options.observations.point_max_residual);
+  for (const auto& m : q.inlierMatches)
+  {
+    const auto i = static_cast<std::size_t>(m.queryIdx);
+    const auto j = static_cast<std::size_t>(m.trainIdx);
+    if (i >= lm.featurePoints.size() || j >= region.points.size() ||
+        !isValidPoint(lm.featurePoints[i]) || !isValidPoint(region.points[j]) ||
+        (!region.onSurface.empty() && !region.onSurface[j]))
+      continue;
+    if ((q.rigid->pose.composePoint(lm.featurePoints[i]) - region.points[j]).norm() > gate)
+      continue;
+    out.push_back({m.queryIdx, region.points[j], lm.features.keypoints[i].response});
+  }
+  return out;
 }
 
 std::optional<mrpt::math::TPoint3D> CRoiLandmarkTracker::recalledPosition(

@@ -30,7 +30,7 @@ double median(std::vector<double> v)
 
 std::vector<mrpt::math::TPoint3D> featurePoints(
     const std::vector<cv::KeyPoint>& keypoints, const cv::Mat& depth,
-    const mrpt::img::TCamera& camera, double minDepth, double maxDepth)
+    const mrpt::img::TCamera& camera, double minDepth, double maxDepth, double depthDiscontinuity)
 {
   const double nan = std::numeric_limits<double>::quiet_NaN();
   std::vector<mrpt::math::TPoint3D> out(keypoints.size(), mrpt::math::TPoint3D(nan, nan, nan));
@@ -46,12 +46,12 @@ std::vector<mrpt::math::TPoint3D> featurePoints(
   geometry::TDepthRule rule;
   rule.min_depth_m = minDepth;
   rule.max_depth_m = maxDepth;
-  // No edge test: a ROI is the most detailed patch of the image, full of depth
+  // No edge test by default: a ROI is the most detailed patch of the image, full of depth
   // edges, and the landmarks' 3-D recall check needs its points. roi-landmarks
   // (ORB, big ROI) with the front end's 0.05: fr1/rpy TP 188 FP 3 FN 12
   // (precision 0.984, recall 0.940), fr1/xyz TP 139 FP 0 FN 0; with none:
   // TP 191 FP 0 FN 12 (1.000, 0.941) and TP 139 FP 0 FN 1 (1.000, 0.993).
-  rule.depth_discontinuity_m = 0;
+  rule.depth_discontinuity_m = depthDiscontinuity;
   const auto lifted = geometry::liftPixels(pixels, depth, K, dist, rule);
   const geometry::TPinhole pinhole{camera.fx(), camera.fy(), camera.cx(), camera.cy()};
   for (int i : lifted.valid)

@@ -31,6 +31,28 @@ void TObservationOptions::loadFromConfigFile(
   sensor_std_pitch = detail::readDouble(c, s, "sensor_std_pitch", sensor_std_pitch);
   min_rigid_pairs = detail::readInt(c, s, "min_rigid_pairs", min_rigid_pairs);
   detail::require(min_rigid_pairs >= 0, s, "min_rigid_pairs", min_rigid_pairs, ">= 0");
+  landmark_points = detail::readString(c, s, "landmark_points", landmark_points);
+  if (landmark_points != "features" && landmark_points != "roi")
+    detail::throwBadValue(
+        s, "landmark_points", "expected features or roi, got '" + landmark_points + "'");
+  points_per_sighting = detail::readInt(c, s, "points_per_sighting", points_per_sighting);
+  max_points_per_landmark =
+      detail::readInt(c, s, "max_points_per_landmark", max_points_per_landmark);
+  point_std_range = detail::readDouble(c, s, "point_std_range", point_std_range);
+  point_std_pixels = detail::readDouble(c, s, "point_std_pixels", point_std_pixels);
+  detail::require(points_per_sighting >= 1, s, "points_per_sighting", points_per_sighting, ">= 1");
+  detail::require(
+      max_points_per_landmark >= points_per_sighting, s, "max_points_per_landmark",
+      max_points_per_landmark, ">= points_per_sighting");
+  point_depth_discontinuity =
+      detail::readDouble(c, s, "point_depth_discontinuity", point_depth_discontinuity);
+  point_max_residual = detail::readDouble(c, s, "point_max_residual", point_max_residual);
+  detail::require(
+      point_depth_discontinuity >= 0, s, "point_depth_discontinuity", point_depth_discontinuity,
+      ">= 0");
+  detail::require(point_max_residual > 0, s, "point_max_residual", point_max_residual, "> 0");
+  detail::require(point_std_range > 0, s, "point_std_range", point_std_range, "> 0");
+  detail::require(point_std_pixels > 0, s, "point_std_pixels", point_std_pixels, "> 0");
   detail::require(min_sensor_distance >= 0, s, "min_sensor_distance", min_sensor_distance, ">= 0");
   detail::require(
       max_sensor_distance > min_sensor_distance, s, "max_sensor_distance", max_sensor_distance,
@@ -53,5 +75,12 @@ void TObservationOptions::saveToConfigFile(
   c.write(s, "sensor_std_yaw", sensor_std_yaw);
   c.write(s, "sensor_std_pitch", sensor_std_pitch);
   c.write(s, "min_rigid_pairs", min_rigid_pairs);
+  c.write(s, "landmark_points", landmark_points);
+  c.write(s, "points_per_sighting", points_per_sighting);
+  c.write(s, "max_points_per_landmark", max_points_per_landmark);
+  c.write(s, "point_std_range", point_std_range);
+  c.write(s, "point_std_pixels", point_std_pixels);
+  c.write(s, "point_depth_discontinuity", point_depth_discontinuity);
+  c.write(s, "point_max_residual", point_max_residual);
 }
 }  // namespace roislam::landmarks

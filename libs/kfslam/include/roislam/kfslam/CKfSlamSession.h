@@ -12,6 +12,11 @@
  *                    KfSlamPath.h)
  *  - odometry.txt    the odometry alone (TUM)
  *  - landmarks.txt   the EKF's map: "id x y z" in the trajectory's world
+ *  - measurements.txt every measurement of the rawlog: stamp, landmark ID,
+ *                    range, yaw, pitch and their sigmas (the consistency
+ *                    checks of the README read it with ground truth)
+ *  - motions.txt     every action: stamp, robot motion (x y z yaw pitch
+ *                    roll) and its 6x6 covariance
  * and, with ground truth, <outputDir>/kf-slam.landmarks_gt.txt, the
  * reference landmark positions kf-slam's ground_truth_file reads for its
  * error report. It returns the "kf_slam" object of summary.json.
@@ -32,6 +37,7 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <optional>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -78,6 +84,10 @@ class CKfSlamSession
   nlohmann::json evaluate(
       const io::TTrajectory& gt, const io::TTrajectory& ekf, const io::TTrajectory& odometry,
       const TKfSlamRun& run);
+  /** Appends the step's measurements and motion to the text logs. */
+  void logStep(
+      const mrpt::obs::CObservationBearingRange& observation,
+      const mrpt::poses::CPose3DPDFGaussian& motion);
   void writeOutputs(
       const io::TTrajectory& ekf, const io::TTrajectory& odometry, const TKfSlamRun& run) const;
 
@@ -93,5 +103,7 @@ class CKfSlamSession
   std::map<int64_t, TFirstSight> m_firstSights;
   std::optional<double> m_firstMeasurementStamp;
   std::size_t m_measurements = 0;
+  /** measurements.txt and motions.txt being built (written by finish()). */
+  std::ostringstream m_measurementLog, m_motionLog;
 };
 }  // namespace roislam::kfslam

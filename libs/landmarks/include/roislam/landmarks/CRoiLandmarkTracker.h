@@ -72,6 +72,9 @@ class CRoiLandmarkTracker
   /** Where a recalled landmark's stored point is in the region's frame. */
   std::optional<mrpt::math::TPoint3D> recalledPosition(
       const TRegion& region, const CLandmarkDatabase::TQueryResult& q) const;
+  /** TFrameResult::landmarkPoints of a recall. */
+  std::vector<TFrameResult::TLandmarkPoint> recalledPoints(
+      const TRegion& region, const CLandmarkDatabase::TQueryResult& q) const;
 
   /** Whole-frame features of the previous frame (confirmation target). */
   std::optional<features::TFeatureSet> m_previous;

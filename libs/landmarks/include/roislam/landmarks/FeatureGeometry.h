@@ -44,10 +44,14 @@ TFeatureDepth featureDepth(
 TFeatureDepth depthStatistics(const std::vector<mrpt::math::TPoint3D>& points);
 
 /** The optical-frame 3-D point of each keypoint (same rules as
- *  featureDepth); NaN coordinates where there is no valid depth. */
+ *  featureDepth); NaN coordinates where there is no valid depth.
+ *  depthDiscontinuity > 0 also leaves out keypoints on a depth edge (3x3
+ *  depth spread above this many metres per metre of depth,
+ *  geometry::TDepthRule). */
 std::vector<mrpt::math::TPoint3D> featurePoints(
     const std::vector<cv::KeyPoint>& keypoints, const cv::Mat& depth,
-    const mrpt::img::TCamera& camera, double minDepth, double maxDepth);
+    const mrpt::img::TCamera& camera, double minDepth, double maxDepth,
+    double depthDiscontinuity = 0);
 
 inline bool isValidPoint(const mrpt::math::TPoint3D& p)
 {

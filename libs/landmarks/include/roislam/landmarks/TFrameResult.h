@@ -11,6 +11,7 @@
 #include <opencv2/core/types.hpp>
 #include <optional>
 #include <string>
+#include <vector>
 
 namespace roislam::landmarks
 {
@@ -64,6 +65,23 @@ struct TFrameResult
    *  position of the features inside the located box. */
   std::optional<cv::Rect> landmarkBox;
   std::optional<mrpt::math::TPoint3D> landmarkPosition;
+  /** The landmark's feature points seen in this frame (the point landmarks
+   *  of CObservationProcessor's landmark_points = features). New landmark:
+   *  each first-sight feature with depth at its own point. Recall: each
+   *  homography inlier whose current point lies within the database's
+   *  rigid_threshold of its first-sight point carried by the 3-D alignment
+   *  (pairs the alignment does not explain are left out: they are wrong
+   *  matches or bad depth readings); none without a 3-D alignment. */
+  struct TLandmarkPoint
+  {
+    /** Index among the landmark's first-sight features. */
+    int feature = 0;
+    /** Where it is in this frame (optical frame, metres). */
+    mrpt::math::TPoint3D optical;
+    /** Detector response at first sight (orders the points). */
+    float response = 0;
+  };
+  std::vector<TLandmarkPoint> landmarkPoints;
   /** Pairs kept by that alignment and their RMS residual (m; NaN if none). */
   int rigidInliers = 0;
   double rigidRms = 0;

@@ -25,9 +25,39 @@ namespace roislam::landmarks
  *                         robot frame is MRPT's camera frame.
  *  - min_sensor_distance  metres >= 0 (default 0.1, = RoiLandmarks min_depth)
  *  - max_sensor_distance  metres > min (default 8.0, = RoiLandmarks max_depth)
+ *  What a landmark's measurements are (CObservationProcessor.h):
+ *  - landmark_points      features | roi (default roi). features: the
+ *                         ROI landmark's feature points, each a point
+ *                         landmark with its own ID (several per frame); roi:
+ *                         one point per ROI landmark (its first-sight median
+ *                         point carried by the 3-D alignment)
+ *  - points_per_sighting  int >= 1 (default 10): features: points measured
+ *                         per sighting at most
+ *  - max_points_per_landmark int >= points_per_sighting (default 30):
+ *                         features: distinct points of one ROI landmark
+ *                         ever measured (bounds the EKF's map: 3 numbers a
+ *                         point in its state)
+ *  - point_std_range      metres > 0 (default 0.005): features: range noise
+ *                         of a feature point besides the depth-noise model
+ *                         (Kinect disparity steps of 1/8 px: 5 mm at 1.3 m)
+ *  - point_std_pixels     pixels > 0 (default 1): features: keypoint
+ *                         localisation; bearing sigmas = this / fx
+ *  - point_depth_discontinuity  metres per metre >= 0 (default 0.05, the
+ *                         front end's edge test): features: a feature whose
+ *                         3x3 depth neighbourhood spreads more than this per
+ *                         metre of depth is on a depth edge, where its depth
+ *                         reading may be either surface's; it is not
+ *                         measured (0 = no test)
+ *  - point_max_residual   metres > 0 (default 0.03): features: a recalled
+ *                         pair is measured only when its current point lies
+ *                         this close to its first-sight point carried by the
+ *                         recall's 3-D alignment (at most the database's
+ *                         rigid_threshold)
  *  Measurement noise (validCovariances = true: each measurement carries its
  *  covariance, diagonal in range, yaw, pitch; sensor_std_* hold the floors
- *  for readers that ignore it):
+ *  for readers that ignore it; with landmark_points = features the range
+ *  sigma is point_std_range (+) range_std_per_m2 z^2 and the bearing sigmas
+ *  point_std_pixels / fx):
  *  - sensor_std_range     metres > 0 (default 0.02): the spread of a ROI
  *                         landmark's point from frame to frame (recalled
  *                         points against ground truth on the shared fr1
@@ -57,6 +87,13 @@ struct TObservationOptions : public mrpt::config::CLoadableOptions
   double sensor_std_yaw = 0.01;
   double sensor_std_pitch = 0.01;
   int min_rigid_pairs = 0;
+  std::string landmark_points = "roi";
+  int points_per_sighting = 10;
+  int max_points_per_landmark = 30;
+  double point_std_range = 0.005;
+  double point_std_pixels = 1.0;
+  double point_depth_discontinuity = 0.05;
+  double point_max_residual = 0.03;
 
   void loadFromConfigFile(
       const mrpt::config::CConfigFileBase& source, const std::string& section) override;

@@ -32,6 +32,10 @@ struct TRegion
   /** Optical-frame 3-D point of each feature (parallel to features, NaN = no
    *  depth); empty: no 3-D check of a recall, no landmark position. */
   std::vector<mrpt::math::TPoint3D> points;
+  /** Per feature (parallel to features): its depth is no edge (the 3x3
+   *  test of [ObservationProcessor] point_depth_discontinuity), so its point
+   *  may be measured as a point landmark. Empty: every point with depth. */
+  std::vector<bool> onSurface;
   /** The region's position (component-wise median of its points), optical
    *  frame, metres. */
   std::optional<mrpt::math::TPoint3D> position;
