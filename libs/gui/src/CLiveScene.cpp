@@ -341,4 +341,11 @@ std::optional<CPose3D> CLiveScene::cloudPose(std::size_t keyframe) const
     return std::nullopt;
   return CPose3D(it->second->getPose());
 }
+
+std::optional<CPose3D> CLiveScene::cameraMarkerPose() const
+{
+  if (!m_camera->isVisible())
+    return std::nullopt;
+  return CPose3D(m_camera->getPose());
+}
 }  // namespace roislam::gui

@@ -3,10 +3,12 @@
 #include <mrpt/config/CConfigFile.h>
 #include <mrpt/gui/CDisplayWindow3D.h>
 #include <mrpt/system/CObserver.h>
+#include <pthread.h>
 #include <roislam/common/IniKeyCheck.h>
 #include <roislam/common/IniRead.h>
 #include <roislam/common/TextFiles.h>
 #include <roislam/gui/CLiveScene.h>
+#include <roislam/gui/CRedrawBudget.h>
 #include <roislam/gui/FrameOverlay.h>
 #include <roislam/gui/TLiveFrame.h>
 #include <roislam/gui/X11Display.h>
@@ -25,14 +27,27 @@
 #include <iostream>
 #include <mutex>
 #include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
 #include <stdexcept>
 #include <thread>
+
+#include "WxRefresh.h"
 
 namespace roislam::gui
 {
 namespace
 {
 constexpr const char* kSection = "LiveView";
+/** The 3-D view looks down by this much (deg): steeper than the snapshot's
+ *  40, so that the path and its closures show inside the map. */
+constexpr float kElevationDeg = 55.f;
+/** The view redraws at least this often (s), whatever the budget says. */
+constexpr double kMaxPeriodS = 2.0;
+/** Threads whose CPU counts as the view's (CRedrawBudget): ours, MRPT's wx
+ *  thread and those GTK and Mesa start from it or for it (llvmpipe, its
+ *  disk cache thread, named after the process). */
+const std::vector<std::string> kViewThreads = {"roislam-view", "wxMainThread", "llvmpipe", "gmain",
+                                               "gdbus",        "pool-",        ":disk$"};
 using Clock = std::chrono::steady_clock;
 
 double secondsSince(Clock::time_point t0)
@@ -59,8 +74,23 @@ struct TShot
 /** The main view's orbit camera, as set by follow mode. */
 struct TOrbit
 {
-  float x = 0, y = 0, z = 0, zoom = 5, azimuthDeg = 0, elevationDeg = 40;
+  float x = 0, y = 0, z = 0, zoom = 5, azimuthDeg = 0, elevationDeg = kElevationDeg;
 };
+
+/** `img` shrunk to fit `size` (aspect kept); never enlarged. */
+cv::Mat fitTo(const cv::Mat& img, const cv::Size& size)
+{
+  if (img.empty())
+    return img;
+  const double s = std::min(
+      {1.0, size.width / static_cast<double>(img.cols),
+       size.height / static_cast<double>(img.rows)});
+  if (s >= 1.0)
+    return img;
+  cv::Mat out;
+  cv::resize(img, out, cv::Size(), s, s, cv::INTER_AREA);
+  return out;
+}
 
 /** A captured window is real when it is not one colour (MRPT's own capture
  *  gives black where the front buffer cannot be read back). */
@@ -87,6 +117,7 @@ void CLiveView::TOptions::loadFromConfigFile(
     const mrpt::config::CConfigFileBase& c, const std::string& s)
 {
   refresh_hz = common::readDouble(c, s, "refresh_hz", refresh_hz);
+  max_cpu_share = common::readDouble(c, s, "max_cpu_share", max_cpu_share);
   width = common::readInt(c, s, "width", width);
   height = common::readInt(c, s, "height", height);
   map_points_per_keyframe =
@@ -102,6 +133,7 @@ void CLiveView::TOptions::saveToConfigFile(
     mrpt::config::CConfigFileBase& c, const std::string& s) const
 {
   c.write(s, "refresh_hz", refresh_hz);
+  c.write(s, "max_cpu_share", max_cpu_share);
   c.write(s, "width", width);
   c.write(s, "height", height);
   c.write(s, "map_points_per_keyframe", map_points_per_keyframe);
@@ -115,6 +147,9 @@ void CLiveView::TOptions::validate() const
 {
   common::require(
       refresh_hz >= 0.5 && refresh_hz <= 60, kSection, "refresh_hz", refresh_hz, "in [0.5, 60]");
+  common::require(
+      max_cpu_share > 0 && max_cpu_share <= 1, kSection, "max_cpu_share", max_cpu_share,
+      "in (0, 1]");
   common::require(width >= 320, kSection, "width", width, ">= 320");
   common::require(height >= 240, kSection, "height", height, ">= 240");
   common::require(
@@ -154,12 +189,17 @@ struct CLiveView::TImpl : public mrpt::system::CObserver
   void applyUpdates(std::vector<TUpdate>& updates, double now);
   void updateTexts();
   void follow();
+  /** One repaint of the canvas (WxRefresh.h). */
+  void repaint();
   /** Drops our references to the scene's objects and clears the scene on
    *  MRPT's GUI thread, so that every OpenGL object is destroyed there,
    *  now, and none when the window's deferred deletion runs during the
    *  process's exit (which raced MRPT's static texture handler: "free():
    *  invalid pointer" in 2 of 18 parallel runs). */
   void releaseScene();
+  /** "live view: N redraws in T s, its threads X s of CPU (Y % of the
+   *  rest of the process's)". */
+  std::string summaryLine() const;
   cv::Mat capture();
   void serve(const TShot& shot);
   /** Notifies after taking the mutex once, so that a waiter that has just
@@ -189,6 +229,9 @@ struct CLiveView::TImpl : public mrpt::system::CObserver
   TSession session;
   Clock::time_point start = Clock::now();
   double period;
+  CRedrawBudget budget;
+  /** Width of the image column, fraction of the window. */
+  double column = 0.375;
   mrpt::gui::CDisplayWindow3D::Ptr win;
   mrpt::opengl::COpenGLViewport::Ptr mainView, colourView, depthView;
   std::unique_ptr<CLiveScene> scene;
@@ -221,6 +264,7 @@ struct CLiveView::TImpl : public mrpt::system::CObserver
   std::string sequenceShown, messageShown;
   std::optional<TOrbit> orbitSet;
   bool gliding = false;
+  std::size_t redraws = 0;
 
   std::thread drawer;
 };
@@ -229,6 +273,7 @@ CLiveView::TImpl::TImpl(const TOptions& o, TSession s)
     : options(o),
       session(std::move(s)),
       period(1.0 / o.refresh_hz),
+      budget(1.0 / o.refresh_hz, kMaxPeriodS, o.max_cpu_share),
       scene(std::make_unique<CLiveScene>(
           CLiveScene::TOptions{static_cast<float>(o.point_size_px), o.flash_s, 100}))
 {
@@ -246,8 +291,7 @@ CLiveView::TImpl::TImpl(const TOptions& o, TSession s)
     throw std::runtime_error("--gui: cannot create an OpenGL window on this display");
   // Right column: the colour image above the depth image, each 4:3 at half
   // the window's height; the 3-D view fills the rest.
-  const double column =
-      std::min(0.5, (options.height / 2.0) * 4.0 / 3.0 / static_cast<double>(options.width));
+  column = std::min(0.5, (options.height / 2.0) * 4.0 / 3.0 / static_cast<double>(options.width));
   {
     mrpt::opengl::COpenGLScene::Ptr sc;
     mrpt::gui::CDisplayWindow3DLocker lock(*win, sc);
@@ -265,7 +309,7 @@ CLiveView::TImpl::TImpl(const TOptions& o, TSession s)
     }
     scene->update(*mainView, 0);
   }
-  win->setCameraElevationDeg(40);
+  win->setCameraElevationDeg(kElevationDeg);
   win->setCameraZoom(5);
   observeBegin(*win);
   drawer = std::thread([this] { drawLoop(); });
@@ -283,6 +327,7 @@ CLiveView::TImpl::~TImpl()
   closed.notify_all();
   if (drawer.joinable())
     drawer.join();
+  log(summaryLine());
   if (win)
   {
     observeEnd(*win);
@@ -291,6 +336,18 @@ CLiveView::TImpl::~TImpl()
   for (auto& s : shots)
     if (s.done)
       s.done->set_exception(std::make_exception_ptr(std::runtime_error("live view closed")));
+}
+
+std::string CLiveView::TImpl::summaryLine() const
+{
+  const auto [viewCpu, processCpu] = threadCpuSeconds(kViewThreads);
+  char line[200];
+  std::snprintf(
+      line, sizeof(line),
+      "live view: %zu redraws in %.1f s, its threads %.2f s of CPU (%.1f %% of the rest)", redraws,
+      secondsSince(start), viewCpu,
+      processCpu > viewCpu ? 100.0 * viewCpu / (processCpu - viewCpu) : 0.0);
+  return line;
 }
 
 void CLiveView::TImpl::releaseScene()
@@ -399,9 +456,10 @@ void CLiveView::TImpl::waitWhilePaused()
 
 void CLiveView::TImpl::drawLoop()
 {
-  const auto step = std::chrono::duration<double>(period);
+  pthread_setname_np(pthread_self(), "roislam-view");
   for (;;)
   {
+    const auto step = std::chrono::duration<double>(budget.period());
     std::vector<TUpdate> updates;
     std::optional<TShot> shot;
     {
@@ -421,7 +479,12 @@ void CLiveView::TImpl::drawLoop()
     const double now = secondsSince(start);
     const bool flashing = scene->flashingClosures(now) > 0 || gliding;
     if (!updates.empty() || statusDirty.exchange(false) || flashing || shot)
+    {
       draw(updates);
+      ++redraws;
+      const auto [viewCpu, processCpu] = threadCpuSeconds(kViewThreads);
+      budget.update(viewCpu, processCpu);
+    }
     for (std::size_t n = keyShots.exchange(0); n > 0; --n)
     {
       char name[64];
@@ -467,8 +530,11 @@ void CLiveView::TImpl::draw(std::vector<TUpdate>& updates)
   cv::Mat overlay, depth;
   if (newImage && shown)
   {
-    overlay = drawFrameOverlay(*shown, roiMode);
-    depth = colouriseDepth(shown->depth, options.max_depth_m);
+    // At the viewports' size: the texture upload is the costly part of a
+    // redraw under software GL (2 x 640 x 480: 9 ms of 31 per redraw).
+    const cv::Size size(static_cast<int>(std::lround(options.width * column)), options.height / 2);
+    overlay = fitTo(drawFrameOverlay(*shown, roiMode), size);
+    depth = fitTo(colouriseDepth(shown->depth, options.max_depth_m), size);
   }
   {
     mrpt::opengl::COpenGLScene::Ptr sc;
@@ -481,41 +547,49 @@ void CLiveView::TImpl::draw(std::vector<TUpdate>& updates)
     updateTexts();
   }
   follow();
+  repaint();
+}
+
+void CLiveView::TImpl::repaint()
+{
+#if ROISLAM_GUI_WX_HEADERS
+  auto* w = win.get();
+  win->sendFunctionToRunOnGUIThread([w] { detail::refreshChildren(w->getWxObject()); });
+#else
   win->forceRepaint();
+#endif
 }
 
 void CLiveView::TImpl::updateTexts()
 {
   mrpt::opengl::TFontParams font;
-  font.vfont_scale = 14;
+  font.vfont_scale = 10.5f;
   font.draw_shadow = true;
   char line[256];
   double fps = 0;
   if (rate.size() >= 2 && rate.back().first > rate.front().first)
     fps = (rate.back().second - rate.front().second) / (rate.back().first - rate.front().first);
+  const char* paused = isPaused ? "  PAUSED" : "";
   if (last)
     std::snprintf(
         line, sizeof(line), "frame %zu  %.1f fps  keyframes %zu  closures %zu  fallbacks %zu%s%s",
         last->index + 1, fps, last->keyframes, last->loopClosures, last->fallbackFrames,
-        last->lostFrames ? ("  lost " + std::to_string(last->lostFrames)).c_str() : "",
-        isPaused ? "   PAUSED" : "");
+        last->lostFrames ? ("  lost " + std::to_string(last->lostFrames)).c_str() : "", paused);
   else
-    std::snprintf(line, sizeof(line), "waiting for the first frame%s", isPaused ? "   PAUSED" : "");
-  mainView->addTextMessage(8, 28, line, 0, font);
+    std::snprintf(line, sizeof(line), "waiting for the first frame%s", paused);
+  mainView->addTextMessage(8, 24, line, 0, font);
   mrpt::opengl::TFontParams small = font;
-  small.vfont_scale = 11;
+  small.vfont_scale = 9;
   small.color = {0.8f, 0.8f, 0.8f, 1.f};
+  char help[128];
+  std::snprintf(
+      help, sizeof(help), "space pause  s screenshot  q quit  f follow   (view %.1f Hz)",
+      1.0 / budget.period());
+  mainView->addTextMessage(8, 8, messageShown.empty() ? std::string(help) : messageShown, 1, small);
   mainView->addTextMessage(
-      8, 8,
-      messageShown.empty() ? "space pause/resume   s screenshot   q quit   f follow the map"
-                           : messageShown,
-      1, small);
-  small.color = {0.75f, 0.75f, 0.75f, 1.f};
-  mainView->addTextMessage(
-      8, -20,
-      sequenceShown + (sequenceShown.empty() ? "" : "   ") +
-          "blue: estimate, keyframes   green: ground truth   red: loop closures (new: yellow)",
-      2, small);
+      8, -30, "blue: estimate  green: ground truth  red: closures (new yellow)", 2, small);
+  small.color = {1.f, 1.f, 1.f, 1.f};
+  mainView->addTextMessage(8, -16, sequenceShown, 3, small);
 }
 
 void CLiveView::TImpl::follow()
@@ -554,7 +628,7 @@ void CLiveView::TImpl::follow()
       static_cast<float>(centre.z),
       static_cast<float>(zoom),
       static_cast<float>(std::atan2(-h.y, -h.x) * 180 / M_PI),
-      40.f};
+      kElevationDeg};
   // Glide there rather than jump at each new keyframe.
   TOrbit o = orbitSet.value_or(target);
   const float a = 0.35f;
@@ -584,14 +658,14 @@ cv::Mat CLiveView::TImpl::capture()
   for (int paints = 0, tries = 0; paints < 2 && tries < 250; ++tries)
   {
     if (tries % 25 == 0)
-      win->forceRepaint();
+      repaint();
     std::this_thread::sleep_for(std::chrono::milliseconds(20));
     const auto now = win->getLastWindowImagePtr();
     if (now && now != previous)
     {
       ++paints;
       previous = now;
-      win->forceRepaint();
+      repaint();
     }
   }
   win->captureImagesStop();

@@ -81,6 +81,9 @@ class CLiveScene
   std::size_t keyframeClouds() const { return m_clouds.size(); }
   /** Display pose of a keyframe's cloud object (nullopt: no cloud). */
   std::optional<mrpt::poses::CPose3D> cloudPose(std::size_t keyframe) const;
+  /** Display pose of the current camera's frustum (its +x is the camera's
+   *  view), after update(); nullopt before the first tracked frame. */
+  std::optional<mrpt::poses::CPose3D> cameraMarkerPose() const;
 
  private:
   struct TFramePose

@@ -20,7 +20,12 @@
  *                             most; each redraw also costs MRPT's renderer
  *                             (Mesa's software GL under Xvfb: the SLAM run
  *                             shares the CPU with it)
- *  - width, height            [px] >= 320 / 240 (1280, 720): window size
+ *  - max_cpu_share            (0, 1] (0.08): the view redraws less often
+ *                             (down to every 2 s) while its threads use more
+ *                             CPU than this share of the SLAM threads'
+ *                             (CRedrawBudget), so that it costs the run at
+ *                             most about this much on a busy machine
+ *  - width, height            [px] >= 320 / 240 (1024, 576): window size
  *  - map_points_per_keyframe  int >= 1 (1000): points of each keyframe's
  *                             map cloud ([GraphSlam] map_decimation) drawn
  *  - point_size_px            [px] > 0 (2)
@@ -50,8 +55,9 @@ class CLiveView : public graphslam::CSlamObserver
   struct TOptions : public mrpt::config::CLoadableOptions
   {
     double refresh_hz = 2;
-    int width = 1280;
-    int height = 720;
+    double max_cpu_share = 0.08;
+    int width = 1024;
+    int height = 576;
     int map_points_per_keyframe = 1000;
     double point_size_px = 2;
     double flash_s = 2;
