@@ -38,9 +38,6 @@ std::unique_ptr<roislam::gui::CLiveView> openLiveView(
       roislam::gui::CLiveView::loadOptions(args.iniFile), session);
 }
 
-/** After the outputs are written: the asked screenshot, then wait for the
- *  user when asked to. A window closed meanwhile only warns: the run's
- *  outputs are complete. */
 /** Closes the window and ends the process (exitAfterLiveView) when one was open. */
 int endLiveView(std::unique_ptr<roislam::gui::CLiveView> view, int rc)
 {
@@ -50,6 +47,9 @@ int endLiveView(std::unique_ptr<roislam::gui::CLiveView> view, int rc)
   roislam::gui::exitAfterLiveView(rc);
 }
 
+/** After the outputs are written: the asked screenshot, then wait for the
+ *  user when asked to. A window closed meanwhile only warns: the run's
+ *  outputs are complete. */
 void finishLiveView(roislam::gui::CLiveView* view, const TGuiArgs& g, const std::string& outDir)
 {
   if (!view)
@@ -71,9 +71,8 @@ void finishLiveView(roislam::gui::CLiveView* view, const TGuiArgs& g, const std:
     view->waitUntilClosed();
 }
 #else
-struct TNoView
-{
-};
+// Built without the live view: --gui fails with one line, before any output.
+using TNoView = roislam::graphslam::CSlamObserver;
 std::unique_ptr<TNoView> openLiveView(
     const TGuiArgs& g, const roislam::graphslam::CRoiGraphSlamApp::TArguments&)
 {
