@@ -77,7 +77,7 @@ TEST(LiveViewOptions, IniKeysAreCheckedAndValidated)
       roislam::gui::CLiveView::loadOptions(write("[LiveView]\nrefresh_hz = 5\nfollow = false\n"));
   EXPECT_DOUBLE_EQ(o.refresh_hz, 5);
   EXPECT_FALSE(o.follow);
-  EXPECT_DOUBLE_EQ(roislam::gui::CLiveView::loadOptions("").max_cpu_share, 0.08);
+  EXPECT_DOUBLE_EQ(roislam::gui::CLiveView::loadOptions("").max_cpu_share, 0.03);
   try
   {
     roislam::gui::CLiveView::loadOptions(write("[LiveView]\nrefresh_hzz = 5\n"));

@@ -42,7 +42,7 @@ constexpr const char* kSection = "LiveView";
  *  40, so that the path and its closures show inside the map. */
 constexpr float kElevationDeg = 55.f;
 /** The view redraws at least this often (s), whatever the budget says. */
-constexpr double kMaxPeriodS = 2.0;
+constexpr double kMaxPeriodS = 3.0;
 /** Threads whose CPU counts as the view's (CRedrawBudget): ours, MRPT's wx
  *  thread and those GTK and Mesa start from it or for it (llvmpipe, its
  *  disk cache thread, named after the process). */

@@ -20,8 +20,8 @@
  *                             most; each redraw also costs MRPT's renderer
  *                             (Mesa's software GL under Xvfb: the SLAM run
  *                             shares the CPU with it)
- *  - max_cpu_share            (0, 1] (0.08): the view redraws less often
- *                             (down to every 2 s) while its threads use more
+ *  - max_cpu_share            (0, 1] (0.03): the view redraws less often
+ *                             (down to every 3 s) while its threads use more
  *                             CPU than this share of the SLAM threads'
  *                             (CRedrawBudget), so that it costs the run at
  *                             most about this much on a busy machine
@@ -55,7 +55,7 @@ class CLiveView : public graphslam::CSlamObserver
   struct TOptions : public mrpt::config::CLoadableOptions
   {
     double refresh_hz = 2;
-    double max_cpu_share = 0.08;
+    double max_cpu_share = 0.03;
     int width = 1024;
     int height = 576;
     int map_points_per_keyframe = 1000;
