@@ -15,6 +15,9 @@ PKGS=(
   libcli11-dev nlohmann-json3-dev
   gnuplot-nox clang-format
   libegl1 libegl-mesa0 libgl1-mesa-dri
+  # The live view (--gui): X11 client, wx headers (canvas-only repaints),
+  # and for its tests and screenshots a virtual display and key presses.
+  libx11-dev libwxgtk3.2-dev xvfb xdotool
 )
 missing=()
 for p in "${PKGS[@]}"; do

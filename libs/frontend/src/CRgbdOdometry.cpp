@@ -134,6 +134,7 @@ void CRgbdOdometry::reset()
   m_impl->haveStamp = false;
   m_impl->uncorrected.reset();
   m_impl->regionGrowth = 1;
+  m_impl->lastFeaturePixels.clear();
 }
 
 std::optional<TRelativePoseEstimate> CRgbdOdometry::registerKeyframes(
@@ -215,10 +216,18 @@ TFrameResult CRgbdOdometry::process(const TPreparedFrame& frame)
   return finish(w);
 }
 
+const std::vector<cv::Point2f>& CRgbdOdometry::lastFeaturePixels() const
+{
+  return m_impl->lastFeaturePixels;
+}
+
 TFrameResult CRgbdOdometry::finish(TFrameWork& w)
 {
   TFrameResult& res = w.res;
   res.times.total_ms = w.in.prepare_ms + msSince(w.start);
+  m_impl->lastFeaturePixels.clear();
+  for (const auto& kp : w.all.keypoints)
+    m_impl->lastFeaturePixels.push_back(kp.pt);
   if (res.pose)
   {
     m_impl->lastStamp = w.in.frame.timestamp;

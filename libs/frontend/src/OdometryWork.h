@@ -59,6 +59,9 @@ struct CRgbdOdometry::TImpl
    *  shrinks back after each good one, so that the region is as large as
    *  this scene needs for a determined pose (StageTrack.cpp). */
   double regionGrowth = 1;
+  /** Pixels of the features the last process() call described
+   *  (lastFeaturePixels()). */
+  std::vector<cv::Point2f> lastFeaturePixels;
 
   explicit TImpl(const TOptions& o);
   /** Rebuilds the camera-dependent state when the intrinsics change. */

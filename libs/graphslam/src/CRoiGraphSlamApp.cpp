@@ -109,17 +109,25 @@ void CRoiGraphSlamApp::progress(const std::string& line) const
     m_args.progress(line);
 }
 
-void CRoiGraphSlamApp::runFrames(CSlamPipeline& pipeline, std::size_t total) const
+bool CRoiGraphSlamApp::runFrames(CSlamPipeline& pipeline, std::size_t total) const
 {
   const auto& records = pipeline.records();
-  while ((!m_args.maxFrames || records.size() < m_args.maxFrames) && pipeline.step())
+  const auto stop = [this] { return m_args.observer && m_args.observer->stopRequested(); };
+  while ((!m_args.maxFrames || records.size() < m_args.maxFrames) && !stop() && pipeline.step())
     if (records.size() % 50 == 0)
       progress(
           "  frame " + std::to_string(records.size()) + "/" + std::to_string(total) +
           ", keyframes " + std::to_string(pipeline.context().odometry().keyframes().size()) +
           ", loops " + std::to_string(pipeline.context().loopClosures().size()));
   if (records.empty())
-    throw std::runtime_error(m_args.input + ": no frames");
+    throw std::runtime_error(
+        m_args.input + (stop() ? ": stopped before the first frame" : ": no frames"));
+  const bool stopped = stop() && records.size() < total;
+  if (stopped)
+    progress(
+        "roi-graphslam: stopped after frame " + std::to_string(records.size()) +
+        ", writing the outputs");
+  return stopped;
 }
 
 CRoiGraphSlamApp::TEvaluation CRoiGraphSlamApp::evaluate(
@@ -234,6 +242,7 @@ nlohmann::json CRoiGraphSlamApp::summaryJson(
   j["roi_only_frames"] = roiOnly == st.extensions.end() ? 0 : roiOnly->second;
   j["extended_frames"] = ext;
   j["failed"] = s.failed;
+  j["stopped_by_user"] = s.stoppedByUser;
   j["wall_s"] = s.wallS;
   j["fps"] = s.fps;
   j["map_s"] = s.mapS;
@@ -261,13 +270,15 @@ CRoiGraphSlamApp::TSummary CRoiGraphSlamApp::run()
   mrpt::system::CTicTac wall;
   const std::size_t total = source->size();
   CSlamPipeline pipeline(m_config, std::move(source));
-  runFrames(pipeline, total);
+  pipeline.setObserver(m_args.observer);
+  const bool stopped = runFrames(pipeline, total);
   const auto finalReport = pipeline.finish();
   const io::TTrajectory estimate = pipeline.trajectory();
   const double wallS = wall.Tac();
 
   const TEvaluation ev = evaluate(pipeline, estimate);
   TSummary s = summarize(pipeline, estimate, wallS, ev);
+  s.stoppedByUser = stopped;
 
   const CSlamOutputWriter writer(m_args.outputDir);
   writer.writeTrajectory(

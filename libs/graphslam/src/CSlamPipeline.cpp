@@ -56,8 +56,17 @@ bool CSlamPipeline::step()
       optimizeForClosures(loopsBefore);
   }
   rec.backendMs = be.Tac() * 1e3;
+  if (m_observer)
+    m_observer->onFrame(rec.result, prepared.frame, *m_ctx);
   m_records.push_back(std::move(rec));
   return true;
+}
+
+void CSlamPipeline::setObserver(CSlamObserver* observer)
+{
+  m_observer = observer;
+  if (m_observer)
+    m_observer->onStart(*m_source, *m_ctx);
 }
 
 double CSlamPipeline::worstClosureError(std::size_t firstLoop) const
@@ -116,6 +125,8 @@ TOptimizationReport CSlamPipeline::optimize(std::size_t window)
   const auto report = m_ctx->optimize(m_graph, window);
   m_ctx->correctFrontEnd(m_graph);
   ++m_optimizations;
+  if (m_observer)
+    m_observer->onOptimized(m_graph, *m_ctx);
   return report;
 }
 

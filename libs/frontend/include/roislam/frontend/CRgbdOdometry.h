@@ -314,6 +314,11 @@ class CRgbdOdometry : public mrpt::system::COutputLogger
   void reset();
 
   const TStats& stats() const { return m_stats; }
+  /** Pixels (distorted, as detected) of every feature the last process()
+   *  call described: the tracking region's first, then the extension's
+   *  (TFrameResult::work). For viewers (the live view draws them); replaced
+   *  by each call. */
+  const std::vector<cv::Point2f>& lastFeaturePixels() const;
   const TOptions& options() const { return m_options; }
 
  private:

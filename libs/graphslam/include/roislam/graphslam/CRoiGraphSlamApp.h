@@ -30,6 +30,7 @@
 
 #include <roislam/evaluation/TEvaluationResult.h>
 #include <roislam/graphslam/CSlamContext.h>
+#include <roislam/graphslam/CSlamObserver.h>
 #include <roislam/graphslam/CSlamPipeline.h>
 #include <roislam/io/TumTrajectory.h>
 
@@ -62,6 +63,9 @@ class CRoiGraphSlamApp
     std::size_t maxFrames = 0;
     /** Progress lines (e.g. to stderr); may be empty. */
     std::function<void(const std::string&)> progress;
+    /** Watches the run (the live view); not owned, may be null. Its
+     *  stopRequested() ends the run early, the outputs still written. */
+    CSlamObserver* observer = nullptr;
   };
 
   /** Headline figures (a subset of summary.json). */
@@ -73,6 +77,8 @@ class CRoiGraphSlamApp
     std::optional<double> ateRmse, rpeTransRmse, rpeRotRmseDeg;
     /** strict_roi lost frames (the dissertation's "no trajectory"). */
     bool failed = false;
+    /** The observer stopped the run before the end of the sequence. */
+    bool stoppedByUser = false;
     /** "ATE RMSE 0.0042 m, RPE 0.0031 m / 0.21 deg, 90 frames, 31.2 fps". */
     std::string resultLine() const;
   };
@@ -82,6 +88,8 @@ class CRoiGraphSlamApp
   explicit CRoiGraphSlamApp(TArguments arguments);
 
   const CSlamContext::TConfig& config() const { return m_config; }
+  /** TArguments::observer, set after construction (not owned, may be null). */
+  void setObserver(CSlamObserver* observer) { m_args.observer = observer; }
 
   /** Runs the whole sequence and writes the outputs. Throws when the input
    *  cannot be read or the output folder is not writable. */
@@ -104,8 +112,9 @@ class CRoiGraphSlamApp
   };
 
   void progress(const std::string& line) const;
-  /** Steps the pipeline to the end (or maxFrames), with progress lines. */
-  void runFrames(CSlamPipeline& pipeline, std::size_t total) const;
+  /** Steps the pipeline to the end (or maxFrames, or until the observer
+   *  asks to stop: returns true then), with progress lines. */
+  bool runFrames(CSlamPipeline& pipeline, std::size_t total) const;
   TEvaluation evaluate(const CSlamPipeline& pipeline, const io::TTrajectory& estimate) const;
   TSummary summarize(
       const CSlamPipeline& pipeline, const io::TTrajectory& estimate, double wallS,

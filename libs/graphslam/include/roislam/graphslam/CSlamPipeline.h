@@ -27,6 +27,7 @@
 #include <roislam/graphslam/CKeyframeERD.h>
 #include <roislam/graphslam/CKeyframeNRD.h>
 #include <roislam/graphslam/CSlamContext.h>
+#include <roislam/graphslam/CSlamObserver.h>
 #include <roislam/io/CFramePrefetcher.h>
 #include <roislam/io/CFrameSource.h>
 #include <roislam/io/TumTrajectory.h>
@@ -60,6 +61,11 @@ class CSlamPipeline
   /** Processes the next frame; false (and nothing done) at the end of the
    *  sequence. Decoding errors of the source propagate. */
   bool step();
+
+  /** Tells `observer` (not owned; null = none) about the run from now on:
+   *  onStart() at once, onFrame() at the end of each step(), onOptimized()
+   *  after each optimisation (finish() included). */
+  void setObserver(CSlamObserver* observer);
 
   /** Blocks until the next frame is decoded (and its ROI detected): the time
    *  the next step() would wait for it. For benchmarks that time steps of
@@ -105,6 +111,7 @@ class CSlamPipeline
   std::size_t m_windowedOptimizations = 0;
   /** Keyframes that brought loop closures since the last optimisation. */
   std::size_t m_pendingLoopKeyframes = 0;
+  CSlamObserver* m_observer = nullptr;
   /** Decodes and prepares frame i+1 while i is processed (last: it reads
    *  the source and the context, and stops before they go). */
   std::unique_ptr<io::CFramePrefetcher<frontend::TPreparedFrame>> m_prefetch;
