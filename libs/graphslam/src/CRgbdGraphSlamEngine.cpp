@@ -1,5 +1,6 @@
 #include <fcntl.h>
 #include <mrpt/config/CConfigFile.h>
+#include <mrpt/core/exceptions.h>
 #include <mrpt/system/filesystem.h>
 #include <mrpt/system/string_utils.h>
 #include <roislam/graphslam/CRgbdGraphSlamEngine.h>
@@ -47,6 +48,21 @@ class CQuietConsole
  private:
   int m_in = -1, m_out = -1;
 };
+
+/** Rethrows the exception being handled with its own message: MRPT_END in
+ *  the engine wraps what our deciders throw into a many-line text with a
+ *  call stack (and misreads a "[Section]" in the message as a location). */
+[[noreturn]] void rethrowOwnMessage()
+{
+  try
+  {
+    throw;
+  }
+  catch (const mrpt::ExceptionWithCallBackBase& e)
+  {
+    throw std::runtime_error(e.originalWhat.substr(0, e.originalWhat.find('\n')));
+  }
+}
 }  // namespace
 
 std::unique_ptr<CRgbdGraphSlamEngine> CRgbdGraphSlamEngine::create(
@@ -68,7 +84,14 @@ std::unique_ptr<CRgbdGraphSlamEngine> CRgbdGraphSlamEngine::create(
   }
   // The constructor's key-press pause (see the header): no console for it.
   const CQuietConsole quiet;
-  return std::unique_ptr<CRgbdGraphSlamEngine>(new CRgbdGraphSlamEngine(iniFile, deciders));
+  try
+  {
+    return std::unique_ptr<CRgbdGraphSlamEngine>(new CRgbdGraphSlamEngine(iniFile, deciders));
+  }
+  catch (...)
+  {
+    rethrowOwnMessage();
+  }
 }
 
 // No rawlog name (it only serves MRPT's RGBD-TUM image-folder heuristics:
@@ -90,9 +113,16 @@ CRgbdGraphSlamEngine::~CRgbdGraphSlamEngine()
 
 bool CRgbdGraphSlamEngine::step(mrpt::obs::CObservation::Ptr observation)
 {
-  const bool go = this->execGraphSlamStep(observation, m_entry);
-  ++m_entry;
-  return go;
+  try
+  {
+    const bool go = this->execGraphSlamStep(observation, m_entry);
+    ++m_entry;
+    return go;
+  }
+  catch (...)
+  {
+    rethrowOwnMessage();
+  }
 }
 
 std::string CRgbdGraphSlamEngine::descriptiveReport() const

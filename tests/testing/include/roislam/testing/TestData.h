@@ -31,6 +31,16 @@ std::string binaryDir();
 
 /** A new, empty, unique temporary folder; removed by the caller or left in /tmp. */
 std::string makeTempDir(const std::string& prefix);
+
+/** What an app run printed and returned. */
+struct TAppRun
+{
+  int exitCode = -1;
+  std::string out, err;
+};
+/** Runs <binaryDir>/apps/<app>/<app> with `args` (shell syntax) and returns
+ *  its exit code, stdout and stderr. */
+TAppRun runApp(const std::string& app, const std::string& args);
 }  // namespace roislam::testing
 
 /** Skips the current test when the shared TUM sequence is not available. */

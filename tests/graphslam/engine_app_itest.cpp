@@ -1,0 +1,307 @@
+/* roi-graphslam-engine end to end (the executable, with MRPT graphslam-engine's
+ * command line) on a tum2rawlog rawlog of the synthetic textured loop of the
+ * ctest fixture: every mode and extractor is accurate and closes loops; it
+ * equals roi-graphslam run with the same settings in roi-graphslam's layout;
+ * it prints the parameters its deciders' loadParams() read, marking the
+ * defaults; MRPT's own 3-D classes run; bad input gives one-line errors. */
+#include <gtest/gtest.h>
+#include <roislam/io/CTum2RawlogApp.h>
+#include <roislam/testing/TestData.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <regex>
+#include <sstream>
+#include <string>
+
+namespace fs = std::filesystem;
+using roislam::testing::TAppRun;
+
+namespace
+{
+TAppRun runEngine(const std::string& args)
+{
+  return roislam::testing::runApp("roi-graphslam-engine", args);
+}
+
+nlohmann::json readSummary(const std::string& dir)
+{
+  std::ifstream f(dir + "/summary.json");
+  return nlohmann::json::parse(f);
+}
+
+std::string readText(const std::string& file)
+{
+  std::ifstream f(file);
+  std::stringstream ss;
+  ss << f.rdbuf();
+  return ss.str();
+}
+
+std::string config(const std::string& name)
+{
+  return roislam::testing::sourceDir() + "/config/" + name;
+}
+
+/** The textured loop as a rawlog (made once per test program), with its
+ *  ground truth next to it. */
+struct TRawlog
+{
+  std::string rawlog, groundTruth;
+};
+const TRawlog& syntheticRawlog(const std::string& seq)
+{
+  static TRawlog r;
+  if (r.rawlog.empty())
+  {
+    roislam::io::CTum2RawlogApp::TOptions o;
+    o.input = seq;
+    o.output = roislam::testing::makeTempDir("engine_app_rawlog") + "/textured.rawlog";
+    const auto res = roislam::io::CTum2RawlogApp(o).run();
+    r.rawlog = res.rawlog;
+    r.groundTruth = res.groundTruth.value_or("");
+  }
+  return r;
+}
+
+/** config/graphslam-engine.ini with another mode and extractor. */
+std::string engineIni(const std::string& dir, const std::string& mode, const std::string& feature)
+{
+  std::string text = readText(config("graphslam-engine.ini"));
+  text = std::regex_replace(text, std::regex("\nmode = roi_big\n"), "\nmode = " + mode + "\n");
+  text = std::regex_replace(
+      text, std::regex("\nfeature_type = orb\n"), "\nfeature_type = " + feature + "\n");
+  const std::string file = dir + "/engine-" + mode + "-" + feature + ".ini";
+  std::ofstream(file) << text;
+  return file;
+}
+
+std::string writeIni(const std::string& dir, const std::string& name, const std::string& text)
+{
+  const std::string file = dir + "/" + name;
+  std::ofstream(file) << text;
+  return file;
+}
+
+/** The trajectory without its header line (which names the app). */
+std::string trajectoryBody(const std::string& dir)
+{
+  const std::string t = readText(dir + "/trajectory.txt");
+  return t.substr(t.find('\n') + 1);
+}
+}  // namespace
+
+TEST(RoiGraphSlamEngineApp, SyntheticLoopInEveryModeIsAccurateAndClosesLoops)
+{
+  ROISLAM_REQUIRE_SYNTHETIC(seq, "textured");
+  const auto& data = syntheticRawlog(seq);
+  const std::string out = roislam::testing::makeTempDir("engine_app_modes");
+  for (const std::string mode : {"traditional", "roi_small", "roi_big"})
+    for (const std::string feature : {"orb", "surf", "sift"})
+    {
+      const std::string dir = out + "/" + mode + "-" + feature;
+      // One run renders the snapshot (the slow picture), the others skip it.
+      const bool snapshot = mode == "roi_big" && feature == "orb";
+      const auto r = runEngine(
+          "-i " + engineIni(out, mode, feature) + " -r " + data.rawlog + " -g " + data.groundTruth +
+          " --3d --disable-visuals --output-dir " + dir + (snapshot ? "" : " --no-snapshot"));
+      ASSERT_EQ(r.exitCode, 0) << mode << " " << feature << ": " << r.err;
+      const auto s = readSummary(dir);
+      std::printf(
+          "%-12s %-5s ATE %.4f m, %d keyframes, %d loop closures\n", mode.c_str(), feature.c_str(),
+          s["ate_rmse"].get<double>(), s["keyframes"].get<int>(), s["loop_closures"].get<int>());
+      EXPECT_EQ(s["mode"], mode);
+      EXPECT_EQ(s["feature"], feature);
+      EXPECT_EQ(s["tracked_frames"], s["frames"]) << mode << " " << feature;
+      EXPECT_LT(s["ate_rmse"].get<double>(), 0.01) << mode << " " << feature;
+      EXPECT_GE(s["loop_closures"].get<int>(), 1) << mode << " " << feature;
+      EXPECT_EQ(s["engine"]["node_registration_decider"], "CKeyframeNRD");
+      std::vector<std::string> files{"trajectory.txt", "graph.graph", "map.bt",
+                                     "frames.csv",     "report.txt",  "summary.json"};
+      if (snapshot)
+        files.push_back("snapshot.png");
+      for (const auto& f : files)
+        EXPECT_TRUE(fs::exists(dir + "/" + f)) << dir << "/" << f;
+    }
+  fs::remove_all(out);
+}
+
+TEST(RoiGraphSlamEngineApp, EqualsRoiGraphSlamOnTheSyntheticLoop)
+{
+  ROISLAM_REQUIRE_SYNTHETIC(seq, "textured");
+  const auto& data = syntheticRawlog(seq);
+  const std::string out = roislam::testing::makeTempDir("engine_app_equal");
+  // The same settings: config/graphslam-engine.ini is config/roi_big.ini in
+  // MRPT's sections.
+  const auto e = runEngine(
+      "-i " + config("graphslam-engine.ini") + " -r " + data.rawlog + " -g " + data.groundTruth +
+      " --output-dir " + out + "/engine --no-snapshot");
+  ASSERT_EQ(e.exitCode, 0) << e.err;
+  const auto g = roislam::testing::runApp(
+      "roi-graphslam", "--ini " + config("roi_big.ini") + " --input " + data.rawlog +
+                           " --output-dir " + out + "/roi-graphslam --no-snapshot");
+  ASSERT_EQ(g.exitCode, 0) << g.err;
+  const auto se = readSummary(out + "/engine"), sg = readSummary(out + "/roi-graphslam");
+  for (const char* k : {"graph_nodes", "graph_edges", "keyframes", "loop_closures"})
+    EXPECT_EQ(se[k], sg[k]) << k;
+  EXPECT_EQ(se["ate_rmse"], sg["ate_rmse"]);
+  // One code path: the same trajectory to the last digit.
+  EXPECT_EQ(trajectoryBody(out + "/engine"), trajectoryBody(out + "/roi-graphslam"));
+  fs::remove_all(out);
+}
+
+TEST(RoiGraphSlamEngineApp, PrintsTheParametersItsDecidersLoaded)
+{
+  ROISLAM_REQUIRE_SYNTHETIC(seq, "textured");
+  const auto& data = syntheticRawlog(seq);
+  const std::string out = roislam::testing::makeTempDir("engine_app_params");
+  // A key in each of our sections; everything else on its default.
+  const std::string ini = writeIni(
+      out, "some.ini",
+      "[GeneralConfiguration]\nclass_verbosity = 2\nmap_decimation = 6\n"
+      "[NodeRegistrationDeciderParameters]\nmode = roi_small\nkeyframe_rotation_deg = 7\n"
+      "rolling_shutter_ms = 25\n"
+      "[FeatureExtractor]\nmax_features = 600\n"
+      "[EdgeRegistrationDeciderParameters]\nloop_min_keyframe_gap = 4\n"
+      "[OptimizerParameters]\noptimize_every_keyframes = 3\n");
+  auto r =
+      runEngine("-i " + ini + " -r " + data.rawlog + " --output-dir " + out + "/run --no-snapshot");
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  for (const char* line :
+       {"CKeyframeNRD parameters (ini ", "[NodeRegistrationDeciderParameters]\n",
+        "\nmode = roi_small\n", "\nkeyframe_rotation_deg = 7.000000\n",
+        "\nkeyframe_translation_m = 0.100000  (default)\n", "\nmap_decimation = 6\n",
+        "\nmax_features = 600\n", "CKeyframeERD parameters", "\nloop_min_keyframe_gap = 4\n",
+        "\nloop_min_inliers = 25  (default)\n", "CKeyframeGSO parameters",
+        "\noptimize_every_keyframes = 3\n", "\noptimize_min_chi2 = 30.000000  (default)\n"})
+    EXPECT_NE(r.out.find(line), std::string::npos) << line << "\n" << r.out;
+  auto s = readSummary(out + "/run");
+  EXPECT_EQ(s["mode"], "roi_small");
+  // Without ground truth: no ATE.
+  EXPECT_TRUE(s["ate_rmse"].is_null());
+  // The reports carry the same parameters.
+  const std::string report = readText(out + "/run/report.txt");
+  EXPECT_NE(report.find("\nkeyframe_rotation_deg = 7.000000\n"), std::string::npos);
+  EXPECT_NE(
+      report.find("Num of Nodes: " + std::to_string(s["graph_nodes"].get<int>())),
+      std::string::npos);
+
+  // An ini without any of the sections runs on the defaults and lists them.
+  const std::string empty = writeIni(out, "empty.ini", "# nothing here\n");
+  r = runEngine(
+      "-i " + empty + " -r " + data.rawlog + " -g " + data.groundTruth + " --output-dir " + out +
+      "/defaults --no-snapshot");
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  for (const char* line :
+       {"\nmode = traditional  (default)\n", "\nfeature_type = orb  (default)\n",
+        "\nloop_min_keyframe_gap = 10  (default)\n",
+        "\noptimize_window_keyframes = 50  (default)\n",
+        "\nedge_information = diagonal  (default)\n"})
+    EXPECT_NE(r.out.find(line), std::string::npos) << line << "\n" << r.out;
+  s = readSummary(out + "/defaults");
+  EXPECT_EQ(s["mode"], "traditional");
+  EXPECT_EQ(s["tracked_frames"], s["frames"]);
+  EXPECT_FALSE(s["ate_rmse"].is_null());
+  fs::remove_all(out);
+}
+
+TEST(RoiGraphSlamEngineApp, RunsMrptsOwnDecidersThatWorkInThreeD)
+{
+  ROISLAM_REQUIRE_SYNTHETIC(seq, "textured");
+  const auto& data = syntheticRawlog(seq);
+  const std::string out = roislam::testing::makeTempDir("engine_app_mrpt");
+  const std::string base = "-i " + config("graphslam-engine.ini") + " -r " + data.rawlog + " -g " +
+                           data.groundTruth + " --no-snapshot --output-dir " + out;
+  // Odometry only: MRPT's empty edge decider, our optimiser.
+  auto r = runEngine(base + "/empty -e CEmptyERD");
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  auto s = readSummary(out + "/empty");
+  EXPECT_EQ(s["engine"]["edge_registration_decider"], "CEmptyERD");
+  EXPECT_EQ(s["loop_closures"].get<int>(), 0);
+  EXPECT_EQ(s["graph_edges"].get<int>(), s["graph_nodes"].get<int>() - 1);
+  EXPECT_EQ(s["tracked_frames"], s["frames"]);
+  // MRPT's optimiser on our edges (its optimised poses are kept too).
+  r = runEngine(base + "/levmarq -o CLevMarqGSO");
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  s = readSummary(out + "/levmarq");
+  EXPECT_EQ(s["engine"]["optimizer"], "CLevMarqGSO");
+  EXPECT_GE(s["loop_closures"].get<int>(), 1);
+  EXPECT_TRUE(s["optimizations"].is_null());
+  EXPECT_TRUE(s["final_optimization"].is_null());
+  EXPECT_LT(s["ate_rmse"].get<double>(), 0.05);
+  fs::remove_all(out);
+}
+
+TEST(RoiGraphSlamEngineApp, BadInputGivesOneLineErrors)
+{
+  const std::string out = roislam::testing::makeTempDir("engine_app_bad");
+  const std::string ini = config("graphslam-engine.ini");
+  const std::string rawlog = [&]() -> std::string
+  {
+    const auto seq = roislam::testing::syntheticSequence("textured");
+    return seq ? syntheticRawlog(*seq).rawlog : out + "/none.rawlog";
+  }();
+  const auto expectError = [&](const std::string& args, const std::string& text)
+  {
+    const auto r = runEngine(args + " --output-dir " + out + "/run --no-snapshot");
+    EXPECT_EQ(r.exitCode, 1) << args;
+    EXPECT_EQ(r.err.rfind("roi-graphslam-engine: error: ", 0), 0u) << args << ": " << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << args << ": " << r.err;
+    EXPECT_NE(r.err.find(text), std::string::npos) << args << ": " << r.err;
+  };
+  expectError(
+      "-i " + ini + " -r " + rawlog + " -n CNoSuchNRD", "-n/--node-reg CNoSuchNRD: unknown");
+  expectError(
+      "-i " + ini + " -r " + rawlog + " -e CICPCriteriaERD",
+      "-e/--edge-reg CICPCriteriaERD: works on 2-D graphs only");
+  expectError(
+      "-i " + ini + " -r " + rawlog + " -n CFixedIntervalsNRD",
+      "CFixedIntervalsNRD: registers nodes from odometry");
+  expectError("-i " + ini + " -r " + rawlog + " -o CEmptyGSO", "CEmptyGSO: abstract");
+  expectError("-i " + ini + " -r " + rawlog + " --2d", "--2d: roi-graphslam-engine builds 3-D");
+  expectError("-i " + ini + " -r /nonexistent/x.rawlog", "/nonexistent/x.rawlog");
+  expectError("-i /nonexistent.ini -r " + rawlog, "ini /nonexistent.ini: cannot open");
+  expectError("-i " + ini, "-r/--rawlog is required");
+  expectError("-i " + ini + " -r " + rawlog + " -g /nonexistent/gt.txt", "/nonexistent/gt.txt");
+  const std::string second =
+      writeIni(out, "second.ini", "[OptimizerParameters]\noptimization_on_second_thread = true\n");
+  expectError(
+      "-i " + second + " -r " + rawlog + " -o CLevMarqGSO",
+      "[OptimizerParameters] optimization_on_second_thread: must be false");
+  if (!fs::exists(rawlog))
+    return;  // the remaining errors come from the deciders' loadParams()
+  const std::string bad =
+      writeIni(out, "bad.ini", "[NodeRegistrationDeciderParameters]\nkeyframe_rotation_deg = -1\n");
+  expectError(
+      "-i " + bad + " -r " + rawlog,
+      "ini " + bad + ": [NodeRegistrationDeciderParameters] keyframe_rotation_deg: must be > 0");
+  const std::string badLoop =
+      writeIni(out, "badloop.ini", "[EdgeRegistrationDeciderParameters]\nloop_min_inliers = 2\n");
+  expectError(
+      "-i " + badLoop + " -r " + rawlog,
+      "[EdgeRegistrationDeciderParameters] loop_min_inliers: must be >= 3");
+  const std::string unknown =
+      writeIni(out, "unknown.ini", "[OptimizerParameters]\noptimize_every_keyframe = 3\n");
+  expectError(
+      "-i " + unknown + " -r " + rawlog,
+      "[OptimizerParameters] unknown key 'optimize_every_keyframe'");
+  const std::string mixed = writeIni(
+      out, "mixed.ini",
+      "[FrontEnd]\nmode = roi_big\n[OptimizerParameters]\nloop_outlier_chi2 = 9\n");
+  expectError(
+      "-i " + mixed + " -r " + rawlog,
+      "[OptimizerParameters] loop_outlier_chi2: this ini uses roi-graphslam's sections");
+  fs::remove_all(out);
+}
+
+TEST(RoiGraphSlamEngineApp, ListsTheClassesAndWhyOthersAreRefused)
+{
+  const auto r = runEngine("--list-regs --list-optimizers");
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  for (const char* text :
+       {"CKeyframeNRD: ", "CKeyframeERD: ", "CKeyframeGSO: ", "CEmptyERD: ", "CLevMarqGSO: ",
+        "not usable here:\n", "CICPCriteriaNRD: works on 2-D graphs only"})
+    EXPECT_NE(r.out.find(text), std::string::npos) << text << "\n" << r.out;
+}
