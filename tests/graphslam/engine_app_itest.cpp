@@ -12,9 +12,10 @@
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
-#include <regex>
 #include <sstream>
 #include <string>
+
+#include "EngineIni.h"
 
 namespace fs = std::filesystem;
 using roislam::testing::TAppRun;
@@ -54,28 +55,17 @@ struct TRawlog
 const TRawlog& syntheticRawlog(const std::string& seq)
 {
   static TRawlog r;
+  static const roislam::testing::CTempDir dir("engine_app_rawlog");
   if (r.rawlog.empty())
   {
     roislam::io::CTum2RawlogApp::TOptions o;
     o.input = seq;
-    o.output = roislam::testing::makeTempDir("engine_app_rawlog") + "/textured.rawlog";
+    o.output = dir.path() + "/textured.rawlog";
     const auto res = roislam::io::CTum2RawlogApp(o).run();
     r.rawlog = res.rawlog;
     r.groundTruth = res.groundTruth.value_or("");
   }
   return r;
-}
-
-/** config/graphslam-engine.ini with another mode and extractor. */
-std::string engineIni(const std::string& dir, const std::string& mode, const std::string& feature)
-{
-  std::string text = readText(config("graphslam-engine.ini"));
-  text = std::regex_replace(text, std::regex("\nmode = roi_big\n"), "\nmode = " + mode + "\n");
-  text = std::regex_replace(
-      text, std::regex("\nfeature_type = orb\n"), "\nfeature_type = " + feature + "\n");
-  const std::string file = dir + "/engine-" + mode + "-" + feature + ".ini";
-  std::ofstream(file) << text;
-  return file;
 }
 
 std::string writeIni(const std::string& dir, const std::string& name, const std::string& text)
@@ -105,8 +95,9 @@ TEST(RoiGraphSlamEngineApp, SyntheticLoopInEveryModeIsAccurateAndClosesLoops)
       // One run renders the snapshot (the slow picture), the others skip it.
       const bool snapshot = mode == "roi_big" && feature == "orb";
       const auto r = runEngine(
-          "-i " + engineIni(out, mode, feature) + " -r " + data.rawlog + " -g " + data.groundTruth +
-          " --3d --disable-visuals --output-dir " + dir + (snapshot ? "" : " --no-snapshot"));
+          "-i " + roislam::testing::engineIniVariant(out, mode, feature) + " -r " + data.rawlog +
+          " -g " + data.groundTruth + " --3d --disable-visuals --output-dir " + dir +
+          (snapshot ? "" : " --no-snapshot"));
       ASSERT_EQ(r.exitCode, 0) << mode << " " << feature << ": " << r.err;
       const auto s = readSummary(dir);
       std::printf(
@@ -116,6 +107,10 @@ TEST(RoiGraphSlamEngineApp, SyntheticLoopInEveryModeIsAccurateAndClosesLoops)
       EXPECT_EQ(s["feature"], feature);
       EXPECT_EQ(s["tracked_frames"], s["frames"]) << mode << " " << feature;
       EXPECT_LT(s["ate_rmse"].get<double>(), 0.01) << mode << " " << feature;
+      // -g: the TUM ground truth gives the RPE too.
+      EXPECT_GT(s["rpe_trans_rmse"].get<double>(), 0.0) << mode << " " << feature;
+      EXPECT_LT(s["rpe_trans_rmse"].get<double>(), 0.05) << mode << " " << feature;
+      EXPECT_GE(s["rpe_rot_rmse_deg"].get<double>(), 0.0) << mode << " " << feature;
       EXPECT_GE(s["loop_closures"].get<int>(), 1) << mode << " " << feature;
       EXPECT_EQ(s["engine"]["node_registration_decider"], "CKeyframeNRD");
       std::vector<std::string> files{"trajectory.txt", "graph.graph", "map.bt",
@@ -179,8 +174,9 @@ TEST(RoiGraphSlamEngineApp, PrintsTheParametersItsDecidersLoaded)
     EXPECT_NE(r.out.find(line), std::string::npos) << line << "\n" << r.out;
   auto s = readSummary(out + "/run");
   EXPECT_EQ(s["mode"], "roi_small");
-  // Without ground truth: no ATE.
+  // Without ground truth: no ATE, no RPE.
   EXPECT_TRUE(s["ate_rmse"].is_null());
+  EXPECT_TRUE(s["rpe_trans_rmse"].is_null());
   // The reports carry the same parameters.
   const std::string report = readText(out + "/run/report.txt");
   EXPECT_NE(report.find("\nkeyframe_rotation_deg = 7.000000\n"), std::string::npos);
@@ -253,9 +249,16 @@ TEST(RoiGraphSlamEngineApp, BadInputGivesOneLineErrors)
   };
   expectError(
       "-i " + ini + " -r " + rawlog + " -n CNoSuchNRD", "-n/--node-reg CNoSuchNRD: unknown");
+  // MRPT's ICP deciders are 2-D only: refused with --3d (and without, 3-D being the default).
   expectError(
-      "-i " + ini + " -r " + rawlog + " -e CICPCriteriaERD",
+      "-i " + ini + " -r " + rawlog + " --3d -e CICPCriteriaERD",
       "-e/--edge-reg CICPCriteriaERD: works on 2-D graphs only");
+  expectError(
+      "-i " + ini + " -r " + rawlog + " --3d -n CICPCriteriaNRD",
+      "-n/--node-reg CICPCriteriaNRD: works on 2-D graphs only");
+  expectError(
+      "-i " + ini + " -r " + rawlog + " -e CLoopCloserERD",
+      "-e/--edge-reg CLoopCloserERD: works on 2-D graphs only");
   expectError(
       "-i " + ini + " -r " + rawlog + " -n CFixedIntervalsNRD",
       "CFixedIntervalsNRD: registers nodes from odometry");

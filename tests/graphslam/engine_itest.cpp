@@ -4,7 +4,8 @@
  * loop closure, and (after our final optimisation, since MRPT 2.5's engine
  * resets poses by Dijkstra) matches the ground truth. Then the same through
  * CRgbdGraphSlamEngine, which undoes that reset: its graph is the optimised
- * one after every step. */
+ * one after every step. Two runs by name in turn build the same graph, and
+ * nothing of a run (its context) outlives its engine and deciders. */
 #include <roislam/graphslam/CKeyframeERD.h>
 #include <roislam/graphslam/CKeyframeGSO.h>
 #include <roislam/graphslam/CKeyframeNRD.h>
@@ -22,6 +23,8 @@
 
 #include <filesystem>
 #include <fstream>
+#include <memory>
+#include <vector>
 
 namespace graphslam = roislam::graphslam;
 
@@ -120,5 +123,42 @@ TEST(Engine, RgbdEngineKeepsTheOptimisedPoses)
     EXPECT_LT((pose.translation() - truth.translation()).norm(), 0.01) << "node " << id;
   }
   engine.reset();
+  std::filesystem::remove_all(dir);
+}
+
+TEST(Engine, NoStateOutlivesTheEngine)
+{
+  const std::string dir = roislam::testing::makeTempDir("graphslam_engine_state");
+  const std::string ini = dir + "/engine.ini";
+  {
+    std::ofstream f(ini);
+    f << "[EdgeRegistrationDeciderParameters]\nloop_min_keyframe_gap = 3\nlandmark_loops = false\n"
+         "[FeatureExtractor]\nmax_features = 800\n";
+  }
+  const roislam::testing::CSyntheticPlane plane;
+  // Two runs one after the other, by name: the second starts from nothing the
+  // first left (no registry, no static state), so it builds the same graph;
+  // once the engine and the deciders are gone, so is their context.
+  std::vector<graphslam::TGraph> graphs;
+  for (int run = 0; run < 2; ++run)
+  {
+    auto d = graphslam::CRoislamOptionsChecker().createDeciders({});
+    const std::weak_ptr<graphslam::CSlamContext> context = d.context;
+    auto engine = graphslam::CRgbdGraphSlamEngine::create(ini, d);
+    for (int i = 0; i <= 30; ++i)
+      ASSERT_TRUE(engine->step(roislam::io::frameToObservation(
+          plane.render(roislam::testing::outAndBackPose(i), i, 0.1 * i))));
+    d.ourOptimizer()->finish();
+    graphs.push_back(engine->getGraph());
+    EXPECT_EQ(context.lock()->odometry().keyframes().size(), graphs.back().nodes.size());
+    engine.reset();
+    d = graphslam::TSlamDeciders();
+    EXPECT_TRUE(context.expired()) << "run " << run;
+  }
+  ASSERT_GE(graphs[0].nodes.size(), 3u);
+  EXPECT_EQ(graphs[0].nodes.size(), graphs[1].nodes.size());
+  EXPECT_EQ(graphs[0].edgeCount(), graphs[1].edgeCount());
+  for (const auto& [id, pose] : graphs[0].nodes)
+    EXPECT_EQ(pose, graphs[1].nodes.at(id)) << "node " << id;
   std::filesystem::remove_all(dir);
 }

@@ -51,6 +51,14 @@ std::string makeTempDir(const std::string& prefix)
   return tmpl;
 }
 
+CTempDir::CTempDir(const std::string& prefix) : m_path(makeTempDir(prefix)) {}
+
+CTempDir::~CTempDir()
+{
+  std::error_code ec;
+  fs::remove_all(m_path, ec);
+}
+
 TAppRun runApp(const std::string& app, const std::string& args)
 {
   const std::string exe = binaryDir() + "/apps/" + app + "/" + app;
