@@ -1,71 +1,38 @@
 /* roi-graphslam-engine end to end (the executable, with MRPT graphslam-engine's
  * command line) on a tum2rawlog rawlog of the synthetic textured loop of the
- * ctest fixture: every mode and extractor is accurate and closes loops; it
+ * ctest fixture: every mode and every extractor is accurate and closes loops
+ * (each combination: engine_app_slowtest); it
  * equals roi-graphslam run with the same settings in roi-graphslam's layout;
  * it prints the parameters its deciders' loadParams() read, marking the
  * defaults; MRPT's own 3-D classes run; bad input gives one-line errors. */
 #include <gtest/gtest.h>
-#include <roislam/io/CTum2RawlogApp.h>
 #include <roislam/testing/TestData.h>
 
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
-#include <sstream>
 #include <string>
 
-#include "EngineIni.h"
+#include "EngineRuns.h"
 
 namespace fs = std::filesystem;
-using roislam::testing::TAppRun;
+using roislam::testing::readSummary;
+using roislam::testing::readText;
+using roislam::testing::runEngine;
+using roislam::testing::TRawlog;
 
 namespace
 {
-TAppRun runEngine(const std::string& args)
-{
-  return roislam::testing::runApp("roi-graphslam-engine", args);
-}
-
-nlohmann::json readSummary(const std::string& dir)
-{
-  std::ifstream f(dir + "/summary.json");
-  return nlohmann::json::parse(f);
-}
-
-std::string readText(const std::string& file)
-{
-  std::ifstream f(file);
-  std::stringstream ss;
-  ss << f.rdbuf();
-  return ss.str();
-}
-
 std::string config(const std::string& name)
 {
-  return roislam::testing::sourceDir() + "/config/" + name;
+  return roislam::testing::configFile(name);
 }
 
-/** The textured loop as a rawlog (made once per test program), with its
- *  ground truth next to it. */
-struct TRawlog
-{
-  std::string rawlog, groundTruth;
-};
+/** The textured loop of the fixture as a rawlog. */
 const TRawlog& syntheticRawlog(const std::string& seq)
 {
-  static TRawlog r;
-  static const roislam::testing::CTempDir dir("engine_app_rawlog");
-  if (r.rawlog.empty())
-  {
-    roislam::io::CTum2RawlogApp::TOptions o;
-    o.input = seq;
-    o.output = dir.path() + "/textured.rawlog";
-    const auto res = roislam::io::CTum2RawlogApp(o).run();
-    r.rawlog = res.rawlog;
-    r.groundTruth = res.groundTruth.value_or("");
-  }
-  return r;
+  return roislam::testing::rawlogOf(seq);
 }
 
 std::string writeIni(const std::string& dir, const std::string& name, const std::string& text)
@@ -83,43 +50,16 @@ std::string trajectoryBody(const std::string& dir)
 }
 }  // namespace
 
+// The default suite: every mode once, every extractor once (a SIFT run is
+// the slowest); one run renders the snapshot (the slow picture).
 TEST(RoiGraphSlamEngineApp, SyntheticLoopInEveryModeIsAccurateAndClosesLoops)
 {
   ROISLAM_REQUIRE_SYNTHETIC(seq, "textured");
   const auto& data = syntheticRawlog(seq);
   const std::string out = roislam::testing::makeTempDir("engine_app_modes");
-  for (const std::string mode : {"traditional", "roi_small", "roi_big"})
-    for (const std::string feature : {"orb", "surf", "sift"})
-    {
-      const std::string dir = out + "/" + mode + "-" + feature;
-      // One run renders the snapshot (the slow picture), the others skip it.
-      const bool snapshot = mode == "roi_big" && feature == "orb";
-      const auto r = runEngine(
-          "-i " + roislam::testing::engineIniVariant(out, mode, feature) + " -r " + data.rawlog +
-          " -g " + data.groundTruth + " --3d --disable-visuals --output-dir " + dir +
-          (snapshot ? "" : " --no-snapshot"));
-      ASSERT_EQ(r.exitCode, 0) << mode << " " << feature << ": " << r.err;
-      const auto s = readSummary(dir);
-      std::printf(
-          "%-12s %-5s ATE %.4f m, %d keyframes, %d loop closures\n", mode.c_str(), feature.c_str(),
-          s["ate_rmse"].get<double>(), s["keyframes"].get<int>(), s["loop_closures"].get<int>());
-      EXPECT_EQ(s["mode"], mode);
-      EXPECT_EQ(s["feature"], feature);
-      EXPECT_EQ(s["tracked_frames"], s["frames"]) << mode << " " << feature;
-      EXPECT_LT(s["ate_rmse"].get<double>(), 0.01) << mode << " " << feature;
-      // -g: the TUM ground truth gives the RPE too.
-      EXPECT_GT(s["rpe_trans_rmse"].get<double>(), 0.0) << mode << " " << feature;
-      EXPECT_LT(s["rpe_trans_rmse"].get<double>(), 0.05) << mode << " " << feature;
-      EXPECT_GE(s["rpe_rot_rmse_deg"].get<double>(), 0.0) << mode << " " << feature;
-      EXPECT_GE(s["loop_closures"].get<int>(), 1) << mode << " " << feature;
-      EXPECT_EQ(s["engine"]["node_registration_decider"], "CKeyframeNRD");
-      std::vector<std::string> files{"trajectory.txt", "graph.graph", "map.bt",
-                                     "frames.csv",     "report.txt",  "summary.json"};
-      if (snapshot)
-        files.push_back("snapshot.png");
-      for (const auto& f : files)
-        EXPECT_TRUE(fs::exists(dir + "/" + f)) << dir << "/" << f;
-    }
+  roislam::testing::expectAccurateRun(data, out, "traditional", "sift", false);
+  roislam::testing::expectAccurateRun(data, out, "roi_small", "surf", false);
+  roislam::testing::expectAccurateRun(data, out, "roi_big", "orb", true);
   fs::remove_all(out);
 }
 
