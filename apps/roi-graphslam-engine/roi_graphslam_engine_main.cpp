@@ -6,6 +6,7 @@
  */
 #include <roislam/common/ProcessTuning.h>
 #include <roislam/graphslam/CRoiGraphSlamEngineApp.h>
+#include <roislam/graphslam/SlamMain.h>
 
 #include <CLI/CLI.hpp>
 #include <iostream>
@@ -40,40 +41,20 @@ int main(int argc, char** argv)
   cli.add_flag("--no-snapshot", noSnapshot, "Do not render snapshot.png");
   CLI11_PARSE(cli, argc, argv);
 
-  try
+  if (listNode || listEdge || listRegs || listOpt)
   {
-    if (listNode || listEdge || listRegs || listOpt)
-    {
-      if (listRegs || listNode)
-        std::cout << CRoiGraphSlamEngineApp::list("node");
-      if (listRegs || listEdge)
-        std::cout << CRoiGraphSlamEngineApp::list("edge");
-      if (listOpt)
-        std::cout << CRoiGraphSlamEngineApp::list("optimizer");
-      return 0;
-    }
-    if (!gt.empty())
-      args.groundTruth = gt;
-    args.snapshot = !noSnapshot;
-    args.progress = [](const std::string& line) { std::cerr << line << std::endl; };
-
-    CRoiGraphSlamEngineApp app(args);
-    const auto summary = app.run();
-    std::cout << summary.resultLine() << std::endl;
-    if (summary.failed)
-    {
-      std::cerr << "roi-graphslam-engine: error: tracking failed: " << summary.lostFrames << " of "
-                << summary.frames << " frames lost (outputs in " << args.outputDir << ")"
-                << std::endl;
-      return 1;
-    }
+    if (listRegs || listNode)
+      std::cout << CRoiGraphSlamEngineApp::list("node");
+    if (listRegs || listEdge)
+      std::cout << CRoiGraphSlamEngineApp::list("edge");
+    if (listOpt)
+      std::cout << CRoiGraphSlamEngineApp::list("optimizer");
     return 0;
   }
-  catch (const std::exception& e)
-  {
-    // MRPT exceptions append a call stack after the first line.
-    const std::string what = e.what();
-    std::cerr << "roi-graphslam-engine: error: " << what.substr(0, what.find('\n')) << std::endl;
-    return 1;
-  }
+  if (!gt.empty())
+    args.groundTruth = gt;
+  args.snapshot = !noSnapshot;
+  args.progress = [](const std::string& line) { std::cerr << line << std::endl; };
+  return roislam::graphslam::slamMain(
+      "roi-graphslam-engine", args.outputDir, [&] { return CRoiGraphSlamEngineApp(args).run(); });
 }

@@ -5,9 +5,11 @@
  */
 #include <roislam/common/ProcessTuning.h>
 #include <roislam/graphslam/CRoiGraphSlamApp.h>
+#include <roislam/graphslam/SlamMain.h>
 
 #include <CLI/CLI.hpp>
 #include <iostream>
+#include <stdexcept>
 #include <string>
 
 int main(int argc, char** argv)
@@ -35,49 +37,33 @@ int main(int argc, char** argv)
   cli.add_flag("--list-edge-regs", listEdge, "List the edge registration deciders and exit");
   CLI11_PARSE(cli, argc, argv);
 
-  try
+  if (listNode || listEdge)
   {
-    if (listNode || listEdge)
-    {
-      using roislam::graphslam::CRoiGraphSlamApp;
-      if (listNode)
-        std::cout << "Node registration deciders (3-D):\n"
-                  << CRoiGraphSlamApp::listRegistrars("node");
-      if (listEdge)
-        std::cout << "Edge registration deciders (3-D):\n"
-                  << CRoiGraphSlamApp::listRegistrars("edge");
-      return 0;
-    }
-    if (args.input.empty() || args.outputDir.empty())
-      throw std::invalid_argument("--input and --output-dir are required");
-    if (!mode.empty())
-      args.mode = mode;
-    if (!feature.empty())
-      args.feature = feature;
-    if (maxFeatures >= 0)
-      args.maxFeatures = maxFeatures;
-    if (strict)
-      args.strictRoi = true;
-    args.snapshot = !noSnapshot;
-    args.progress = [](const std::string& line) { std::cerr << line << std::endl; };
-
-    roislam::graphslam::CRoiGraphSlamApp app(args);
-    const auto summary = app.run();
-    std::cout << summary.resultLine() << std::endl;
-    if (summary.failed)
-    {
-      std::cerr << "roi-graphslam: error: tracking failed: " << summary.lostFrames << " of "
-                << summary.frames << " frames lost (outputs in " << args.outputDir << ")"
-                << std::endl;
-      return 1;
-    }
+    using roislam::graphslam::CRoiGraphSlamApp;
+    if (listNode)
+      std::cout << "Node registration deciders (3-D):\n"
+                << CRoiGraphSlamApp::listRegistrars("node");
+    if (listEdge)
+      std::cout << "Edge registration deciders (3-D):\n"
+                << CRoiGraphSlamApp::listRegistrars("edge");
     return 0;
   }
-  catch (const std::exception& e)
-  {
-    // MRPT exceptions append a call stack after the first line.
-    const std::string what = e.what();
-    std::cerr << "roi-graphslam: error: " << what.substr(0, what.find('\n')) << std::endl;
-    return 1;
-  }
+  if (!mode.empty())
+    args.mode = mode;
+  if (!feature.empty())
+    args.feature = feature;
+  if (maxFeatures >= 0)
+    args.maxFeatures = maxFeatures;
+  if (strict)
+    args.strictRoi = true;
+  args.snapshot = !noSnapshot;
+  args.progress = [](const std::string& line) { std::cerr << line << std::endl; };
+  return roislam::graphslam::slamMain(
+      "roi-graphslam", args.outputDir,
+      [&]
+      {
+        if (args.input.empty() || args.outputDir.empty())
+          throw std::invalid_argument("--input and --output-dir are required");
+        return roislam::graphslam::CRoiGraphSlamApp(args).run();
+      });
 }

@@ -13,6 +13,8 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "EngineRuns.h"
 
@@ -187,22 +189,17 @@ TEST(RoiGraphSlamEngineApp, BadInputGivesOneLineErrors)
     EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << args << ": " << r.err;
     EXPECT_NE(r.err.find(text), std::string::npos) << args << ": " << r.err;
   };
-  expectError(
-      "-i " + ini + " -r " + rawlog + " -n CNoSuchNRD", "-n/--node-reg CNoSuchNRD: unknown");
-  // MRPT's ICP deciders are 2-D only: refused with --3d (and without, 3-D being the default).
-  expectError(
-      "-i " + ini + " -r " + rawlog + " --3d -e CICPCriteriaERD",
-      "-e/--edge-reg CICPCriteriaERD: works on 2-D graphs only");
-  expectError(
-      "-i " + ini + " -r " + rawlog + " --3d -n CICPCriteriaNRD",
-      "-n/--node-reg CICPCriteriaNRD: works on 2-D graphs only");
-  expectError(
-      "-i " + ini + " -r " + rawlog + " -e CLoopCloserERD",
-      "-e/--edge-reg CLoopCloserERD: works on 2-D graphs only");
-  expectError(
-      "-i " + ini + " -r " + rawlog + " -n CFixedIntervalsNRD",
-      "CFixedIntervalsNRD: registers nodes from odometry");
-  expectError("-i " + ini + " -r " + rawlog + " -o CEmptyGSO", "CEmptyGSO: abstract");
+  // Refused names; MRPT's ICP and loop-closer deciders are 2-D only: refused
+  // with --3d (and without: 3-D is the default).
+  const std::string base = "-i " + ini + " -r " + rawlog + " --3d ";
+  for (const auto& [args, text] : std::vector<std::pair<std::string, std::string>>{
+           {"-n CNoSuchNRD", "-n/--node-reg CNoSuchNRD: unknown"},
+           {"-e CICPCriteriaERD", "-e/--edge-reg CICPCriteriaERD: works on 2-D graphs only"},
+           {"-n CICPCriteriaNRD", "-n/--node-reg CICPCriteriaNRD: works on 2-D graphs only"},
+           {"-e CLoopCloserERD", "-e/--edge-reg CLoopCloserERD: works on 2-D graphs only"},
+           {"-n CFixedIntervalsNRD", "CFixedIntervalsNRD: registers nodes from odometry"},
+           {"-o CEmptyGSO", "CEmptyGSO: abstract"}})
+    expectError(base + args, text);
   expectError("-i " + ini + " -r " + rawlog + " --2d", "--2d: roi-graphslam-engine builds 3-D");
   expectError("-i " + ini + " -r /nonexistent/x.rawlog", "/nonexistent/x.rawlog");
   expectError("-i /nonexistent.ini -r " + rawlog, "ini /nonexistent.ini: cannot open");

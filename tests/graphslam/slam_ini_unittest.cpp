@@ -18,7 +18,10 @@
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <set>
+#include <sstream>
+#include <string>
 
 namespace graphslam = roislam::graphslam;
 
@@ -33,10 +36,7 @@ std::string config(const std::string& name)
 std::string dump(const graphslam::CSlamContext::TConfig& c)
 {
   mrpt::config::CConfigFileMemory m;
-  c.frontEnd.saveToConfigFile(m, "FrontEnd");
-  c.backEnd.saveToConfigFile(m, "GraphSlam");
-  c.database.saveToConfigFile(m, "LandmarkDatabase");
-  c.locator.saveToConfigFile(m, "HomographyLocator");
+  graphslam::saveSlamConfig(c, m);
   std::string text;
   m.getContent(text);
   return text;
@@ -66,6 +66,47 @@ TEST(SlamIni, ShippedEngineIniIsRoiBigInMrptsSections)
   EXPECT_EQ(
       dump(graphslam::CSlamContext::loadConfig(e, engine)),
       dump(graphslam::CSlamContext::loadConfig(r, roiBig)));
+}
+
+// config/graphslam-engine.ini documents every key our deciders read: each
+// one they print (describeSlamParams) is in its section there, set or
+// commented out on its default, with a comment line above it.
+TEST(SlamIni, ShippedEngineIniDocumentsEveryKey)
+{
+  std::ifstream in(config("graphslam-engine.ini"));
+  std::map<std::string, std::set<std::string>> documented;  // section -> keys
+  std::string line, section, previous;
+  while (std::getline(in, line))
+  {
+    if (!line.empty() && line.front() == '[')
+      section = line.substr(1, line.find(']') - 1);
+    const std::string body = line.rfind("# ", 0) == 0 ? line.substr(2) : line;
+    const auto eq = body.find(" = ");
+    if (eq != std::string::npos && body.find(' ') == eq && previous.rfind("#", 0) == 0)
+      documented[section].insert(body.substr(0, eq));
+    previous = line;
+  }
+  const graphslam::CSlamContext::TConfig defaults;
+  std::size_t keys = 0;
+  for (const auto part :
+       {graphslam::ESlamParams::NodeRegistration, graphslam::ESlamParams::EdgeRegistration,
+        graphslam::ESlamParams::Optimizer})
+  {
+    std::istringstream printed(graphslam::describeSlamParams(
+        defaults, part, graphslam::ESlamIniLayout::GraphSlamEngine, nullptr));
+    while (std::getline(printed, line))
+    {
+      if (!line.empty() && line.front() == '[')
+      {
+        section = line.substr(1, line.find(']') - 1);
+        continue;
+      }
+      const std::string key = line.substr(0, line.find(" = "));
+      EXPECT_TRUE(documented[section].count(key)) << "[" << section << "] " << key;
+      ++keys;
+    }
+  }
+  EXPECT_GT(keys, 80u);
 }
 
 TEST(SlamIni, EveryBackEndKeyInExactlyOneMrptSection)

@@ -16,11 +16,7 @@ void CKeyframeERD::setContext(std::shared_ptr<CSlamContext> context)
 
 CSlamContext& CKeyframeERD::ctx() const
 {
-  if (!m_context)
-    throw std::logic_error(
-        "CKeyframeERD: no CSlamContext shared with CKeyframeNRD; create roislam's deciders "
-        "together with CRoislamOptionsChecker::createDeciders()");
-  return *m_context;
+  return sharedContext(m_context, kName);
 }
 
 void CKeyframeERD::loadParams(const std::string& iniFile)

@@ -12,11 +12,7 @@ namespace roislam::graphslam
 {
 CSlamContext& CKeyframeGSO::ctx() const
 {
-  if (!m_context)
-    throw std::logic_error(
-        "CKeyframeGSO: no CSlamContext shared with CKeyframeNRD; create roislam's deciders "
-        "together with CRoislamOptionsChecker::createDeciders()");
-  return *m_context;
+  return sharedContext(m_context, kName);
 }
 
 void CKeyframeGSO::loadParams(const std::string& iniFile)

@@ -21,12 +21,7 @@ void CKeyframeNRD::setContext(std::shared_ptr<CSlamContext> context)
 
 CSlamContext& CKeyframeNRD::ctx() const
 {
-  // MRPT's by-name factories cannot hand one context to several deciders.
-  if (!m_context)
-    throw std::logic_error(
-        "CKeyframeNRD: no CSlamContext; create roislam's deciders together with "
-        "CRoislamOptionsChecker::createDeciders()");
-  return *m_context;
+  return sharedContext(m_context, kName);
 }
 
 void CKeyframeNRD::loadParams(const std::string& iniFile)

@@ -372,4 +372,14 @@ CSlamContext::TConfig CSlamContext::loadConfig(
     loadSlamParams(cfg, fileLabel, part, c);
   return c;
 }
+
+CSlamContext& sharedContext(const std::shared_ptr<CSlamContext>& context, const char* decider)
+{
+  if (!context)
+    throw std::logic_error(
+        std::string(decider) +
+        ": no CSlamContext shared with the other deciders; create roislam's deciders together "
+        "with CRoislamOptionsChecker::createDeciders()");
+  return *context;
+}
 }  // namespace roislam::graphslam

@@ -210,15 +210,20 @@ void loadSlamParams(
   }
 }
 
+void saveSlamConfig(const CSlamContext::TConfig& config, mrpt::config::CConfigFileBase& out)
+{
+  config.frontEnd.saveToConfigFile(out, "FrontEnd");
+  config.backEnd.saveToConfigFile(out, "GraphSlam");
+  config.database.saveToConfigFile(out, "LandmarkDatabase");
+  config.locator.saveToConfigFile(out, "HomographyLocator");
+}
+
 std::string describeSlamParams(
     const CSlamContext::TConfig& config, ESlamParams part, ESlamIniLayout layout,
     const mrpt::config::CConfigFileBase* ini)
 {
   mrpt::config::CConfigFileMemory values;
-  config.frontEnd.saveToConfigFile(values, "FrontEnd");
-  config.backEnd.saveToConfigFile(values, "GraphSlam");
-  config.database.saveToConfigFile(values, "LandmarkDatabase");
-  config.locator.saveToConfigFile(values, "HomographyLocator");
+  saveSlamConfig(config, values);
   std::ostringstream ss;
   for (const auto& s : sections(part, layout))
   {

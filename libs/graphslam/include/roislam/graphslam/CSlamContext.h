@@ -276,4 +276,9 @@ class CSlamContext
 
 /** "landmark" | "proximity". */
 std::string toString(ELoopSource s);
+/** `context`, else std::logic_error naming `decider`: one of our deciders
+ *  made alone by MRPT's by-name factory has no context (those factories take
+ *  no arguments, so cannot hand one context to several deciders);
+ *  CRoislamOptionsChecker::createDeciders() makes them together. */
+CSlamContext& sharedContext(const std::shared_ptr<CSlamContext>& context, const char* decider);
 }  // namespace roislam::graphslam

@@ -64,6 +64,10 @@ void loadSlamParams(
     const mrpt::config::CConfigFileBase& cfg, const std::string& fileLabel, ESlamParams part,
     CSlamContext::TConfig& config);
 
+/** Every value of `config` into `out`, in roi-graphslam's layout ([FrontEnd],
+ *  [GraphSlam], [LandmarkDatabase], [HomographyLocator]). */
+void saveSlamConfig(const CSlamContext::TConfig& config, mrpt::config::CConfigFileBase& out);
+
 /** The values of `part` in `config` as ini text in `layout`: "[Section]"
  *  lines, then "key = value", with "  (default)" after the keys `ini` does
  *  not set (no marks when `ini` is null). For the deciders' printParams() and
