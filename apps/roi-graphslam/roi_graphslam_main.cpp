@@ -5,6 +5,7 @@
  */
 #include <roislam/common/ProcessTuning.h>
 #include <roislam/graphslam/CRoiGraphSlamApp.h>
+#include <roislam/graphslam/SlamMain.h>
 
 #include <CLI/CLI.hpp>
 #include <iostream>
@@ -120,56 +121,42 @@ int main(int argc, char** argv)
   CLI11_PARSE(cli, argc, argv);
   gui.enabled = gui.enabled || gui.paused || !gui.screenshot.empty() || gui.keepOpen;
 
-  // The live view outlives the try block: a window that was open ends the
-  // process through exitAfterLiveView() whatever happened (see there).
+  if (listNode || listEdge)
+  {
+    using roislam::graphslam::CRoiGraphSlamApp;
+    if (listNode)
+      std::cout << "Node registration deciders (3-D):\n"
+                << CRoiGraphSlamApp::listRegistrars("node");
+    if (listEdge)
+      std::cout << "Edge registration deciders (3-D):\n"
+                << CRoiGraphSlamApp::listRegistrars("edge");
+    return 0;
+  }
+  if (!mode.empty())
+    args.mode = mode;
+  if (!feature.empty())
+    args.feature = feature;
+  if (maxFeatures >= 0)
+    args.maxFeatures = maxFeatures;
+  if (strict)
+    args.strictRoi = true;
+  args.snapshot = !noSnapshot;
+  args.progress = [](const std::string& line) { std::cerr << line << std::endl; };
+  // The live view outlives the run: a window that was open ends the process
+  // through exitAfterLiveView() whatever happened (see there).
   decltype(openLiveView(gui, args)) view;
-  int rc = 0;
-  try
-  {
-    if (listNode || listEdge)
-    {
-      using roislam::graphslam::CRoiGraphSlamApp;
-      if (listNode)
-        std::cout << "Node registration deciders (3-D):\n"
-                  << CRoiGraphSlamApp::listRegistrars("node");
-      if (listEdge)
-        std::cout << "Edge registration deciders (3-D):\n"
-                  << CRoiGraphSlamApp::listRegistrars("edge");
-      return 0;
-    }
-    if (args.input.empty() || args.outputDir.empty())
-      throw std::invalid_argument("--input and --output-dir are required");
-    if (!mode.empty())
-      args.mode = mode;
-    if (!feature.empty())
-      args.feature = feature;
-    if (maxFeatures >= 0)
-      args.maxFeatures = maxFeatures;
-    if (strict)
-      args.strictRoi = true;
-    args.snapshot = !noSnapshot;
-    args.progress = [](const std::string& line) { std::cerr << line << std::endl; };
-
-    roislam::graphslam::CRoiGraphSlamApp app(args);  // checks the ini before a window opens
-    view = openLiveView(gui, args);
-    app.setObserver(view.get());
-    const auto summary = app.run();
-    std::cout << summary.resultLine() << std::endl;
-    finishLiveView(view.get(), gui, args.outputDir);
-    if (summary.failed)
-    {
-      std::cerr << "roi-graphslam: error: tracking failed: " << summary.lostFrames << " of "
-                << summary.frames << " frames lost (outputs in " << args.outputDir << ")"
-                << std::endl;
-      rc = 1;
-    }
-  }
-  catch (const std::exception& e)
-  {
-    // MRPT exceptions append a call stack after the first line.
-    const std::string what = e.what();
-    std::cerr << "roi-graphslam: error: " << what.substr(0, what.find('\n')) << std::endl;
-    rc = 1;
-  }
+  const int rc = roislam::graphslam::slamMain(
+      "roi-graphslam", args.outputDir,
+      [&]
+      {
+        if (args.input.empty() || args.outputDir.empty())
+          throw std::invalid_argument("--input and --output-dir are required");
+        roislam::graphslam::CRoiGraphSlamApp app(args);  // checks the ini before a window opens
+        view = openLiveView(gui, args);
+        app.setObserver(view.get());
+        const auto summary = app.run();
+        finishLiveView(view.get(), gui, args.outputDir);
+        return summary;
+      });
   return endLiveView(std::move(view), rc);
 }

@@ -14,25 +14,9 @@ namespace fs = std::filesystem;
 
 namespace
 {
-struct TRun
+roislam::testing::TAppRun runApp(const std::string& args)
 {
-  int exitCode = -1;
-  std::string err;
-};
-
-TRun runApp(const std::string& args)
-{
-  const std::string exe = roislam::testing::binaryDir() + "/apps/roi-graphslam/roi-graphslam";
-  const std::string errFile = roislam::testing::makeTempDir("gs_err") + "/stderr.txt";
-  const int rc = std::system((exe + " " + args + " > /dev/null 2> " + errFile).c_str());
-  TRun r;
-  r.exitCode = WIFEXITED(rc) ? WEXITSTATUS(rc) : -1;
-  std::ifstream f(errFile);
-  std::stringstream ss;
-  ss << f.rdbuf();
-  r.err = ss.str();
-  fs::remove_all(fs::path(errFile).parent_path());
-  return r;
+  return roislam::testing::runApp("roi-graphslam", args);
 }
 
 nlohmann::json readSummary(const std::string& dir)

@@ -5,9 +5,13 @@
  * verified loop closure, and the optimised graph matches the ground truth. */
 #include <gtest/gtest.h>
 #include <roislam/graphslam/CKeyframeERD.h>
+#include <roislam/graphslam/CKeyframeGSO.h>
 #include <roislam/graphslam/CKeyframeNRD.h>
 #include <roislam/graphslam/CRoislamOptionsChecker.h>
 #include <roislam/io/ObservationConversion.h>
+
+#include <memory>
+#include <stdexcept>
 
 #include "SyntheticPlane.h"
 
@@ -105,11 +109,46 @@ TEST(Deciders, RegisteredByNameWithDescriptions)
   EXPECT_NE(nodes.find("CKeyframeNRD: "), std::string::npos);
   EXPECT_EQ(nodes.find("CKeyframeERD"), std::string::npos);
   EXPECT_NE(checker.describeRegistrars("edge").find("CKeyframeERD: "), std::string::npos);
-  // A factory-made decider works with the per-graph shared context.
-  std::unique_ptr<mrpt::graphslam::deciders::CNodeRegistrationDecider<graphslam::TGraph>> nrd(
+  // MRPT's own are listed with the reason they cannot run here.
+  EXPECT_NE(
+      nodes.find("not usable here:\nCFixedIntervalsNRD: registers nodes from odometry"),
+      std::string::npos)
+      << nodes;
+  EXPECT_TRUE(checker.refusal("edge", "CEmptyERD").empty());
+  EXPECT_TRUE(checker.refusal("optimizer", "CLevMarqGSO").empty());
+  EXPECT_NE(checker.refusal("edge", "CICPCriteriaERD").find("2-D"), std::string::npos);
+  EXPECT_NE(checker.refusal("node", "CNoSuchNRD").find("unknown"), std::string::npos);
+  EXPECT_NE(checker.refusal("optimizer", "CEmptyGSO").find("abstract"), std::string::npos);
+  EXPECT_THROW(
+      checker.createDeciders({"CKeyframeNRD", "CLoopCloserERD", "CKeyframeGSO"}),
+      std::invalid_argument);
+
+  // MRPT's by-name factories cannot share a context: a decider made by one
+  // alone says so instead of running without one.
+  std::unique_ptr<mrpt::graphslam::deciders::CNodeRegistrationDecider<graphslam::TGraph>> lone(
       checker.node_regs_map["CKeyframeNRD"]());
   graphslam::TGraph graph;
-  nrd->setGraphPtr(&graph);
-  EXPECT_TRUE(dynamic_cast<graphslam::CKeyframeNRD&>(*nrd).context());
-  graphslam::CSlamContext::setForGraph(&graph, nullptr);
+  lone->setGraphPtr(&graph);
+  const roislam::testing::CSyntheticPlane plane;
+  mrpt::obs::CObservation::Ptr obs = io::frameToObservation(plane.render({}, 0, 0));
+  try
+  {
+    lone->updateState(nullptr, nullptr, obs);
+    FAIL() << "expected an error";
+  }
+  catch (const std::logic_error& e)
+  {
+    EXPECT_NE(std::string(e.what()).find("createDeciders"), std::string::npos) << e.what();
+  }
+
+  // The factory's three share one context, and nothing else holds it.
+  auto d = checker.createDeciders({});
+  ASSERT_TRUE(d.ourNode() && d.ourEdge() && d.ourOptimizer());
+  EXPECT_EQ(d.ourNode()->context(), d.context);
+  EXPECT_EQ(d.ourEdge()->context(), d.context);
+  EXPECT_EQ(d.ourOptimizer()->context(), d.context);
+  EXPECT_EQ(d.context.use_count(), 4);
+  const std::weak_ptr<graphslam::CSlamContext> weak = d.context;
+  d = graphslam::TSlamDeciders();
+  EXPECT_TRUE(weak.expired());
 }

@@ -52,8 +52,8 @@ TOutcome run(const std::string& seq, double minChi2, int every, int window = 0)
   o.frames = p.records().size();
   const auto traj = p.trajectory();
   o.posed = traj.size();
-  o.optimizations = p.optimizations();
-  o.windowed = p.windowedOptimizations();
+  o.optimizations = p.optimizations().value();
+  o.windowed = p.windowedOptimizations().value();
   o.ate = roislam::evaluation::CTrajectoryEvaluator()
               .evaluate(roislam::io::loadTumTrajectory(gt), traj)
               .ate.rmse;

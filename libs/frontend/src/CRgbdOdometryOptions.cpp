@@ -136,7 +136,7 @@ void CRgbdOdometry::TOptions::loadFromConfigFile(
   roi.loadFromConfigFile(c, "RoiDetector");
   extractor.loadFromConfigFile(c, "FeatureExtractor");
   matcher.loadFromConfigFile(c, "FeatureMatcher");
-  validate();
+  validate(s);
 }
 
 void CRgbdOdometry::TOptions::saveToConfigFile(
@@ -181,9 +181,8 @@ void CRgbdOdometry::TOptions::saveToConfigFile(
   matcher.saveToConfigFile(c, "FeatureMatcher");
 }
 
-void CRgbdOdometry::TOptions::validate() const
+void CRgbdOdometry::TOptions::validate(const std::string& s) const
 {
-  const std::string s = "FrontEnd";
   if (min_roi_features < 3)
     common::throwBadIniKey(s, "min_roi_features", "must be >= 3");
   if (min_roi_inliers < 0)

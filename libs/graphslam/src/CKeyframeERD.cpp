@@ -1,5 +1,7 @@
 #include <roislam/graphslam/CKeyframeERD.h>
+#include <roislam/graphslam/SlamIni.h>
 
+#include <iostream>
 #include <sstream>
 #include <stdexcept>
 
@@ -12,32 +14,32 @@ void CKeyframeERD::setContext(std::shared_ptr<CSlamContext> context)
   m_context = std::move(context);
 }
 
-std::shared_ptr<CSlamContext> CKeyframeERD::context() const
+CSlamContext& CKeyframeERD::ctx() const
 {
-  if (m_context)
-    return m_context;
-  return this->m_graph ? CSlamContext::forGraph(this->m_graph) : nullptr;
+  return sharedContext(m_context, kName);
 }
 
-CSlamContext& CKeyframeERD::ctx()
+void CKeyframeERD::loadParams(const std::string& iniFile)
 {
-  auto c = context();
-  if (!c)
-    throw std::logic_error("CKeyframeERD: no graph and no context set");
-  // The per-graph context lives in the registry; keep our own reference.
-  return *c;
+  m_params = loadDeciderParams(ctx(), iniFile, ESlamParams::EdgeRegistration, kName);
 }
 
-void CKeyframeERD::setGraphPtr(TGraph* graph)
+void CKeyframeERD::printParams() const
 {
-  CEdgeRegistrationDecider<TGraph>::setGraphPtr(graph);
+  std::cout << m_params << std::flush;
 }
 
 bool CKeyframeERD::updateState(
     mrpt::obs::CActionCollection::Ptr, mrpt::obs::CSensoryFrame::Ptr, mrpt::obs::CObservation::Ptr)
 {
   this->m_just_inserted_lc = false;
-  if (const auto& last = ctx().lastFrame())
+  auto& c = ctx();
+  // Only a result recorded in this step: the NRD ignores observations that
+  // are not RGB-D, and its last result must not be registered twice.
+  if (c.framesRecorded() == m_framesSeen)
+    return true;
+  m_framesSeen = c.framesRecorded();
+  if (const auto& last = c.lastFrame())
     registerKeyframe(*last);
   return true;
 }
@@ -108,7 +110,9 @@ void CKeyframeERD::addLoopClosures(std::size_t id, TEdgeReport& rep)
 void CKeyframeERD::getEdgesStats(std::map<std::string, int>* edgeTypeToNum) const
 {
   // CGraphSlamEngine only accepts its own edge-type names ("lc" and
-  // "Odometry"/"ICP2D"/"ICP3D"); the detailed counts are in edgeCounts().
+  // "Odometry"/"ICP2D"/"ICP3D"), totals the types and counts loop closures
+  // within them: all our edges are visual odometry ("Odometry"), the
+  // closures among them "lc". The detailed counts are in edgeCounts().
   if (!edgeTypeToNum)
     return;
   edgeTypeToNum->clear();
@@ -118,13 +122,13 @@ void CKeyframeERD::getEdgesStats(std::map<std::string, int>* edgeTypeToNum) cons
     return it == m_stats.end() ? 0 : it->second;
   };
   (*edgeTypeToNum)["lc"] = get("loop_landmark") + get("loop_proximity");
-  (*edgeTypeToNum)["Odometry"] = get("recent");
+  (*edgeTypeToNum)["Odometry"] = this->m_graph ? static_cast<int>(this->m_graph->edges.size()) : 0;
 }
 
 void CKeyframeERD::getDescriptiveReport(std::string* report) const
 {
   std::ostringstream ss;
-  ss << kName << ": " << kDescription << "\n";
+  ss << kName << ": " << kDescription << "\n" << m_params << "edges added:\n";
   for (const auto& [k, n] : m_stats)
     ss << k << ": " << n << "\n";
   *report = ss.str();

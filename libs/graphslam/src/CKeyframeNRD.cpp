@@ -1,9 +1,9 @@
-#include <mrpt/config/CConfigFile.h>
 #include <mrpt/obs/CObservation3DRangeScan.h>
-#include <mrpt/system/filesystem.h>
 #include <roislam/graphslam/CKeyframeNRD.h>
+#include <roislam/graphslam/SlamIni.h>
 #include <roislam/io/ObservationConversion.h>
 
+#include <iostream>
 #include <sstream>
 #include <stdexcept>
 
@@ -17,35 +17,28 @@ CKeyframeNRD::CKeyframeNRD(std::shared_ptr<CSlamContext> context)
 void CKeyframeNRD::setContext(std::shared_ptr<CSlamContext> context)
 {
   m_context = std::move(context);
-  m_explicitContext = static_cast<bool>(m_context);
 }
 
-std::shared_ptr<CSlamContext> CKeyframeNRD::context() const
+CSlamContext& CKeyframeNRD::ctx() const
 {
-  if (m_context)
-    return m_context;
-  return this->m_graph ? CSlamContext::forGraph(this->m_graph) : nullptr;
-}
-
-void CKeyframeNRD::setGraphPtr(TGraph* graph)
-{
-  CNodeRegistrationDecider<TGraph>::setGraphPtr(graph);
-  if (!m_explicitContext)
-    m_context.reset();  // looked up per graph in context()
+  return sharedContext(m_context, kName);
 }
 
 void CKeyframeNRD::loadParams(const std::string& iniFile)
 {
-  if (m_explicitContext || iniFile.empty())
-    return;
-  if (!mrpt::system::fileExists(iniFile))
-    throw std::runtime_error("ini " + iniFile + ": cannot open");
-  mrpt::config::CConfigFile cfg(iniFile);
-  auto ctx = std::make_shared<CSlamContext>(CSlamContext::loadConfig(cfg, iniFile));
-  if (this->m_graph)
-    CSlamContext::setForGraph(this->m_graph, ctx);
-  else
-    m_context = ctx;
+  m_params = loadDeciderParams(ctx(), iniFile, ESlamParams::NodeRegistration, kName);
+}
+
+void CKeyframeNRD::printParams() const
+{
+  std::cout << m_params << std::flush;
+}
+
+void CKeyframeNRD::prepareAhead(
+    const mrpt::obs::CObservation* observation, frontend::TPreparedFrame prepared)
+{
+  m_aheadFor = observation;
+  m_ahead = std::move(prepared);
 }
 
 bool CKeyframeNRD::updateState(
@@ -59,25 +52,31 @@ bool CKeyframeNRD::updateState(
     scan = observations->getObservationByClass<mrpt::obs::CObservation3DRangeScan>();
   if (!scan)
     return false;  // other sensors carry nothing for us
-  scan->load();
-  auto frame =
-      io::observationToFrame(*scan, "CKeyframeNRD observation " + std::to_string(m_observations));
-  scan->unload();
-  // Observations carry no sequence index; number them in arrival order.
-  frame.index = m_observations++;
-  auto ctx = context();
-  if (!ctx)
-    throw std::logic_error("CKeyframeNRD: no graph and no context set");
-  const frontend::TFrameResult result = ctx->odometry().process(frame);
-  ctx->recordFrame(result, frame);
+  auto& c = ctx();
+  std::optional<frontend::TPreparedFrame> prepared;
+  if (m_ahead && m_aheadFor == scan.get())
+    prepared = std::move(m_ahead);
+  m_ahead.reset();
+  m_aheadFor = nullptr;
+  if (!prepared)
+  {
+    scan->load();
+    auto frame =
+        io::observationToFrame(*scan, "CKeyframeNRD observation " + std::to_string(m_observations));
+    scan->unload();
+    // Observations carry no sequence index; number them in arrival order.
+    frame.index = m_observations;
+    prepared = c.odometry().prepare(frame);
+  }
+  ++m_observations;
+  const frontend::TFrameResult result = c.odometry().process(*prepared);
+  c.recordFrame(result, prepared->frame);
   return registerFrame(result);
 }
 
 bool CKeyframeNRD::registerFrame(const frontend::TFrameResult& r)
 {
-  auto ctx = context();
-  if (!ctx)
-    throw std::logic_error("CKeyframeNRD: no graph and no context set");
+  auto& c = ctx();
   if (r.pose)
     m_currentPose = *r.pose;
   if (!r.isNewKeyframe || r.newKeyframeId == 0)
@@ -92,14 +91,14 @@ bool CKeyframeNRD::registerFrame(const frontend::TFrameResult& r)
     // First registration: root (keyframe 0) and keyframe 1 together, as
     // CGraphSlamEngine expects.
     g.root = 0;
-    g.nodes[0] = ctx->odometry().keyframe(0).pose;
+    g.nodes[0] = c.odometry().keyframe(0).pose;
   }
   g.nodes[id] = *r.pose;
-  const auto& c = r.constraints.front();
+  const auto& k = r.constraints.front();
   g.insertEdgeAtEnd(
-      static_cast<mrpt::graphs::TNodeID>(c.fromKeyframe), id,
+      static_cast<mrpt::graphs::TNodeID>(k.fromKeyframe), id,
       mrpt::poses::CPose3DPDFGaussianInf(
-          c.relativePose, ctx->edgeInformation(c.information, c.method, c.inliers)));
+          k.relativePose, c.edgeInformation(k.information, k.method, k.inliers)));
   this->m_prev_registered_nodeID = id;
   return true;
 }
@@ -112,11 +111,13 @@ TGraph::global_pose_t CKeyframeNRD::getCurrentRobotPosEstimation() const
 void CKeyframeNRD::getDescriptiveReport(std::string* report) const
 {
   std::ostringstream ss;
-  ss << kName << ": " << kDescription << "\n";
-  if (auto ctx = context())
+  ss << kName << ": " << kDescription << "\n" << m_params;
+  if (m_context)
   {
-    const auto& s = ctx->odometry().stats();
-    ss << "frames " << s.frames << ", keyframes " << s.keyframes << ", lost " << s.lost << "\n";
+    const auto& s = m_context->odometry().stats();
+    ss << "frames " << s.frames << ", keyframes " << s.keyframes << ", lost " << s.lost
+       << ", fallback to the whole image " << s.fullImageFallback << ", depth ICP " << s.depthIcp
+       << ", constant velocity " << s.constantVelocity << "\n";
   }
   *report = ss.str();
 }

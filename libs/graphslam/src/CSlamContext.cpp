@@ -2,26 +2,16 @@
 #include <mrpt/graphslam/levmarq.h>
 #include <mrpt/system/CTicTac.h>
 #include <roislam/common/IniErrors.h>
-#include <roislam/common/IniKeyCheck.h>
 #include <roislam/graphslam/CSlamContext.h>
+#include <roislam/graphslam/SlamIni.h>
 
 #include <algorithm>
 #include <cmath>
-#include <mutex>
 #include <set>
 #include <stdexcept>
 
 namespace roislam::graphslam
 {
-namespace
-{
-const char* kSection = "GraphSlam";
-
-[[noreturn]] void badKey(const std::string& key, const std::string& why)
-{
-  common::throwBadIniKey(kSection, key, why);
-}
-}  // namespace
 
 std::string toString(ELoopSource s)
 {
@@ -51,7 +41,7 @@ void CSlamContext::TOptions::loadFromConfigFile(
   edge_information = c.read_string(s, "edge_information", edge_information);
   edge_sigma_m = c.read_double(s, "edge_sigma_m", edge_sigma_m);
   edge_sigma_deg = c.read_double(s, "edge_sigma_deg", edge_sigma_deg);
-  validate();
+  validate(s);
 }
 
 void CSlamContext::TOptions::saveToConfigFile(
@@ -78,8 +68,10 @@ void CSlamContext::TOptions::saveToConfigFile(
   c.write(s, "edge_sigma_deg", edge_sigma_deg);
 }
 
-void CSlamContext::TOptions::validate() const
+void CSlamContext::TOptions::validate(const std::string& section) const
 {
+  const auto badKey = [&section](const std::string& key, const std::string& why)
+  { common::throwBadIniKey(section, key, why); };
   if (loop_min_keyframe_gap < 1)
     badKey("loop_min_keyframe_gap", "must be >= 1");
   if (!(proximity_radius_m > 0))
@@ -132,14 +124,26 @@ landmarks::TPipelineOptions landmarkOptions(const CSlamContext::TConfig& config)
 
 CSlamContext::CSlamContext() : CSlamContext(TConfig()) {}
 
-CSlamContext::CSlamContext(const TConfig& config)
-    : m_config(config), m_odometry(config.frontEnd), m_landmarks(landmarkOptions(config))
+CSlamContext::CSlamContext(const TConfig& config, EConfigOrigin origin) : m_origin(origin)
 {
-  m_config.backEnd.validate();
+  configure(config);
+}
+
+void CSlamContext::configure(const TConfig& config)
+{
+  if (m_framesRecorded > 0)
+    throw std::logic_error("CSlamContext::configure: the run has started");
+  config.backEnd.validate();
+  auto odometry = std::make_unique<frontend::CRgbdOdometry>(config.frontEnd);
+  auto landmarks = std::make_unique<landmarks::CObservationProcessor>(landmarkOptions(config));
+  m_config = config;
+  m_odometry = std::move(odometry);
+  m_landmarks = std::move(landmarks);
 }
 
 void CSlamContext::recordFrame(const frontend::TFrameResult& result, const io::TRGBDFrame& frame)
 {
+  ++m_framesRecorded;
   m_last = result;
   m_imageSize = frame.rgb.size();
   if (!result.isNewKeyframe)
@@ -187,10 +191,10 @@ std::optional<int32_t> CSlamContext::observeLandmarks(std::size_t id)
   std::optional<int32_t> recalled;
   if (!m_config.backEnd.landmark_loops)
     return recalled;
-  for (std::size_t k = m_landmarkQueried; k <= id && k < m_odometry.keyframes().size(); ++k)
+  for (std::size_t k = m_landmarkQueried; k <= id && k < m_odometry->keyframes().size(); ++k)
   {
     m_landmarkQueried = k + 1;
-    const auto& kf = m_odometry.keyframe(k);
+    const auto& kf = m_odometry->keyframe(k);
     if (!kf.roi)
       continue;
     const auto roiFeatures = kf.features.subset(*kf.roi);
@@ -202,7 +206,7 @@ std::optional<int32_t> CSlamContext::observeLandmarks(std::size_t id)
     region.box = *kf.roi;
     region.imageSize = m_imageSize;
     region.features = roiFeatures;
-    const auto seen = m_landmarks.processRegion(region).result;
+    const auto seen = m_landmarks->processRegion(region).result;
     const int32_t lm = seen.landmarkId;
     if (!seen.newLandmark && k == id)
       recalled = lm;
@@ -353,65 +357,29 @@ void CSlamContext::correctFrontEnd(const TGraph& graph)
   std::map<std::size_t, mrpt::poses::CPose3D> poses;
   for (const auto& [id, pose] : graph.nodes)
     poses.emplace(static_cast<std::size_t>(id), pose);
-  m_odometry.correctKeyframePoses(poses);
+  m_odometry->correctKeyframePoses(poses);
 }
 }  // namespace roislam::graphslam
 
 namespace roislam::graphslam
 {
-namespace
-{
-std::mutex g_registryMutex;
-std::map<const void*, std::shared_ptr<CSlamContext>>& registry()
-{
-  static std::map<const void*, std::shared_ptr<CSlamContext>> r;
-  return r;
-}
-}  // namespace
-
-std::shared_ptr<CSlamContext> CSlamContext::forGraph(const void* graph)
-{
-  std::lock_guard<std::mutex> lock(g_registryMutex);
-  auto& ctx = registry()[graph];
-  if (!ctx)
-    ctx = std::make_shared<CSlamContext>();
-  return ctx;
-}
-
-void CSlamContext::setForGraph(const void* graph, std::shared_ptr<CSlamContext> context)
-{
-  std::lock_guard<std::mutex> lock(g_registryMutex);
-  if (context)
-    registry()[graph] = std::move(context);
-  else
-    registry().erase(graph);
-}
-
 CSlamContext::TConfig CSlamContext::loadConfig(
     const mrpt::config::CConfigFileBase& cfg, const std::string& fileLabel)
 {
   TConfig c;
-  // Front-end options save their sub-component sections under fixed names.
-  for (const std::string s : {"FrontEnd", "RoiDetector", "FeatureExtractor", "FeatureMatcher"})
-    common::checkIniKeys(cfg, s, common::knownIniKeys(c.frontEnd, "FrontEnd", s), fileLabel);
-  common::checkIniKeys(cfg, "GraphSlam", common::knownIniKeys(c.backEnd, "GraphSlam"), fileLabel);
-  common::checkIniKeys(
-      cfg, "LandmarkDatabase", common::knownIniKeys(c.database, "LandmarkDatabase"), fileLabel);
-  common::checkIniKeys(
-      cfg, "HomographyLocator", common::knownIniKeys(c.locator, "HomographyLocator"), fileLabel);
-  try
-  {
-    c.frontEnd.loadFromConfigFile(cfg, "FrontEnd");
-    c.backEnd.loadFromConfigFile(cfg, "GraphSlam");
-    c.database.loadFromConfigFile(cfg, "LandmarkDatabase");
-    c.locator.loadFromConfigFile(cfg, "HomographyLocator");
-  }
-  catch (const std::exception& e)
-  {
-    std::string what = e.what();
-    what = what.substr(0, what.find('\n'));
-    throw std::runtime_error("ini " + fileLabel + ": " + what);
-  }
+  for (const auto part :
+       {ESlamParams::NodeRegistration, ESlamParams::EdgeRegistration, ESlamParams::Optimizer})
+    loadSlamParams(cfg, fileLabel, part, c);
   return c;
+}
+
+CSlamContext& sharedContext(const std::shared_ptr<CSlamContext>& context, const char* decider)
+{
+  if (!context)
+    throw std::logic_error(
+        std::string(decider) +
+        ": no CSlamContext shared with the other deciders; create roislam's deciders together "
+        "with CRoislamOptionsChecker::createDeciders()");
+  return *context;
 }
 }  // namespace roislam::graphslam

@@ -1,64 +1,86 @@
 #include "roislam/graphslam/CSlamPipeline.h"
 
-#include <mrpt/system/CTicTac.h>
+#include <roislam/graphslam/CKeyframeGSO.h>
+#include <roislam/graphslam/CKeyframeNRD.h>
+#include <roislam/graphslam/CRoislamOptionsChecker.h>
+#include <roislam/io/ObservationConversion.h>
 
-// getEdgeSquareError() needs Eigen complete; MRPT's headers do not include it.
-#include <Eigen/Dense>
-#include <algorithm>
 #include <stdexcept>
 
 namespace roislam::graphslam
 {
 CSlamPipeline::CSlamPipeline(
-    const CSlamContext::TConfig& config, std::unique_ptr<io::CFrameSource> source)
-    : m_source(std::move(source)),
-      m_ctx(std::make_shared<CSlamContext>(config)),
-      m_nrd(m_ctx),
-      m_erd(m_ctx)
+    const CSlamContext::TConfig& config, std::unique_ptr<io::CFrameSource> source,
+    const std::string& engineIni)
+    : CSlamPipeline(
+          CRoislamOptionsChecker().createDeciders(TSlamDeciders::TNames(), &config), engineIni,
+          std::move(source))
+{
+}
+
+CSlamPipeline::CSlamPipeline(
+    const TSlamDeciders::TNames& names, const std::string& iniFile,
+    std::unique_ptr<io::CFrameSource> source)
+    : CSlamPipeline(CRoislamOptionsChecker().createDeciders(names), iniFile, std::move(source))
+{
+}
+
+CSlamPipeline::CSlamPipeline(
+    TSlamDeciders deciders, const std::string& engineIni, std::unique_ptr<io::CFrameSource> source)
+    : m_source(std::move(source)), m_deciders(std::move(deciders))
 {
   if (!m_source)
     throw std::invalid_argument("CSlamPipeline: no frame source");
-  m_nrd.setGraphPtr(&m_graph);
-  m_erd.setGraphPtr(&m_graph);
+  if (!m_deciders.ourNode())
+    throw std::invalid_argument(
+        "CSlamPipeline: the node registration decider must be CKeyframeNRD");
+  // The engine calls the deciders' loadParams(): our context is configured
+  // when it returns.
+  m_engine = CRgbdGraphSlamEngine::create(engineIni, m_deciders);
   m_records.reserve(m_source->size());
   // Only const members of the odometry are used on the prefetch thread
   // (prepare(): checks, grey image, stage 1), while step() runs process() on
   // the caller's.
-  const frontend::CRgbdOdometry& odo = m_ctx->odometry();
-  m_prefetch = std::make_unique<io::CFramePrefetcher<frontend::TPreparedFrame>>(
-      *m_source, 1, [&odo](const io::TRGBDFrame& f) { return odo.prepare(f); });
+  const frontend::CRgbdOdometry& odo = m_deciders.context->odometry();
+  m_prefetch = std::make_unique<io::CFramePrefetcher<TAhead>>(
+      *m_source, 1,
+      [&odo](const io::TRGBDFrame& f) {
+        return TAhead{odo.prepare(f), io::frameToObservation(f)};
+      });
 }
 
 CSlamPipeline::~CSlamPipeline()
 {
   // The prefetch thread uses the source and the context: stop it first.
   m_prefetch.reset();
+  // The engine points to the deciders.
+  m_engine.reset();
 }
 
 bool CSlamPipeline::step()
 {
-  const auto item = m_prefetch->next();
+  auto item = m_prefetch->next();
   if (!item)
     return false;
-  const frontend::TPreparedFrame& prepared = item->prepared;
-
-  // Front end, then the back end with its result; the back end's correction
-  // comes back once, after an optimisation (optimize()).
-  TFrameRecord rec;
-  rec.result = m_ctx->odometry().process(prepared);
-  m_ctx->recordFrame(rec.result, prepared.frame);
-  const bool registered = m_nrd.registerFrame(rec.result);
-  mrpt::system::CTicTac be;
-  if (registered)
-  {
-    const std::size_t loopsBefore = m_ctx->loopClosures().size();
-    if (m_erd.registerKeyframe(rec.result).loopClosures > 0)
-      optimizeForClosures(loopsBefore);
-  }
-  rec.backendMs = be.Tac() * 1e3;
+  TAhead& ahead = item->prepared;
+  const std::size_t recorded = context().framesRecorded();
+  // The observer's copy of the frame (cv::Mat headers): the prepared frame
+  // moves into the node decider.
+  const io::TRGBDFrame frame = m_observer ? ahead.prepared.frame : io::TRGBDFrame();
+  const auto optimizationsBefore = optimizations();
+  // The engine steps on the observation; our node decider tracks the frame
+  // prepared ahead for it, and hands the result on (CSlamContext::lastFrame).
+  m_deciders.ourNode()->prepareAhead(ahead.observation.get(), std::move(ahead.prepared));
+  m_engine->step(ahead.observation);
+  if (context().framesRecorded() != recorded + 1)
+    throw std::logic_error("CSlamPipeline: the node decider did not track the frame");
+  m_records.push_back({*context().lastFrame(), m_engine->lastBackendMs()});
   if (m_observer)
-    m_observer->onFrame(rec.result, prepared.frame, *m_ctx);
-  m_records.push_back(std::move(rec));
+  {
+    if (optimizations() != optimizationsBefore)
+      m_observer->onOptimized(graph(), context());
+    m_observer->onFrame(m_records.back().result, frame, context());
+  }
   return true;
 }
 
@@ -66,78 +88,54 @@ void CSlamPipeline::setObserver(CSlamObserver* observer)
 {
   m_observer = observer;
   if (m_observer)
-    m_observer->onStart(*m_source, *m_ctx);
+    m_observer->onStart(*m_source, context());
 }
 
-double CSlamPipeline::worstClosureError(std::size_t firstLoop) const
+std::optional<TOptimizationReport> CSlamPipeline::finish()
 {
-  double worst = 0;
-  const auto& loops = m_ctx->loopClosures();
-  for (std::size_t i = firstLoop; i < loops.size(); ++i)
+  if (auto* gso = m_deciders.ourOptimizer())
   {
-    const auto it = m_graph.edges.find(std::make_pair(
-        static_cast<mrpt::graphs::TNodeID>(loops[i].fromKeyframe),
-        static_cast<mrpt::graphs::TNodeID>(loops[i].toKeyframe)));
-    if (it != m_graph.edges.end())
-      worst = std::max(worst, m_graph.getEdgeSquareError(it, false));
+    const auto report = gso->finish();
+    if (m_observer)
+      m_observer->onOptimized(graph(), context());
+    return report;
   }
-  return worst;
+  return std::nullopt;
 }
 
-void CSlamPipeline::optimizeForClosures(std::size_t firstNewLoop)
+std::optional<std::size_t> CSlamPipeline::optimizations() const
 {
-  // Optimise at once when a new closure disagrees with the current
-  // estimate; consistent ones wait for a few more keyframes.
-  const auto& opt = m_ctx->config().backEnd;
-  ++m_pendingLoopKeyframes;
-  // A whole-graph solve costs more the bigger the graph (on a 900-keyframe
-  // run over one desk, 1.3-1.8 s): those are spaced by a number of
-  // loop-closing keyframes that grows with the graph (nodes / 10).
-  // Inconsistent closures are solved at once over the newest keyframes
-  // only (optimize_window_keyframes), at a cost that stays flat; with
-  // no window they solve the whole graph, every nodes / 50 keyframes.
-  const std::size_t nodes = m_graph.nodes.size();
-  const std::size_t every =
-      std::max(static_cast<std::size_t>(opt.optimize_every_keyframes), nodes / 10);
-  const auto window = static_cast<std::size_t>(opt.optimize_window_keyframes);
-  const bool inconsistent = worstClosureError(firstNewLoop) > opt.optimize_min_chi2;
-  if (m_pendingLoopKeyframes >= every ||
-      (inconsistent && window == 0 &&
-       m_pendingLoopKeyframes >= std::max<std::size_t>(1, nodes / 50)))
+  if (const auto* gso = m_deciders.ourOptimizer())
+    return gso->optimizations();
+  return std::nullopt;
+}
+
+std::optional<std::size_t> CSlamPipeline::windowedOptimizations() const
+{
+  if (const auto* gso = m_deciders.ourOptimizer())
+    return gso->windowedOptimizations();
+  return std::nullopt;
+}
+
+std::string CSlamPipeline::report() const
+{
+  std::string out = m_engine->descriptiveReport(), part;
+  const mrpt::graphslam::CRegistrationDeciderOrOptimizer<TGraph>* parts[] = {
+      m_deciders.node.get(), m_deciders.edge.get(), m_deciders.optimizer.get()};
+  for (const auto* p : parts)
   {
-    optimize(0);
-    m_pendingLoopKeyframes = 0;
+    part.clear();
+    p->getDescriptiveReport(&part);
+    out += "\n" + part;
   }
-  else if (inconsistent && window > 0)
-  {
-    // The pending count is kept: the window leaves older keyframes where
-    // they were, the next whole-graph solve moves them.
-    const auto r = optimize(window);
-    if (r.freeNodes + 1 < nodes)
-      ++m_windowedOptimizations;
-    else
-      m_pendingLoopKeyframes = 0;  // the window held the whole graph
-  }
+  return out;
 }
 
-TOptimizationReport CSlamPipeline::optimize(std::size_t window)
-{
-  const auto report = m_ctx->optimize(m_graph, window);
-  m_ctx->correctFrontEnd(m_graph);
-  ++m_optimizations;
-  if (m_observer)
-    m_observer->onOptimized(m_graph, *m_ctx);
-  return report;
-}
-
-TOptimizationReport CSlamPipeline::finish()
-{
-  return optimize(0);
-}
 mrpt::poses::CPose3D CSlamPipeline::keyframePose(std::size_t id) const
 {
-  const auto it = m_graph.nodes.find(id);
-  return it != m_graph.nodes.end() ? it->second : m_ctx->odometry().keyframe(id).pose;
+  const auto& g = graph();
+  const auto it = g.nodes.find(id);
+  return it != g.nodes.end() ? it->second : context().odometry().keyframe(id).pose;
 }
 
 io::TTrajectory CSlamPipeline::trajectory() const

@@ -1,7 +1,11 @@
 #include "roislam/testing/TestData.h"
 
+#include <sys/wait.h>
+
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
+#include <sstream>
 #include <stdexcept>
 
 namespace fs = std::filesystem;
@@ -45,5 +49,34 @@ std::string makeTempDir(const std::string& prefix)
   if (!mkdtemp(tmpl.data()))
     throw std::runtime_error("cannot create temporary folder " + tmpl);
   return tmpl;
+}
+
+CTempDir::CTempDir(const std::string& prefix) : m_path(makeTempDir(prefix)) {}
+
+CTempDir::~CTempDir()
+{
+  std::error_code ec;
+  fs::remove_all(m_path, ec);
+}
+
+TAppRun runApp(const std::string& app, const std::string& args)
+{
+  const std::string exe = binaryDir() + "/apps/" + app + "/" + app;
+  const std::string dir = makeTempDir("app_run");
+  const int rc = std::system(
+      (exe + " " + args + " > " + dir + "/stdout.txt 2> " + dir + "/stderr.txt").c_str());
+  TAppRun r;
+  r.exitCode = WIFEXITED(rc) ? WEXITSTATUS(rc) : -1;
+  const auto read = [](const std::string& file)
+  {
+    std::ifstream f(file);
+    std::stringstream ss;
+    ss << f.rdbuf();
+    return ss.str();
+  };
+  r.out = read(dir + "/stdout.txt");
+  r.err = read(dir + "/stderr.txt");
+  fs::remove_all(dir);
+  return r;
 }
 }  // namespace roislam::testing

@@ -244,8 +244,10 @@ class CRgbdOdometry : public mrpt::system::COutputLogger
         const mrpt::config::CConfigFileBase& source, const std::string& section) override;
     void saveToConfigFile(
         mrpt::config::CConfigFileBase& target, const std::string& section) const override;
-    /** Throws std::invalid_argument "[FrontEnd] key: why" on a bad value. */
-    void validate() const;
+    /** Throws std::invalid_argument "[<section>] key: why" on a bad value
+     *  (loadFromConfigFile() names the section it read: roi-graphslam-engine
+     *  reads these keys from [NodeRegistrationDeciderParameters]). */
+    void validate(const std::string& section = "FrontEnd") const;
   };
 
   /** Counters over the run. */

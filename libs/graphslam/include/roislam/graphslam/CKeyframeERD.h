@@ -3,11 +3,18 @@
  * adds (1) the front end's constraints from the other recent keyframes and
  * (2) loop closures: candidates from ROI landmark recall (CLandmarkDatabase)
  * and from spatial proximity in the current estimate (older than
- * [GraphSlam] loop_min_keyframe_gap keyframes), each verified by 3-D RANSAC
- * between keyframes (CRgbdOdometry::registerKeyframes) and rejected when it
- * has too few inliers or disagrees with the estimate by more than
- * loop_max_discrepancy_m. Used inside CGraphSlamEngine or directly by
- * CRoiGraphSlamApp. Options: [GraphSlam] of CSlamContext.
+ * loop_min_keyframe_gap keyframes), each verified by 3-D RANSAC between
+ * keyframes (CRgbdOdometry::registerKeyframes) and rejected when it has too
+ * few inliers or disagrees with the estimate by more than
+ * loop_max_discrepancy_m (+ loop_max_discrepancy_per_m of the path). Runs
+ * inside CGraphSlamEngine after CKeyframeNRD, which hands it the step's
+ * front-end result (CSlamContext::lastFrame()).
+ *
+ * Parameters (loadParams()): the loop-closure keys of CSlamContext.h, in
+ * [EdgeRegistrationDeciderParameters] in MRPT's layout, the edge weights
+ * (edge_information, edge_sigma_m, edge_sigma_deg) in
+ * [GeneralConfiguration], and [LandmarkDatabase], [HomographyLocator]
+ * (SlamIni.h).
  */
 #pragma once
 
@@ -32,11 +39,12 @@ class CKeyframeERD : public mrpt::graphslam::deciders::CEdgeRegistrationDecider<
   CKeyframeERD() = default;
   explicit CKeyframeERD(std::shared_ptr<CSlamContext> context);
 
+  /** The context shared with CKeyframeNRD (required before updateState()). */
   void setContext(std::shared_ptr<CSlamContext> context);
-  std::shared_ptr<CSlamContext> context() const;
+  const std::shared_ptr<CSlamContext>& context() const { return m_context; }
 
   /** Inside MRPT's engine: adds the edges of the node the NRD registered in
-   *  this step, if any (the context's lastFrame()). */
+   *  this step, if any (the context's lastFrame(), when new in this step). */
   bool updateState(
       mrpt::obs::CActionCollection::Ptr action, mrpt::obs::CSensoryFrame::Ptr observations,
       mrpt::obs::CObservation::Ptr observation) override;
@@ -47,13 +55,17 @@ class CKeyframeERD : public mrpt::graphslam::deciders::CEdgeRegistrationDecider<
    *  closures. Nothing for other results. */
   TEdgeReport registerKeyframe(const frontend::TFrameResult& result);
 
-  void setGraphPtr(TGraph* graph) override;
-  void loadParams(const std::string& iniFile) override {}
-  void printParams() const override {}
-  /** For the engine: {"lc": loop closures, "Odometry": recent-keyframe edges}. */
+  /** Reads the parameters above from `iniFile` into the context, unless its
+   *  creator configured it. Throws "ini <file>: ..." on errors. */
+  void loadParams(const std::string& iniFile) override;
+  /** The parameters in use, to stdout (see CKeyframeNRD::printParams()). */
+  void printParams() const override;
+  /** For the engine's edge counter: {"lc": loop closures accepted,
+   *  "Odometry": all edges of the graph (all visual odometry)}. */
   void getEdgesStats(std::map<std::string, int>* edgeTypeToNum) const override;
   /** Edges added by kind: "recent", "loop_landmark", "loop_proximity". */
   const std::map<std::string, int>& edgeCounts() const { return m_stats; }
+  /** Description, parameters and the edge counts. */
   void getDescriptiveReport(std::string* report) const override;
 
   static constexpr const char* kName = "CKeyframeERD";
@@ -62,10 +74,13 @@ class CKeyframeERD : public mrpt::graphslam::deciders::CEdgeRegistrationDecider<
       "verified by 3-D RANSAC between keyframes";
 
  private:
-  CSlamContext& ctx();
+  CSlamContext& ctx() const;
   /** Verifies the candidates of keyframe `id` and adds the accepted closures. */
   void addLoopClosures(std::size_t id, TEdgeReport& rep);
   std::shared_ptr<CSlamContext> m_context;
+  std::string m_params;
   std::map<std::string, int> m_stats;
+  /** CSlamContext::framesRecorded() when updateState() last ran. */
+  std::size_t m_framesSeen = 0;
 };
 }  // namespace roislam::graphslam

@@ -1,41 +1,19 @@
 /* The roi-graphslam application: RGB-D graph SLAM over a TUM folder or a
- * rawlog with our deciders (CKeyframeNRD / CKeyframeERD on a
- * CNetworkOfPoses3DInf, driven directly from this loop rather than through
- * CGraphSlamEngine, whose 2.5 version resets optimised poses by Dijkstra),
- * SPA Levenberg-Marquardt on each loop closure and at the end.
- * While frame i is processed, frame i+1 is decoded on a second thread.
- *
- * Writes into the output folder, each file under a temporary name renamed
- * when complete:
- *  - trajectory.txt  TUM format, colour stamps; every tracked frame: its
- *                    keyframe's optimised pose (+) its pose relative to it
- *  - graph.graph     the optimised keyframe graph (MRPT text format, graph-slam)
- *  - map.bt          OctoMap (5 cm) of the keyframes' decimated clouds
- *  - scene.3Dscene   map cloud + trajectory with keyframes (+ ground truth), SceneViewer3D
- *  - snapshot.png    offscreen picture of that scene: 3-D and top views, legend
- *                    (unless disabled)
- *  - ate.png         with ground truth: top view and height over time (CTrajectoryPlot)
- *  - errors.png      with ground truth: ATE and RPE over time (CErrorPlot)
- *  - frames.csv      per frame: tracking method, counts, ROI, per-stage ms
- *  - summary.json    counts, speed, memory, ATE/RPE when ground truth is known,
- *                    display_frame (CGravityFrame::TResult::toJson())
- * trajectory.txt and graph.graph are in the estimate's own frame (the first
- * camera's optical frame, TUM convention: as estimated); map.bt,
- * scene.3Dscene and snapshot.png are gravity-up (z up) in the frame
- * summary.json's display_frame names (CSlamOutputWriter, CGravityFrame).
- * Map and snapshot are built after the timed run (wall_s/fps exclude them;
- * map_s and snapshot_s report them). Called by apps/roi-graphslam and tests.
+ * rawlog with our deciders (CKeyframeNRD / CKeyframeERD / CKeyframeGSO on a
+ * CNetworkOfPoses3DInf) inside MRPT's graph-SLAM engine (CSlamPipeline, the
+ * same path as roi-graphslam-engine), configured by roi-graphslam's ini
+ * ([FrontEnd], [GraphSlam], ...; MRPT's graph-SLAM sections are read too,
+ * SlamIni.h) and the command line. While frame i is processed, frame i+1 is
+ * decoded on a second thread. Outputs: CSlamRunner.h. Called by
+ * apps/roi-graphslam and tests.
  */
 #pragma once
 
-#include <roislam/evaluation/TEvaluationResult.h>
 #include <roislam/graphslam/CSlamContext.h>
 #include <roislam/graphslam/CSlamObserver.h>
-#include <roislam/graphslam/CSlamPipeline.h>
-#include <roislam/io/TumTrajectory.h>
+#include <roislam/graphslam/TSlamSummary.h>
 
 #include <functional>
-#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 
@@ -69,19 +47,7 @@ class CRoiGraphSlamApp
   };
 
   /** Headline figures (a subset of summary.json). */
-  struct TSummary
-  {
-    std::size_t frames = 0, keyframes = 0, loopClosures = 0;
-    std::size_t trackedFrames = 0, fallbackFrames = 0, lostFrames = 0;
-    double wallS = 0, fps = 0, mapS = 0, snapshotS = 0, peakRssMb = 0;
-    std::optional<double> ateRmse, rpeTransRmse, rpeRotRmseDeg;
-    /** strict_roi lost frames (the dissertation's "no trajectory"). */
-    bool failed = false;
-    /** The observer stopped the run before the end of the sequence. */
-    bool stoppedByUser = false;
-    /** "ATE RMSE 0.0042 m, RPE 0.0031 m / 0.21 deg, 90 frames, 31.2 fps". */
-    std::string resultLine() const;
-  };
+  using TSummary = TSlamSummary;
 
   /** Loads the ini (strict keys) and applies the overrides; throws on a bad
    *  file, key or value (message names the file / section / key). */
@@ -95,34 +61,12 @@ class CRoiGraphSlamApp
    *  cannot be read or the output folder is not writable. */
   TSummary run();
 
-  /** "name: description" lines of the registered 3-D node ("node") or edge
-   *  ("edge") registration deciders, ours included (CRoislamOptionsChecker). */
+  /** "name: description" lines of the node ("node") or edge ("edge")
+   *  registration deciders that can run, then those that cannot, with the
+   *  reason (CRoislamOptionsChecker::describeRegistrars). */
   static std::string listRegistrars(const std::string& type);
 
  private:
-  /** The run's error against ground truth, when the sequence has one. */
-  struct TEvaluation
-  {
-    io::TTrajectory groundTruth;
-    std::optional<evaluation::TEvaluationResult> result;
-    /** ATE of the causal front-end estimate (poses as tracked). */
-    std::optional<double> odometryAte;
-    /** Why the evaluation failed (empty when it did not). */
-    std::string error;
-  };
-
-  void progress(const std::string& line) const;
-  /** Steps the pipeline to the end (or maxFrames, or until the observer
-   *  asks to stop: returns true then), with progress lines. */
-  bool runFrames(CSlamPipeline& pipeline, std::size_t total) const;
-  TEvaluation evaluate(const CSlamPipeline& pipeline, const io::TTrajectory& estimate) const;
-  TSummary summarize(
-      const CSlamPipeline& pipeline, const io::TTrajectory& estimate, double wallS,
-      const TEvaluation& ev) const;
-  nlohmann::json summaryJson(
-      const CSlamPipeline& pipeline, const TSummary& s, const TOptimizationReport& finalReport,
-      const TEvaluation& ev) const;
-
   TArguments m_args;
   CSlamContext::TConfig m_config;
 };

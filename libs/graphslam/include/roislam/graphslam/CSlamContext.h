@@ -3,8 +3,16 @@
  * (CRgbdOdometry: one graph node per keyframe, node id == keyframe id), the
  * ROI landmark database used for loop-closure candidates, per-keyframe map
  * clouds, and the loop-closure bookkeeping. MRPT's engine gives each decider
- * only the graph, so the deciders hold a shared_ptr to one context. Created by
- * CRoiGraphSlamApp (or a test) and handed to the deciders with setContext().
+ * only the graph, so the deciders hold a shared_ptr to one context, handed to
+ * them with setContext() by whoever creates them together: the factory
+ * CRoislamOptionsChecker::createDeciders() (deciders chosen by name), or a
+ * test. The context lives as long as its deciders: nothing outlives the
+ * engine that runs them.
+ *
+ * Its configuration is either given whole by its creator (roi-graphslam: ini
+ * plus command line) or read piece by piece by the deciders' loadParams()
+ * from the engine's ini (EConfigOrigin::DecidersLoadParams, configure()), in
+ * roi-graphslam's layout or in MRPT's graph-SLAM sections (SlamIni.h).
  *
  * ini section [GraphSlam] (TOptions), units in brackets:
  *  - loop_min_keyframe_gap     int >= 1 (10): loop candidates are at least this
@@ -61,7 +69,13 @@
  *                              sqrt(100 / inliers) (10..1000 inliers)
  *  - edge_sigma_m              [m] > 0 (0.01): translation sigma at 100 inliers
  *  - edge_sigma_deg            [deg] > 0 (0.5): rotation sigma at 100 inliers
- * A bad value throws std::invalid_argument "[GraphSlam] key: why".
+ * In MRPT's layout (roi-graphslam-engine) the same keys live in
+ * [GeneralConfiguration] (map_*, edge_*), [EdgeRegistrationDeciderParameters]
+ * (loop_*, landmark_loops, proximity_*, max_loop_candidates) and
+ * [OptimizerParameters] (optimizer_max_iterations, loop_outlier_chi2,
+ * optimize_*), see SlamIni.h and config/graphslam-engine.ini.
+ * A bad value throws std::invalid_argument "[GraphSlam] key: why" (the
+ * section the key was read from).
  */
 #pragma once
 
@@ -137,8 +151,9 @@ class CSlamContext
         const mrpt::config::CConfigFileBase& source, const std::string& section) override;
     void saveToConfigFile(
         mrpt::config::CConfigFileBase& target, const std::string& section) const override;
-    /** Throws std::invalid_argument "[GraphSlam] key: why". */
-    void validate() const;
+    /** Throws std::invalid_argument "[<section>] key: why"
+     *  (loadFromConfigFile() names the section it read). */
+    void validate(const std::string& section = "GraphSlam") const;
   };
 
   /** Everything the context is built from. */
@@ -150,25 +165,36 @@ class CSlamContext
     matching::CHomographyLocator::TOptions locator;   // [HomographyLocator]
   };
 
-  CSlamContext();
-  explicit CSlamContext(const TConfig& config);
+  /** Who sets the configuration. */
+  enum class EConfigOrigin
+  {
+    /** Given whole to the constructor; the deciders' loadParams() read
+     *  nothing (roi-graphslam, tests). */
+    Caller,
+    /** Defaults until the deciders' loadParams() read their parts of the
+     *  engine's ini into it (configure()). */
+    DecidersLoadParams
+  };
 
-  /** Reads every section of `cfg` (absent sections keep defaults) after
-   *  checking that [GraphSlam], [FrontEnd], [RoiDetector], [FeatureExtractor],
-   *  [FeatureMatcher], [LandmarkDatabase] and [HomographyLocator] hold only
-   *  known keys: "ini <fileLabel>: [Section] unknown key 'x'". */
+  CSlamContext();
+  explicit CSlamContext(const TConfig& config, EConfigOrigin origin = EConfigOrigin::Caller);
+
+  /** Reads every section of `cfg` (absent sections keep defaults), in either
+   *  layout (SlamIni.h: roi-graphslam's [FrontEnd] / [GraphSlam], or MRPT's
+   *  graph-SLAM sections), after checking that the sections hold only known
+   *  keys: "ini <fileLabel>: [Section] unknown key 'x'". */
   static TConfig loadConfig(const mrpt::config::CConfigFileBase& cfg, const std::string& fileLabel);
 
-  /** The context shared by the deciders of one graph when they were created
-   *  by name (TUserOptionsChecker factories have no arguments): created with
-   *  default options on first use; setForGraph() replaces it (e.g. from the
-   *  ini given to loadParams()). */
-  static std::shared_ptr<CSlamContext> forGraph(const void* graph);
-  static void setForGraph(const void* graph, std::shared_ptr<CSlamContext> context);
+  EConfigOrigin configOrigin() const { return m_origin; }
+  /** Replaces the configuration (rebuilding the front end and the landmark
+   *  database): the deciders' loadParams(), before the first frame. Throws
+   *  std::invalid_argument on bad values, std::logic_error once a frame was
+   *  recorded. */
+  void configure(const TConfig& config);
 
-  frontend::CRgbdOdometry& odometry() { return m_odometry; }
-  const frontend::CRgbdOdometry& odometry() const { return m_odometry; }
-  const landmarks::CLandmarkDatabase& database() const { return m_landmarks.tracker().database(); }
+  frontend::CRgbdOdometry& odometry() { return *m_odometry; }
+  const frontend::CRgbdOdometry& odometry() const { return *m_odometry; }
+  const landmarks::CLandmarkDatabase& database() const { return m_landmarks->tracker().database(); }
   const TConfig& config() const { return m_config; }
 
   /** Keeps what the back end needs of a front-end result: a new keyframe's
@@ -180,6 +206,9 @@ class CSlamContext
    *  from CKeyframeNRD to CKeyframeERD within one step (nullopt before the
    *  first). */
   const std::optional<frontend::TFrameResult>& lastFrame() const { return m_last; }
+  /** Frames recordFrame() saw: tells the edge decider whether lastFrame() is
+   *  new in this step. */
+  std::size_t framesRecorded() const { return m_framesRecorded; }
 
   /** Puts the ROI of every keyframe up to `id` not yet seen into the ROI
    *  landmark database: a recall adds a sighting, else a new landmark is
@@ -193,15 +222,15 @@ class CSlamContext
   std::vector<std::pair<std::size_t, ELoopSource>> loopCandidates(
       std::size_t id, std::optional<int32_t> recalledLandmark, const TGraph& graph) const;
 
-  /** The information matrix to put in the graph for a front-end measurement
-   *  ([GraphSlam] edge_information). Constant-velocity constraints keep the
-   *  front end's (deliberately weak) information. */
   /** Largest translation discrepancy accepted between a verified closure
    *  from keyframe `from` to `to` and the current estimate `graph`:
    *  loop_max_discrepancy_m + loop_max_discrepancy_per_m x the estimated path
    *  length between them (consecutive nodes). */
   double loopDiscrepancyLimit(std::size_t from, std::size_t to, const TGraph& graph) const;
 
+  /** The information matrix to put in the graph for a front-end measurement
+   *  ([GraphSlam] edge_information). Constant-velocity constraints keep the
+   *  front end's (deliberately weak) information. */
   frontend::TInformation66 edgeInformation(
       const frontend::TInformation66& frontEndInformation, frontend::ETrackingMethod method,
       std::size_t inliers) const;
@@ -228,11 +257,13 @@ class CSlamContext
 
  private:
   TConfig m_config;
-  frontend::CRgbdOdometry m_odometry;
+  EConfigOrigin m_origin = EConfigOrigin::Caller;
+  std::unique_ptr<frontend::CRgbdOdometry> m_odometry;
   /** The landmark database, reached through the observation processor (the
    *  one path from a region to a landmark, as in roi-landmarks). */
-  landmarks::CObservationProcessor m_landmarks;
+  std::unique_ptr<landmarks::CObservationProcessor> m_landmarks;
   std::optional<frontend::TFrameResult> m_last;
+  std::size_t m_framesRecorded = 0;
   std::vector<mrpt::maps::CColouredPointsMap> m_clouds;
   cv::Size m_imageSize;
   /** Keyframes already queried in the landmark database. */
@@ -245,4 +276,9 @@ class CSlamContext
 
 /** "landmark" | "proximity". */
 std::string toString(ELoopSource s);
+/** `context`, else std::logic_error naming `decider`: one of our deciders
+ *  made alone by MRPT's by-name factory has no context (those factories take
+ *  no arguments, so cannot hand one context to several deciders);
+ *  CRoislamOptionsChecker::createDeciders() makes them together. */
+CSlamContext& sharedContext(const std::shared_ptr<CSlamContext>& context, const char* decider);
 }  // namespace roislam::graphslam

@@ -1,39 +1,39 @@
-/* The timed part of one SLAM run, frame by frame: while frame i is tracked
- * and registered, frame i+1 is decoded on a second thread, which also
- * prepares it for the front end (CRgbdOdometry::prepare: grey image and, in
- * ROI modes, stage 1), so stage 1 costs the tracking thread nothing. Per
- * frame, in one direction: the front end (CRgbdOdometry::process) -> its
- * result to CKeyframeNRD (new keyframe node and odometry edge) and
- * CKeyframeERD (keyframe edges and verified loop closures) -> an SPA
- * optimisation when a new closure disagrees with the current estimate (over
- * the newest keyframes only) or every few loop-closing keyframes (the whole
- * graph) ([GraphSlam] optimize_min_chi2, optimize_window_keyframes,
- * optimize_every_keyframes), whose poses go back to the front end in one call
- * (CSlamContext::correctFrontEnd); finish() runs the final one.
+/* The timed part of one SLAM run, frame by frame, through MRPT's graph-SLAM
+ * engine (CRgbdGraphSlamEngine, i.e. CGraphSlamEngine<CNetworkOfPoses3DInf>)
+ * with the deciders and optimiser of TSlamDeciders: the one code path of
+ * roi-graphslam (our three, configured by its ini and command line) and of
+ * roi-graphslam-engine (chosen by name, configured by their loadParams()).
  *
- * Drives our deciders directly rather than through CGraphSlamEngine, whose
- * 2.5 version resets optimised 3-D poses from the spanning tree after every
- * optimisation (../shared/notes/mrpt-2.5-findings.md).
+ * While frame i is tracked and registered, frame i+1 is decoded on a second
+ * thread, which also prepares it for the front end (CRgbdOdometry::prepare:
+ * grey image and, in ROI modes, stage 1) and converts it to the
+ * CObservation3DRangeScan the engine steps on, so neither costs the tracking
+ * thread anything (CKeyframeNRD::prepareAhead()). Per step, in one direction:
+ * CKeyframeNRD (the front end, CRgbdOdometry::process, and the new keyframe's
+ * node and odometry edge) -> the edge decider (CKeyframeERD: keyframe edges
+ * and verified loop closures) -> the optimiser (CKeyframeGSO: its schedule,
+ * whose poses go back to the front end in one call,
+ * CSlamContext::correctFrontEnd); finish() runs the final optimisation.
  *
- * Used by CRoiGraphSlamApp (which writes the outputs) and by the paired
- * end-to-end speed benchmark (several pipelines stepped in turn on the same
- * sequence, so machine load hits every mode alike). Not thread-safe; the
- * source must outlive nothing: the pipeline owns it.
+ * Also used by the paired end-to-end speed benchmark (several pipelines
+ * stepped in turn on the same sequence, so machine load hits every mode
+ * alike). Not thread-safe; the pipeline owns the source.
  */
 #pragma once
 
 #include <roislam/frontend/TFrameResult.h>
 #include <roislam/frontend/TPreparedFrame.h>
-#include <roislam/graphslam/CKeyframeERD.h>
-#include <roislam/graphslam/CKeyframeNRD.h>
+#include <roislam/graphslam/CRgbdGraphSlamEngine.h>
 #include <roislam/graphslam/CSlamContext.h>
 #include <roislam/graphslam/CSlamObserver.h>
+#include <roislam/graphslam/TSlamDeciders.h>
 #include <roislam/io/CFramePrefetcher.h>
 #include <roislam/io/CFrameSource.h>
 #include <roislam/io/TumTrajectory.h>
 
 #include <memory>
 #include <optional>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -50,9 +50,20 @@ class CSlamPipeline
     double backendMs = 0;
   };
 
-  /** Starts decoding the first frame at once. Throws std::invalid_argument on
-   *  invalid options, like CSlamContext. */
-  CSlamPipeline(const CSlamContext::TConfig& config, std::unique_ptr<io::CFrameSource> source);
+  /** roi-graphslam: our deciders and optimiser, configured by `config`;
+   *  `engineIni` (may be empty) configures MRPT's engine itself
+   *  ([GeneralConfiguration] class_verbosity, ...). Starts decoding the first
+   *  frame at once. Throws std::invalid_argument on invalid options. */
+  CSlamPipeline(
+      const CSlamContext::TConfig& config, std::unique_ptr<io::CFrameSource> source,
+      const std::string& engineIni = "");
+  /** roi-graphslam-engine: the deciders and optimiser named `names`
+   *  (CRoislamOptionsChecker::createDeciders), their parameters read by
+   *  their loadParams() from `iniFile`, which also configures the engine.
+   *  Throws on refused names and the ini's errors. */
+  CSlamPipeline(
+      const TSlamDeciders::TNames& names, const std::string& iniFile,
+      std::unique_ptr<io::CFrameSource> source);
   /** Waits for a pending decode. */
   ~CSlamPipeline();
   CSlamPipeline(const CSlamPipeline&) = delete;
@@ -64,7 +75,7 @@ class CSlamPipeline
 
   /** Tells `observer` (not owned; null = none) about the run from now on:
    *  onStart() at once, onFrame() at the end of each step(), onOptimized()
-   *  after each optimisation (finish() included). */
+   *  after each optimisation CKeyframeGSO runs (finish() included). */
   void setObserver(CSlamObserver* observer);
 
   /** Blocks until the next frame is decoded (and its ROI detected): the time
@@ -72,8 +83,10 @@ class CSlamPipeline
    *  several pipelines in turn. */
   void waitForPrefetch() const { m_prefetch->waitReady(); }
 
-  /** Final optimisation (call once, after the last step). */
-  TOptimizationReport finish();
+  /** The final optimisation (call once, after the last step) by
+   *  CKeyframeGSO; nullopt with MRPT's optimiser (the graph stays as the
+   *  engine left it). */
+  std::optional<TOptimizationReport> finish();
 
   /** Every tracked frame (Lost ones have no pose): a keyframe's optimised
    *  node pose, other frames their reference keyframe's (+) their relative
@@ -84,36 +97,40 @@ class CSlamPipeline
   mrpt::poses::CPose3D keyframePose(std::size_t id) const;
 
   const std::vector<TFrameRecord>& records() const { return m_records; }
-  /** Optimisations run so far (loop closures and finish()). */
-  std::size_t optimizations() const { return m_optimizations; }
+  /** Optimisations CKeyframeGSO ran so far (loop closures and finish());
+   *  nullopt with MRPT's optimiser. */
+  std::optional<std::size_t> optimizations() const;
   /** Of those, the ones over the newest keyframes only. */
-  std::size_t windowedOptimizations() const { return m_windowedOptimizations; }
-  const CSlamContext& context() const { return *m_ctx; }
-  const TGraph& graph() const { return m_graph; }
+  std::optional<std::size_t> windowedOptimizations() const;
+  const CSlamContext& context() const { return *m_deciders.context; }
+  const TGraph& graph() const { return m_engine->getGraph(); }
   const io::CFrameSource& source() const { return *m_source; }
+  const TSlamDeciders& deciders() const { return m_deciders; }
+  const CRgbdGraphSlamEngine& engine() const { return *m_engine; }
+  /** The engine's and each decider's getDescriptiveReport(), one after the
+   *  other (report.txt). */
+  std::string report() const;
 
  private:
-  /** The optimisation schedule after a keyframe that brought closures
-   *  (those from index firstNewLoop of the context's loopClosures()). */
-  void optimizeForClosures(std::size_t firstNewLoop);
-  /** Largest squared error of the closures from index firstLoop on. */
-  double worstClosureError(std::size_t firstLoop) const;
-  /** Optimises (window 0 = whole graph) and corrects the front end. */
-  TOptimizationReport optimize(std::size_t window);
+  /** What the prefetch thread makes of each frame. */
+  struct TAhead
+  {
+    frontend::TPreparedFrame prepared;
+    mrpt::obs::CObservation::Ptr observation;
+  };
+
+  CSlamPipeline(
+      TSlamDeciders deciders, const std::string& engineIni,
+      std::unique_ptr<io::CFrameSource> source);
 
   std::unique_ptr<io::CFrameSource> m_source;
-  std::shared_ptr<CSlamContext> m_ctx;
-  TGraph m_graph;
-  CKeyframeNRD m_nrd;
-  CKeyframeERD m_erd;
+  TSlamDeciders m_deciders;
+  /** Points into m_deciders: declared after it, destroyed before it. */
+  std::unique_ptr<CRgbdGraphSlamEngine> m_engine;
   std::vector<TFrameRecord> m_records;
-  std::size_t m_optimizations = 0;
-  std::size_t m_windowedOptimizations = 0;
-  /** Keyframes that brought loop closures since the last optimisation. */
-  std::size_t m_pendingLoopKeyframes = 0;
   CSlamObserver* m_observer = nullptr;
-  /** Decodes and prepares frame i+1 while i is processed (last: it reads
-   *  the source and the context, and stops before they go). */
-  std::unique_ptr<io::CFramePrefetcher<frontend::TPreparedFrame>> m_prefetch;
+  /** Decodes, prepares and converts frame i+1 while i is processed (last:
+   *  it reads the source and the context, and stops before they go). */
+  std::unique_ptr<io::CFramePrefetcher<TAhead>> m_prefetch;
 };
 }  // namespace roislam::graphslam

@@ -31,6 +31,31 @@ std::string binaryDir();
 
 /** A new, empty, unique temporary folder; removed by the caller or left in /tmp. */
 std::string makeTempDir(const std::string& prefix);
+
+/** A temporary folder (makeTempDir) removed with its content on destruction:
+ *  for data a test program makes once and keeps in a static. */
+class CTempDir
+{
+ public:
+  explicit CTempDir(const std::string& prefix);
+  ~CTempDir();
+  CTempDir(const CTempDir&) = delete;
+  CTempDir& operator=(const CTempDir&) = delete;
+  const std::string& path() const { return m_path; }
+
+ private:
+  std::string m_path;
+};
+
+/** What an app run printed and returned. */
+struct TAppRun
+{
+  int exitCode = -1;
+  std::string out, err;
+};
+/** Runs <binaryDir>/apps/<app>/<app> with `args` (shell syntax) and returns
+ *  its exit code, stdout and stderr. */
+TAppRun runApp(const std::string& app, const std::string& args);
 }  // namespace roislam::testing
 
 /** Skips the current test when the shared TUM sequence is not available. */

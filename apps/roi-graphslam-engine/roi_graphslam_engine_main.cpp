@@ -1,0 +1,60 @@
+/* roi-graphslam-engine: MRPT's CGraphSlamEngine<CNetworkOfPoses3DInf> on an
+ * RGB-D rawlog, with the command line of MRPT's graphslam-engine and our
+ * deciders chosen by name (CKeyframeNRD, CKeyframeERD, CKeyframeGSO by
+ * default), headless; writes the same outputs as roi-graphslam into
+ * --output-dir. All the work is in roislam::graphslam::CRoiGraphSlamEngineApp.
+ */
+#include <roislam/common/ProcessTuning.h>
+#include <roislam/graphslam/CRoiGraphSlamEngineApp.h>
+#include <roislam/graphslam/SlamMain.h>
+
+#include <CLI/CLI.hpp>
+#include <iostream>
+#include <string>
+
+int main(int argc, char** argv)
+{
+  roislam::common::tuneAllocatorForImages();
+  using roislam::graphslam::CRoiGraphSlamEngineApp;
+  CLI::App cli{
+      "MRPT's graph-SLAM engine (3-D) with roislam's RGB-D deciders; graphslam-engine's options"};
+  CRoiGraphSlamEngineApp::TArguments args;
+  std::string gt;
+  bool listNode = false, listEdge = false, listRegs = false, listOpt = false, noSnapshot = false;
+  cli.add_option("-i,--ini-file", args.iniFile, ".ini configuration (config/graphslam-engine.ini)");
+  cli.add_option("-r,--rawlog", args.rawlog, "Rawlog of CObservation3DRangeScan (tum2rawlog)");
+  cli.add_option("-g,--ground-truth", gt, "Ground truth, TUM format (NAME.groundtruth.txt)");
+  cli.add_option("-n,--node-reg", args.deciders.node, "Node registration decider")
+      ->capture_default_str();
+  cli.add_option("-e,--edge-reg", args.deciders.edge, "Edge registration decider")
+      ->capture_default_str();
+  cli.add_option("-o,--optimizer", args.deciders.optimizer, "GraphSlam optimizer")
+      ->capture_default_str();
+  cli.add_flag("--3d", args.threeD, "Construct a 3-D graph (CPose3DPDFGaussianInf): the default");
+  cli.add_flag("--2d", args.twoD, "Construct a 2-D graph: not supported (RGB-D deciders)");
+  cli.add_flag("--disable-visuals", args.disableVisuals, "No visualisation: always the case");
+  cli.add_flag("--list-node-regs", listNode, "List the node registration deciders and exit");
+  cli.add_flag("--list-edge-regs", listEdge, "List the edge registration deciders and exit");
+  cli.add_flag("--list-regs", listRegs, "List all registration deciders and exit");
+  cli.add_flag("--list-optimizers", listOpt, "List the optimizers and exit");
+  cli.add_option("--output-dir", args.outputDir, "Output folder")->capture_default_str();
+  cli.add_flag("--no-snapshot", noSnapshot, "Do not render snapshot.png");
+  CLI11_PARSE(cli, argc, argv);
+
+  if (listNode || listEdge || listRegs || listOpt)
+  {
+    if (listRegs || listNode)
+      std::cout << CRoiGraphSlamEngineApp::list("node");
+    if (listRegs || listEdge)
+      std::cout << CRoiGraphSlamEngineApp::list("edge");
+    if (listOpt)
+      std::cout << CRoiGraphSlamEngineApp::list("optimizer");
+    return 0;
+  }
+  if (!gt.empty())
+    args.groundTruth = gt;
+  args.snapshot = !noSnapshot;
+  args.progress = [](const std::string& line) { std::cerr << line << std::endl; };
+  return roislam::graphslam::slamMain(
+      "roi-graphslam-engine", args.outputDir, [&] { return CRoiGraphSlamEngineApp(args).run(); });
+}

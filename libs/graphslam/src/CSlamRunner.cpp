@@ -1,0 +1,284 @@
+#include <mrpt/system/CTicTac.h>
+#include <roislam/evaluation/CTrajectoryEvaluator.h>
+#include <roislam/graphslam/CSlamOutputWriter.h>
+#include <roislam/graphslam/CSlamRunner.h>
+#include <sys/resource.h>
+
+#include <filesystem>
+#include <iomanip>
+#include <sstream>
+#include <stdexcept>
+
+namespace fs = std::filesystem;
+
+namespace roislam::graphslam
+{
+namespace
+{
+std::string firstLine(const std::string& s)
+{
+  return s.substr(0, s.find('\n'));
+}
+
+double peakRssMb()
+{
+  struct rusage ru
+  {
+  };
+  getrusage(RUSAGE_SELF, &ru);
+  return ru.ru_maxrss / 1024.0;  // KiB on Linux
+}
+
+nlohmann::json optionalJson(const std::optional<double>& v)
+{
+  return v ? nlohmann::json(*v) : nlohmann::json(nullptr);
+}
+
+nlohmann::json optionalJson(const std::optional<std::size_t>& v)
+{
+  return v ? nlohmann::json(*v) : nlohmann::json(nullptr);
+}
+}  // namespace
+
+std::string TSlamSummary::resultLine() const
+{
+  std::ostringstream ss;
+  ss << std::fixed;
+  if (ateRmse)
+    ss << "ATE RMSE " << std::setprecision(4) << *ateRmse << " m, ";
+  else
+    ss << "ATE n/a, ";
+  if (rpeTransRmse && rpeRotRmseDeg)
+    ss << "RPE " << std::setprecision(4) << *rpeTransRmse << " m / " << std::setprecision(2)
+       << *rpeRotRmseDeg << " deg, ";
+  ss << frames << " frames, " << keyframes << " keyframes, " << loopClosures << " loop closures, "
+     << std::setprecision(1) << fps << " fps";
+  if (failed)
+    ss << ", FAILED (" << lostFrames << " frames lost)";
+  return ss.str();
+}
+
+CSlamRunner::CSlamRunner(TSettings settings) : m_settings(std::move(settings)) {}
+
+void CSlamRunner::progress(const std::string& line) const
+{
+  if (m_settings.progress)
+    m_settings.progress(line);
+}
+
+bool CSlamRunner::runFrames(CSlamPipeline& pipeline, std::size_t total) const
+{
+  const auto& records = pipeline.records();
+  const std::size_t maxFrames = m_settings.maxFrames;
+  const auto stop = [this] { return m_settings.observer && m_settings.observer->stopRequested(); };
+  while ((!maxFrames || records.size() < maxFrames) && !stop() && pipeline.step())
+    if (records.size() % 50 == 0)
+      progress(
+          "  frame " + std::to_string(records.size()) + "/" + std::to_string(total) +
+          ", keyframes " + std::to_string(pipeline.context().odometry().keyframes().size()) +
+          ", loops " + std::to_string(pipeline.context().loopClosures().size()));
+  if (records.empty())
+    throw std::runtime_error(
+        m_settings.input + (stop() ? ": stopped before the first frame" : ": no frames"));
+  const bool stopped = stop() && records.size() < total;
+  if (stopped)
+    progress(
+        m_settings.app + ": stopped after frame " + std::to_string(records.size()) +
+        ", writing the outputs");
+  return stopped;
+}
+
+CSlamRunner::TEvaluation CSlamRunner::evaluate(
+    const CSlamPipeline& pipeline, const io::TTrajectory& estimate) const
+{
+  TEvaluation ev;
+  const auto& gtFile = m_settings.groundTruthFile;
+  if (!gtFile)
+    return ev;
+  try
+  {
+    ev.groundTruth = io::loadTumTrajectory(*gtFile);
+    ev.result = evaluation::CTrajectoryEvaluator().evaluate(ev.groundTruth, estimate);
+    // The causal front-end estimate (poses as tracked, before later
+    // optimisations), to show what the back end adds.
+    io::TTrajectory odometryOnly;
+    for (const auto& r : pipeline.records())
+      if (r.result.pose)
+        odometryOnly.push_back({r.result.timestamp, *r.result.pose});
+    ev.odometryAte =
+        evaluation::CTrajectoryEvaluator().evaluate(ev.groundTruth, odometryOnly).ate.rmse;
+  }
+  catch (const std::exception& e)
+  {
+    ev.result.reset();
+    ev.error = firstLine(e.what());
+    progress(m_settings.app + ": warning: evaluation failed: " + ev.error);
+  }
+  return ev;
+}
+
+TSlamSummary CSlamRunner::summarize(
+    const CSlamPipeline& pipeline, const io::TTrajectory& estimate, double wallS,
+    const TEvaluation& ev) const
+{
+  const auto& odo = pipeline.context().odometry();
+  const auto& st = odo.stats();
+  TSlamSummary s;
+  s.frames = pipeline.records().size();
+  s.keyframes = odo.keyframes().size();
+  s.loopClosures = pipeline.context().loopClosures().size();
+  s.graphNodes = pipeline.graph().nodes.size();
+  s.graphEdges = pipeline.graph().edges.size();
+  s.trackedFrames = estimate.size();
+  s.lostFrames = st.lost;
+  s.fallbackFrames = st.fullImageFallback + st.depthIcp + st.constantVelocity;
+  s.wallS = wallS;
+  s.fps = wallS > 0 ? s.frames / wallS : 0;
+  s.failed = s.lostFrames > 0 || estimate.empty();
+  if (ev.result)
+  {
+    s.ateRmse = ev.result->ate.rmse;
+    s.rpeTransRmse = ev.result->rpe.trans_rmse;
+    s.rpeRotRmseDeg = ev.result->rpe.rot_rmse_deg;
+  }
+  return s;
+}
+
+nlohmann::json CSlamRunner::summaryJson(
+    const CSlamPipeline& pipeline, const TSlamSummary& s,
+    const std::optional<TOptimizationReport>& finalReport, const TEvaluation& ev) const
+{
+  const CSlamContext& ctx = pipeline.context();
+  const auto& st = ctx.odometry().stats();
+  const auto& fe = ctx.config().frontEnd;
+  const auto& names = pipeline.deciders().names;
+  nlohmann::json j;
+  j["sequence"] = pipeline.source().name();
+  j["input"] = m_settings.input;
+  j["engine"] = {
+      {"node_registration_decider", names.node},
+      {"edge_registration_decider", names.edge},
+      {"optimizer", names.optimizer}};
+  j["mode"] = frontend::toString(fe.mode);
+  j["feature"] = features::toString(fe.extractor.feature_type);
+  j["max_features"] = fe.extractor.max_features;
+  j["strict_roi"] = fe.strict_roi;
+  j["frames"] = s.frames;
+  j["skipped_frames"] = pipeline.source().skippedFrames();
+  j["keyframes"] = s.keyframes;
+  j["loop_closures"] = s.loopClosures;
+  std::size_t lmLoops = 0;
+  for (const auto& lc : ctx.loopClosures())
+    lmLoops += lc.source == ELoopSource::Landmark;
+  j["loop_closures_landmark"] = lmLoops;
+  j["loop_closures_proximity"] = s.loopClosures - lmLoops;
+  j["loop_closures_rejected"] = ctx.rejectedLoopClosures();
+  j["landmarks"] = ctx.database().size();
+  j["graph_nodes"] = s.graphNodes;
+  j["graph_edges"] = s.graphEdges;
+  j["optimizations"] = optionalJson(pipeline.optimizations());
+  j["optimizations_windowed"] = optionalJson(pipeline.windowedOptimizations());
+  j["final_optimization"] = finalReport ? nlohmann::json{{"iterations", finalReport->iterations},
+                                                         {"chi2_before", finalReport->chi2Before},
+                                                         {"chi2_after", finalReport->chi2After},
+                                                         {"seconds", finalReport->seconds}}
+                                        : nlohmann::json(nullptr);
+  j["tracked_frames"] = s.trackedFrames;
+  j["fallback_frames"] = s.fallbackFrames;
+  j["lost_frames"] = s.lostFrames;
+  j["tracking"] = {
+      {"initial", st.initial},
+      {"features", st.features},
+      {"roi", st.roiFeatures},
+      {"full_image_fallback", st.fullImageFallback},
+      {"depth_icp", st.depthIcp},
+      {"constant_velocity", st.constantVelocity},
+      {"lost", st.lost},
+      {"no_roi", st.noRoi},
+      {"icp_refined", st.icpRefined}};
+  // What stage 2 described: ROI-only frames describe their tracking region
+  // alone; the others were extended once, for the reason given.
+  nlohmann::json ext = nlohmann::json::object();
+  for (const auto& [reason, n] : st.extensions)
+    if (reason != frontend::EExtension::None)
+      ext[frontend::toString(reason)] = n;
+  const auto roiOnly = st.extensions.find(frontend::EExtension::None);
+  j["described_pixel_fraction"] = st.frames > 0 ? st.describedFractionSum / st.frames : 0.0;
+  j["roi_only_frames"] = roiOnly == st.extensions.end() ? 0 : roiOnly->second;
+  j["extended_frames"] = ext;
+  j["failed"] = s.failed;
+  j["stopped_by_user"] = s.stoppedByUser;
+  j["wall_s"] = s.wallS;
+  j["fps"] = s.fps;
+  j["map_s"] = s.mapS;
+  j["snapshot_s"] = m_settings.snapshot ? nlohmann::json(s.snapshotS) : nlohmann::json(nullptr);
+  j["peak_rss_mb"] = s.peakRssMb;
+  j["ate_rmse"] = optionalJson(s.ateRmse);
+  j["rpe_trans_rmse"] = optionalJson(s.rpeTransRmse);
+  j["rpe_rot_rmse_deg"] = optionalJson(s.rpeRotRmseDeg);
+  j["frontend_ate_rmse"] = optionalJson(ev.odometryAte);
+  j["evaluation"] = ev.result ? evaluation::toJson(*ev.result) : nlohmann::json(nullptr);
+  if (!ev.error.empty())
+    j["evaluation_error"] = ev.error;
+  return j;
+}
+
+void CSlamRunner::writeOutputs(
+    const CSlamPipeline& pipeline, const io::TTrajectory& estimate,
+    const std::optional<TOptimizationReport>& finalReport, const TEvaluation& ev,
+    TSlamSummary& s) const
+{
+  const CSlamOutputWriter writer(m_settings.outputDir);
+  writer.writeTrajectory(
+      estimate, m_settings.app + " " + pipeline.source().name() + " mode " +
+                    frontend::toString(pipeline.context().config().frontEnd.mode));
+  writer.writeGraph(pipeline.graph());
+  writer.writeFramesCsv(pipeline.records());
+  CSlamOutputWriter::writeTextFile(m_settings.outputDir + "/report.txt", pipeline.report());
+
+  const CSlamOutputWriter::TRun run{
+      pipeline.records(), pipeline.context(), pipeline.graph(),
+      [&pipeline](std::size_t id) { return pipeline.keyframePose(id); }};
+  const CSlamOutputWriter::TReference reference{
+      pipeline.source().name(), estimate, ev.groundTruth, ev.result ? &*ev.result : nullptr,
+      pipeline.source().accelerometerFile()};
+  const auto pictures = writer.writePictures(run, reference, m_settings.snapshot);
+  for (const auto& w : pictures.warnings())
+    progress(m_settings.app + ": warning: " + w);
+  s.mapS = pictures.mapS;
+  s.snapshotS = pictures.snapshotS;
+  s.peakRssMb = peakRssMb();
+
+  nlohmann::json j = summaryJson(pipeline, s, finalReport, ev);
+  pictures.addToSummary(j);
+  writer.writeSummary(j);
+}
+
+TSlamSummary CSlamRunner::run(
+    std::unique_ptr<io::CFrameSource> source, const TMakePipeline& make) const
+{
+  CSlamOutputWriter::checkWritableDir(m_settings.outputDir);
+  const std::string name = source->name();
+  const std::size_t total = source->size();
+
+  mrpt::system::CTicTac wall;
+  const std::unique_ptr<CSlamPipeline> pipeline = make(std::move(source));
+  const auto& fe = pipeline->context().config().frontEnd;
+  progress(
+      m_settings.app + ": " + name + ", " + std::to_string(total) + " frames, mode " +
+      frontend::toString(fe.mode) + ", " + features::toString(fe.extractor.feature_type));
+  if (m_settings.started)
+    m_settings.started(*pipeline);
+  pipeline->setObserver(m_settings.observer);
+  const bool stopped = runFrames(*pipeline, total);
+  const auto finalReport = pipeline->finish();
+  const io::TTrajectory estimate = pipeline->trajectory();
+  const double wallS = wall.Tac();
+
+  const TEvaluation ev = evaluate(*pipeline, estimate);
+  TSlamSummary s = summarize(*pipeline, estimate, wallS, ev);
+  s.stoppedByUser = stopped;
+  writeOutputs(*pipeline, estimate, finalReport, ev, s);
+  return s;
+}
+}  // namespace roislam::graphslam
