@@ -51,20 +51,7 @@ mrpt::img::TCamera loadIniCamera(const std::string& file)
   try
   {
     mrpt::config::CConfigFileMemory cfg(mrpt::io::file_get_contents(file));
-    if (!cfg.sectionExists("CAMERA_PARAMS"))
-      throw std::runtime_error("missing section [CAMERA_PARAMS]");
-    // MRPT 2.x reads `dist` only with `distortion_model = plumb_bob`; files
-    // in the older layout (and hand-written ones) have only `dist`, and MRPT
-    // would silently load them as undistorted. Non-zero `dist` without a
-    // model means plumb_bob; an explicit model is respected.
-    if (cfg.read_string("CAMERA_PARAMS", "distortion_model", "").empty())
-    {
-      std::vector<double> dist;
-      cfg.read_vector("CAMERA_PARAMS", "dist", std::vector<double>(), dist);
-      if (std::any_of(dist.begin(), dist.end(), [](double d) { return d != 0; }))
-        cfg.write("CAMERA_PARAMS", "distortion_model", "plumb_bob");
-    }
-    cam.loadFromConfigFile("CAMERA_PARAMS", cfg);
+    cam = cameraFromConfig(cfg, "CAMERA_PARAMS");
   }
   catch (const std::exception& e)
   {
@@ -95,6 +82,39 @@ mrpt::img::TCamera loadYamlCamera(const std::string& file)
   return cam;
 }
 }  // namespace
+
+mrpt::img::TCamera cameraFromConfig(
+    const mrpt::config::CConfigFileBase& cfgIn, const std::string& section)
+{
+  if (!cfgIn.sectionExists(section))
+    throw std::runtime_error("missing section [" + section + "]");
+  // MRPT 2.x reads `dist` only with `distortion_model = plumb_bob`; files
+  // in the older layout (and hand-written ones) have only `dist`, and MRPT
+  // would silently load them as undistorted. Non-zero `dist` without a
+  // model means plumb_bob; an explicit model is respected.
+  mrpt::config::CConfigFileMemory cfg;
+  std::vector<std::string> keys;
+  cfgIn.getAllKeys(section, keys);
+  for (const auto& k : keys)
+    cfg.write(section, k, cfgIn.read_string(section, k, ""));
+  if (cfg.read_string(section, "distortion_model", "").empty())
+  {
+    std::vector<double> dist;
+    cfg.read_vector(section, "dist", std::vector<double>(), dist);
+    if (std::any_of(dist.begin(), dist.end(), [](double d) { return d != 0; }))
+      cfg.write(section, "distortion_model", "plumb_bob");
+  }
+  mrpt::img::TCamera cam;
+  try
+  {
+    cam.loadFromConfigFile(section, cfg);
+  }
+  catch (const std::exception& e)
+  {
+    throw std::runtime_error("[" + section + "] " + detail::oneLineError(e.what()));
+  }
+  return cam;
+}
 
 mrpt::img::TCamera cameraPreset(const std::string& name)
 {

@@ -4,12 +4,19 @@
  */
 #pragma once
 
+#include <mrpt/config/CConfigFileBase.h>
 #include <mrpt/img/TCamera.h>
 
 #include <string>
 
 namespace roislam::io
 {
+/** A TCamera from one ini section (TCamera's keys). Unlike MRPT 2.5 alone, a
+ *  non-zero `dist` without `distortion_model` is read as plumb_bob (MRPT's
+ *  older layout). Throws std::runtime_error naming the section. */
+mrpt::img::TCamera cameraFromConfig(
+    const mrpt::config::CConfigFileBase& cfg, const std::string& section);
+
 /** Intrinsics of a named preset: "fr1", "fr2", "fr3" or "ros" (640x480).
  *  fr1/fr2 carry the benchmark's distortion coefficients; fr3 and ros have none
  *  (fr3 images are already undistorted). Throws std::invalid_argument otherwise. */
