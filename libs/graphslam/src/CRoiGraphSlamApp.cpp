@@ -1,4 +1,5 @@
 #include <mrpt/config/CConfigFile.h>
+#include <mrpt/core/format.h>
 #include <mrpt/system/CTicTac.h>
 #include <roislam/evaluation/CTrajectoryEvaluator.h>
 #include <roislam/frontend/PoseUncertainty.h>
@@ -79,6 +80,7 @@ CRoiGraphSlamApp::CRoiGraphSlamApp(TArguments arguments) : m_args(std::move(argu
       throw std::runtime_error("ini " + m_args.iniFile + ": cannot open");
     mrpt::config::CConfigFile cfg(m_args.iniFile);
     m_config = CSlamContext::loadConfig(cfg, m_args.iniFile);
+    m_iniReadout = cfg.keyExists("FrontEnd", "rolling_shutter_ms");
   }
   auto& fe = m_config.frontEnd;
   if (m_args.mode)
@@ -107,6 +109,22 @@ void CRoiGraphSlamApp::progress(const std::string& line) const
 {
   if (m_args.progress)
     m_args.progress(line);
+}
+
+void CRoiGraphSlamApp::applySensor(const io::CFrameSource& source)
+{
+  const io::TSensorChoice& choice = source.sensor();
+  progress("roi-graphslam: " + choice.summary());
+  auto& fe = m_config.frontEnd;
+  const double sensorMs = choice.sensor.signedReadoutMs();
+  if (!m_iniReadout)
+    fe.rolling_shutter_ms = sensorMs;
+  else if (fe.rolling_shutter_ms != sensorMs)
+    progress(mrpt::format(
+        "roi-graphslam: note: %s sets [FrontEnd] rolling_shutter_ms = %g, which overrides "
+        "the sensor's %g ms (the readout is a camera fact: it moved to the sensor "
+        "description)",
+        m_args.iniFile.c_str(), fe.rolling_shutter_ms, sensorMs));
 }
 
 void CRoiGraphSlamApp::runFrames(CSlamPipeline& pipeline, std::size_t total) const
@@ -190,6 +208,9 @@ nlohmann::json CRoiGraphSlamApp::summaryJson(
   j["feature"] = features::toString(fe.extractor.feature_type);
   j["max_features"] = fe.extractor.max_features;
   j["strict_roi"] = fe.strict_roi;
+  j["sensor"] = pipeline.source().sensor().toJson();
+  j["sensor"]["rolling_shutter_ms_used"] = fe.rolling_shutter_ms;
+  j["sensor"]["rolling_shutter_from"] = m_iniReadout ? "ini [FrontEnd]" : "sensor description";
   j["frames"] = s.frames;
   j["skipped_frames"] = pipeline.source().skippedFrames();
   j["keyframes"] = s.keyframes;
@@ -253,6 +274,7 @@ CRoiGraphSlamApp::TSummary CRoiGraphSlamApp::run()
 {
   auto source = io::CFrameSource::open(m_args.input, m_args.camera);
   CSlamOutputWriter::checkWritableDir(m_args.outputDir);
+  applySensor(*source);
   progress(
       "roi-graphslam: " + source->name() + ", " + std::to_string(source->size()) +
       " frames, mode " + frontend::toString(m_config.frontEnd.mode) + ", " +

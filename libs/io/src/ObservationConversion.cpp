@@ -31,16 +31,57 @@ bool sameIntrinsics(const mrpt::img::TCamera& a, const mrpt::img::TCamera& b)
          a.cx() == b.cx() && a.cy() == b.cy();
 }
 
-// Depth (metres, depth-camera pixels) re-projected into the colour camera with
-// a z-buffer; used only for unregistered sensors (e.g. Kinect via freenect).
-cv::Mat registerDepth(const cv::Mat& depth, const CObservation3DRangeScan& obs)
+// Metres for every raw 16-bit value, cached per rangeUnits (a frame has 300k
+// pixels, the table 65536 entries). rangeUnits is a float, so 1/5000 and 0.001
+// are not exact: when it is the inverse of an integer we divide by that
+// integer, making metres exactly raw / 5000 (or / 1000) as the TUM folder
+// reader computes them.
+const std::vector<float>& metresTable(float rangeUnits)
 {
-  const auto& dc = obs.cameraParams;
-  const auto& cc = obs.cameraParamsIntensity;
+  thread_local float cachedUnits = 0;
+  thread_local std::vector<float> table;
+  if (table.empty() || cachedUnits != rangeUnits)
+  {
+    const double inverse = 1.0 / double(rangeUnits), inverseInt = std::round(inverse);
+    const bool useDivisor = inverseInt >= 1 && std::abs(inverse - inverseInt) < 1e-5 * inverse;
+    table.resize(65536);
+    for (std::size_t v = 0; v < table.size(); ++v)
+      table[v] = static_cast<float>(useDivisor ? v / inverseInt : v * double(rangeUnits));
+    cachedUnits = rangeUnits;
+  }
+  return table;
+}
+}  // namespace
+
+static const mrpt::poses::CPose3D& opticalToMrptDepthTwist()
+{
+  // Maps optical coordinates (x right, y down, z forward) into MRPT's depth
+  // frame (x forward, y left, z up).
+  static const mrpt::poses::CPose3D twist(0, 0, 0, mrpt::DEG2RAD(-90.0), 0, mrpt::DEG2RAD(-90.0));
+  return twist;
+}
+
+mrpt::poses::CPose3D intensityPoseWrtDepth(const mrpt::poses::CPose3D& depthPoseInColour)
+{
   // relativePoseIntensityWRTDepth maps optical-intensity coordinates into the
-  // MRPT depth frame; the fixed twist maps optical-depth into the MRPT depth frame.
-  const mrpt::poses::CPose3D twist(0, 0, 0, mrpt::DEG2RAD(-90.0), 0, mrpt::DEG2RAD(-90.0));
-  const mrpt::poses::CPose3D depthOptToColourOpt = (-obs.relativePoseIntensityWRTDepth) + twist;
+  // MRPT depth frame: twist (+) the colour optical frame in the depth optical one.
+  return opticalToMrptDepthTwist() + (-depthPoseInColour);
+}
+
+mrpt::poses::CPose3D depthPoseInColour(const CObservation3DRangeScan& obs)
+{
+  return (-obs.relativePoseIntensityWRTDepth) + opticalToMrptDepthTwist();
+}
+
+cv::Mat registerDepthToColour(
+    const cv::Mat& depth, const mrpt::img::TCamera& dc, const mrpt::img::TCamera& cc,
+    const mrpt::poses::CPose3D& depthOptToColourOpt)
+{
+  if (depth.type() != CV_32FC1 || depth.cols != static_cast<int>(dc.ncols) ||
+      depth.rows != static_cast<int>(dc.nrows))
+    throw std::invalid_argument(
+        "registerDepthToColour: depth must be CV_32FC1 of the depth camera's " +
+        sizeText(dc.ncols, dc.nrows));
   cv::Mat out(static_cast<int>(cc.nrows), static_cast<int>(cc.ncols), CV_32FC1, cv::Scalar(0));
   for (int r = 0; r < depth.rows; ++r)
     for (int c = 0; c < depth.cols; ++c)
@@ -63,27 +104,6 @@ cv::Mat registerDepth(const cv::Mat& depth, const CObservation3DRangeScan& obs)
     }
   return out;
 }
-// Metres for every raw 16-bit value, cached per rangeUnits (a frame has 300k
-// pixels, the table 65536 entries). rangeUnits is a float, so 1/5000 and 0.001
-// are not exact: when it is the inverse of an integer we divide by that
-// integer, making metres exactly raw / 5000 (or / 1000) as the TUM folder
-// reader computes them.
-const std::vector<float>& metresTable(float rangeUnits)
-{
-  thread_local float cachedUnits = 0;
-  thread_local std::vector<float> table;
-  if (table.empty() || cachedUnits != rangeUnits)
-  {
-    const double inverse = 1.0 / double(rangeUnits), inverseInt = std::round(inverse);
-    const bool useDivisor = inverseInt >= 1 && std::abs(inverse - inverseInt) < 1e-5 * inverse;
-    table.resize(65536);
-    for (std::size_t v = 0; v < table.size(); ++v)
-      table[v] = static_cast<float>(useDivisor ? v / inverseInt : v * double(rangeUnits));
-    cachedUnits = rangeUnits;
-  }
-  return table;
-}
-}  // namespace
 
 mrpt::poses::CPose3D tumSensorPose()
 {
@@ -108,8 +128,7 @@ CObservation3DRangeScan::Ptr observationFromRawDepth(
   obs->cameraParams = camera;
   obs->cameraParamsIntensity = camera;
   // The default value, meaning "both cameras coincide" (TUM depth is registered).
-  obs->relativePoseIntensityWRTDepth =
-      mrpt::poses::CPose3D(0, 0, 0, mrpt::DEG2RAD(-90.0), 0, mrpt::DEG2RAD(-90.0));
+  obs->relativePoseIntensityWRTDepth = opticalToMrptDepthTwist();
   obs->sensorPose = tumSensorPose();
   obs->range_is_depth = true;
   obs->rangeUnits = rangeUnits;
@@ -124,6 +143,18 @@ CObservation3DRangeScan::Ptr observationFromRawDepth(
   }
   obs->hasIntensityImage = false;
   obs->intensityImageChannel = CObservation3DRangeScan::CH_VISIBLE;
+  return obs;
+}
+
+CObservation3DRangeScan::Ptr observationFromRawDepth(
+    const cv::Mat& depthU16, const TSensorDescription& sensor, double timestamp)
+{
+  const float rangeUnits = static_cast<float>(1.0 / sensor.depth_scale);
+  if (sensor.depth_registered)
+    return observationFromRawDepth(depthU16, rangeUnits, sensor.colour, timestamp);
+  auto obs = observationFromRawDepth(depthU16, rangeUnits, sensor.depth, timestamp);
+  obs->cameraParamsIntensity = sensor.colour;
+  obs->relativePoseIntensityWRTDepth = intensityPoseWrtDepth(sensor.depth_pose_in_colour);
   return obs;
 }
 
@@ -222,7 +253,9 @@ TRGBDFrame observationToFrame(const CObservation3DRangeScan& obs, const std::str
   if (obs.doDepthAndIntensityCamerasCoincide() && sameIntrinsics(dc, cc))
     f.depth = depth;
   else
-    f.depth = registerDepth(depth, obs);
+  {
+    f.depth = registerDepthToColour(depth, dc, cc, depthPoseInColour(obs));
+  }
   return f;
 }
 }  // namespace roislam::io

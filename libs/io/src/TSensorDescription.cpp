@@ -9,6 +9,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <stdexcept>
 
 namespace roislam::io
@@ -18,14 +19,50 @@ namespace
 const char* kColourSection = "CAMERA_PARAMS";
 const char* kDepthSection = "DEPTH_CAMERA_PARAMS";
 
+// The shortest text that reads back as the same double.
+std::string exactText(double v)
+{
+  char buf[64];
+  for (int digits : {15, 16, 17})
+  {
+    std::snprintf(buf, sizeof(buf), "%.*g", digits, v + 0.0);  // + 0.0: no "-0"
+    if (std::strtod(buf, nullptr) == v)
+      break;
+  }
+  return buf;
+}
+
+// TCamera::saveToConfigFile writes the intrinsics with 5 decimals (fr1's fx
+// 517.306408 would come back as 517.30641): its layout, our precision.
+void saveCamera(
+    const mrpt::img::TCamera& c, const std::string& section, mrpt::config::CConfigFileBase& cfg)
+{
+  c.saveToConfigFile(section, cfg);
+  cfg.write(section, "cx", exactText(c.cx()));
+  cfg.write(section, "cy", exactText(c.cy()));
+  cfg.write(section, "fx", exactText(c.fx()));
+  cfg.write(section, "fy", exactText(c.fy()));
+  // As many coefficients as MRPT wrote for the model.
+  const std::string written = cfg.read_string(section, "dist", "");
+  std::size_t n = 0;
+  bool inNumber = false;
+  for (const char ch : written)
+  {
+    const bool part = ch != ' ' && ch != '[' && ch != ']' && ch != ',' && ch != '\t';
+    n += part && !inNumber;
+    inNumber = part;
+  }
+  std::string text = "[";
+  for (std::size_t i = 0; i < n && i < c.dist.size(); ++i)
+    text += (i ? " " : "") + exactText(c.dist[i]);
+  cfg.write(section, "dist", text + "]");
+}
+
 std::string poseText(const mrpt::poses::CPose3D& p)
 {
-  char buf[256];
-  std::snprintf(
-      buf, sizeof(buf), "[%.17g %.17g %.17g %.17g %.17g %.17g]", p.x() + 0.0, p.y() + 0.0,
-      p.z() + 0.0, mrpt::RAD2DEG(p.yaw()) + 0.0, mrpt::RAD2DEG(p.pitch()) + 0.0,
-      mrpt::RAD2DEG(p.roll()) + 0.0);  // + 0.0: no "-0" in the file
-  return buf;
+  return "[" + exactText(p.x()) + " " + exactText(p.y()) + " " + exactText(p.z()) + " " +
+         exactText(mrpt::RAD2DEG(p.yaw())) + " " + exactText(mrpt::RAD2DEG(p.pitch())) + " " +
+         exactText(mrpt::RAD2DEG(p.roll())) + "]";
 }
 
 mrpt::poses::CPose3D parsePose(
@@ -153,19 +190,14 @@ void TSensorDescription::loadFromConfigFile(
 void TSensorDescription::saveToConfigFile(
     mrpt::config::CConfigFileBase& cfg, const std::string& s) const
 {
-  colour.saveToConfigFile(kColourSection, cfg);
+  saveCamera(colour, kColourSection, cfg);
   if (!depth_registered)
-    depth.saveToConfigFile(kDepthSection, cfg);
+    saveCamera(depth, kDepthSection, cfg);
   const auto& n = depth_noise;
   cfg.write(s, "name", name);
   cfg.write(s, "depth_registered", depth_registered);
   cfg.write(s, "depth_pose_in_colour", poseText(depth_pose_in_colour));
-  const auto w = [&](const char* key, double v)
-  {
-    char buf[64];
-    std::snprintf(buf, sizeof(buf), "%.17g", v);
-    cfg.write(s, key, std::string(buf));
-  };
+  const auto w = [&](const char* key, double v) { cfg.write(s, key, exactText(v)); };
   w("depth_scale", depth_scale);
   w("rolling_shutter_ms", rolling_shutter_ms);
   cfg.write(

@@ -66,6 +66,7 @@ CCvOdometryApp::TSummary CCvOdometryApp::run() const
   progress(
       "cv-odometry: " + source->name() + ", " + std::to_string(source->size()) + " frames, " +
       CCvOdometry::className(m_options.method) + ", camera " + source->camera().cameraName);
+  progress("cv-odometry: " + source->sensor().summary());
 
   CCvOdometry odometry(m_options, source->camera());
   io::TTrajectory estimate;
@@ -118,6 +119,7 @@ CCvOdometryApp::TSummary CCvOdometryApp::run() const
   j["method"] = m_options.method;
   j["opencv_class"] = "cv::rgbd::" + opencvClass;
   j["camera"] = source->camera().cameraName;
+  j["sensor"] = source->sensor().toJson();
   mrpt::config::CConfigFileMemory optionsIni;
   m_options.saveToConfigFile(optionsIni, kSection);
   j["options"] = optionsIni.getContent();

@@ -1,9 +1,8 @@
-/* The roi-graphslam application: RGB-D graph SLAM over a TUM folder or a
- * rawlog with our deciders (CKeyframeNRD / CKeyframeERD on a
- * CNetworkOfPoses3DInf, driven directly from this loop rather than through
- * CGraphSlamEngine, whose 2.5 version resets optimised poses by Dijkstra),
- * SPA Levenberg-Marquardt on each loop closure and at the end.
- * While frame i is processed, frame i+1 is decoded on a second thread.
+/* The roi-graphslam application: RGB-D graph SLAM over a TUM folder, a
+ * rawlog, an .oni recording or an OpenNI2 device with our deciders (CKeyframeNRD / CKeyframeERD on
+ * a CNetworkOfPoses3DInf, driven directly from this loop rather than through CGraphSlamEngine,
+ * whose 2.5 version resets optimised poses by Dijkstra), SPA Levenberg-Marquardt on each loop
+ * closure and at the end. While frame i is processed, frame i+1 is decoded on a second thread.
  *
  * Writes into the output folder, each file under a temporary name renamed
  * when complete:
@@ -23,6 +22,11 @@
  * camera's optical frame, TUM convention: as estimated); map.bt,
  * scene.3Dscene and snapshot.png are gravity-up (z up) in the frame
  * summary.json's display_frame names (CSlamOutputWriter, CGravityFrame).
+ * The colour camera's rolling-shutter readout comes from the sensor
+ * description (io::CFrameSource::sensor(), --camera): the run prints which
+ * description it picked and why, and summary.json records it ("sensor").
+ * An ini that still sets [FrontEnd] rolling_shutter_ms (configs before the
+ * sensor description) overrides the description's readout, and the run says so.
  * Map and snapshot are built after the timed run (wall_s/fps exclude them;
  * map_s and snapshot_s report them). Called by apps/roi-graphslam and tests.
  */
@@ -47,7 +51,7 @@ class CRoiGraphSlamApp
   {
     /** MRPT ini file; empty = defaults. */
     std::string iniFile;
-    /** TUM folder or .rawlog. */
+    /** TUM folder, .rawlog, .oni, openni2 or openni2://<uri>. */
     std::string input;
     std::string outputDir;
     /** Command-line overrides of the ini. */
@@ -56,7 +60,7 @@ class CRoiGraphSlamApp
     std::optional<int> maxFeatures;      //!< [FeatureExtractor] max_features
     std::optional<bool> strictRoi;       //!< [FrontEnd] strict_roi
     bool snapshot = true;
-    /** Camera spec as io::resolveCamera (default auto). */
+    /** Sensor description spec as io::CFrameSource::open (default auto). */
     std::string camera = "auto";
     /** Process at most this many frames (0 = all). */
     std::size_t maxFrames = 0;
@@ -104,6 +108,9 @@ class CRoiGraphSlamApp
   };
 
   void progress(const std::string& line) const;
+  /** Prints the source's sensor description and takes its readout into the
+   *  front end (unless the ini set [FrontEnd] rolling_shutter_ms). */
+  void applySensor(const io::CFrameSource& source);
   /** Steps the pipeline to the end (or maxFrames), with progress lines. */
   void runFrames(CSlamPipeline& pipeline, std::size_t total) const;
   TEvaluation evaluate(const CSlamPipeline& pipeline, const io::TTrajectory& estimate) const;
@@ -116,5 +123,7 @@ class CRoiGraphSlamApp
 
   TArguments m_args;
   CSlamContext::TConfig m_config;
+  /** [FrontEnd] rolling_shutter_ms was in the ini (it then overrides the sensor's). */
+  bool m_iniReadout = false;
 };
 }  // namespace roislam::graphslam

@@ -3,36 +3,49 @@
  * scale, the colour camera's rolling-shutter readout, the depth-noise model
  * and the frame rate. The mode configs hold algorithm settings only; camera
  * facts live here. Presets fr1, fr2, fr3, ros (sensorPreset()); files are an
- * MRPT ini (a TUM-layout folder may carry one as camera.ini; rgbd-simul
- * writes one). Read by the frame sources (io::CFrameSource::sensor()), which
- * register unregistered depth with it, and by the front end (readout).
+ * MRPT ini (a TUM-layout folder may carry one as camera.ini, a rawlog or .oni
+ * one as <stem>.camera.ini; rgbd-simul and tum2rawlog write one). Resolved by
+ * resolveSensor() (CameraPresets.h), held by every frame source
+ * (CFrameSource::sensor()), which registers unregistered depth with it; the
+ * front end takes its readout (CRoiGraphSlamApp).
  *
  * File layout (MRPT ini):
  *   [CAMERA_PARAMS]        colour camera, mrpt::img::TCamera keys (resolution,
  *                          cx, cy, fx, fy, dist, distortion_model); required
  *   [DEPTH_CAMERA_PARAMS]  depth camera, same keys; required when
  *                          depth_registered = false, ignored otherwise
- *   [SensorDescription]    (optional: a file with only [CAMERA_PARAMS] is a
- *                          plain calibration and gets the defaults below)
- *     name                       string            file stem  shown in logs, summary.json
- *     depth_registered           bool              true       depth already on the colour grid
- *     depth_pose_in_colour       [x y z yaw pitch roll]  [0 0 0 0 0 0]  m, deg: the depth
- *                                optical frame in the colour optical frame (MRPT
- *                                CPose3D text); used when depth_registered = false
- *     depth_scale                double > 0        5000       raw depth units per metre
- *     rolling_shutter_ms         double >= 0       0          colour row readout, first to
- *                                last row (0 = global shutter); <= one frame period
+ *   [SensorDescription]    optional: a file with only [CAMERA_PARAMS] is a
+ *                          plain calibration and gets the defaults below.
+ *                          Every key optional; unknown keys are an error.
+ *     key                        type / range                 default
+ *     name                       non-empty string             file stem
+ *         shown in logs and summary.json
+ *     depth_registered           bool                         true
+ *         true: depth is already on the colour camera's pixel grid
+ *     depth_pose_in_colour       [x y z yaw pitch roll]       [0 0 0 0 0 0]
+ *         m, deg: the depth optical frame in the colour optical frame
+ *         (MRPT CPose3D text); used when depth_registered = false
+ *     depth_scale                double > 0                   5000
+ *         raw depth units per metre (TUM PNG 5000, OpenNI mm 1000)
+ *     rolling_shutter_ms         double in [0, 1000/frame_rate]  0
+ *         colour readout from first to last row, ms; 0 = global shutter
  *     rolling_shutter_direction  top_to_bottom | bottom_to_top  top_to_bottom
- *     frame_rate                 double > 0        30         Hz
- *     depth_noise_model          kinect | disparity | none  kinect
- *     depth_noise_a              double >= 0       0.0012     kinect: sigma(z) = a + b (z - z0)^2,
- * m depth_noise_b              double >= 0       0.0019     1/m depth_noise_z0             double
- * >= 0       0.4        m disparity_bf               double > 0        43.125     disparity: z = bf
- * / d, m px (baseline x focal; Kinect v1 7.5 cm x 575 px) disparity_steps_per_px     double > 0 8
- * disparity quantisation steps per px disparity_noise_steps      double >= 0       0.1667 disparity
- * noise sigma, in steps lateral_sigma_px           double >= 0       0.5        jitter of the depth
- * lookup, px A bad value throws std::invalid_argument "[<section>] <key>: ..."; an unknown key in
- * [SensorDescription] is an error too.
+ *     frame_rate                 double > 0                   30 (Hz)
+ *     depth_noise_model          kinect | disparity | none    kinect
+ *     depth_noise_a              double >= 0                  0.0012 (m)
+ *     depth_noise_b              double >= 0                  0.0019 (1/m)
+ *     depth_noise_z0             double >= 0                  0.4 (m)
+ *         kinect: sigma(z) = a + b (z - z0)^2
+ *     disparity_bf               double > 0                   43.125 (m px)
+ *         disparity: z = bf / d (baseline x focal; Kinect v1 7.5 cm x 575 px)
+ *     disparity_steps_per_px     double > 0                   8
+ *         disparity quantisation steps per pixel
+ *     disparity_noise_steps      double >= 0                  0.1667
+ *         disparity noise sigma, in steps
+ *     lateral_sigma_px           double >= 0                  0.5 (px)
+ *         jitter of the depth lookup
+ * A bad value throws std::invalid_argument "[<section>] <key>: ..."; file
+ * readers prefix the file name.
  */
 #pragma once
 
