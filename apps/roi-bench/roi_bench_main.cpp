@@ -21,7 +21,7 @@ int main(int argc, char** argv)
       ->expected(0, -1);
   cli.add_option("--only", o.only, "Execute only these run ids")->expected(1, -1);
   cli.add_flag("--no-report", o.noReport, "Run only; write no results.csv/report");
-  cli.add_option("--bin-dir", o.binDir, "Folder with roi-landmarks / roi-graphslam");
+  cli.add_option("--bin-dir", o.binDir, "Folder with roi-landmarks / roi-graphslam / cv-odometry");
   cli.add_option("--config-dir", o.configDir, "Folder with the apps' .ini files");
   cli.add_option("--reference", o.reference, "The dissertation's numbers (dissertation.json)");
   cli.add_option("--timeout", o.timeoutS, "Seconds per run before it is killed (0 = none)");
@@ -30,6 +30,10 @@ int main(int argc, char** argv)
   cli.add_flag(
       "--no-default-variants", o.noDefaultVariants,
       "Drop the default variants (strict/fallback/roicap, Test 1's hue)");
+  cli.add_option(
+         "--reference-methods", o.referenceMethods,
+         "Reference rows: cv-odometry methods (rgbd,icp,rgbdicp) per sequence, or none")
+      ->capture_default_str();
   cli.footer(
       "Several machines: roi-bench ... --emit-jobs | parallel --sshlogin m1,m2 (shared output\n"
       "folder), or give each machine its own --output-dir and combine them with\n"

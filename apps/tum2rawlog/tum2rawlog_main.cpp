@@ -1,5 +1,6 @@
-/* tum2rawlog: converts a TUM RGB-D benchmark folder into an MRPT rawlog of
- * CObservation3DRangeScan (see roislam::io::CTum2RawlogApp for the format). */
+/* tum2rawlog: converts a TUM RGB-D benchmark folder, an OpenNI .oni recording
+ * or a live OpenNI2 device into an MRPT rawlog of CObservation3DRangeScan (see
+ * roislam::io::CTum2RawlogApp for the format). */
 #include <roislam/common/ProcessTuning.h>
 #include <roislam/io/CTum2RawlogApp.h>
 
@@ -10,13 +11,20 @@ int main(int argc, char** argv)
 {
   roislam::common::tuneAllocatorForImages();
   roislam::io::CTum2RawlogApp::TOptions opts;
-  CLI::App cli{"Converts a TUM RGB-D folder into an MRPT rawlog of CObservation3DRangeScan"};
-  cli.add_option("-i,--input", opts.input, "TUM sequence folder (rgb.txt, depth.txt, ...)")
+  CLI::App cli{
+      "Converts a TUM RGB-D folder, an .oni recording or an OpenNI2 device into an MRPT rawlog "
+      "of CObservation3DRangeScan"};
+  cli.add_option(
+         "-i,--input", opts.input,
+         "TUM sequence folder (rgb.txt, depth.txt, ...), .oni recording, openni2 (first "
+         "device) or openni2://<uri>")
       ->required();
   cli.add_option("-o,--output", opts.output, "Output .rawlog file")->required();
   cli.add_option(
       "-c,--camera", opts.camera,
-      "Intrinsics: auto | fr1 | fr2 | fr3 | ros | MRPT TCamera calibration file");
+      "Sensor description: auto | fr1 | fr2 | fr3 | ros | sensor-description / TCamera ini | "
+      "yaml");
+  cli.add_option("--max-frames", opts.maxFrames, "Stop after N frames (0 = all; live: required)");
   cli.add_option(
          "--max-time-difference", opts.tum.maxTimeDifference,
          "Colour/depth association window in seconds")

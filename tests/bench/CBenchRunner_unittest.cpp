@@ -47,6 +47,7 @@ struct Fixture
     o.configDir = tmp + "/config";
     o.charts = false;
     o.selfExe = "/usr/local/bin/roi-bench";
+    o.referenceMethods = "none";  // the reference rows have their own test
     return o;
   }
 };
@@ -130,6 +131,48 @@ TEST(CBenchRunner, runsResumesAndRecordsFailures)
   EXPECT_TRUE(fs::exists(out + "/report.md"));
 }
 
+TEST(CBenchApp, referenceRowsInReportAndCsv)
+{
+  Fixture fx;
+  const std::string out = fx.tmp + "/out";
+  auto o = fx.appOptions(out);
+  o.tests = "2";
+  o.plan.features = {"orb"};
+  o.plan.modes = {"traditional"};
+  o.referenceMethods = "rgbd,rgbdicp";
+  std::ostringstream sout, serr;
+  ASSERT_EQ(CBenchApp(o).run(sout, serr), 0);
+  const auto records = CResultsCollector::loadFolder(out);
+  // 2 sequences x (traditional ORB + 2 reference methods).
+  ASSERT_EQ(records.size(), 6u);
+  std::size_t refs = 0;
+  for (const auto& r : records)
+    if (r.run.test == 0)
+    {
+      ++refs;
+      EXPECT_TRUE(r.ok) << r.run.id << ": " << r.failureReason;
+      EXPECT_EQ(r.run.app, "cv-odometry");
+    }
+  EXPECT_EQ(refs, 4u);
+  const std::string report = readFile(out + "/report.md");
+  EXPECT_NE(report.find("## Reference: OpenCV's cv::rgbd odometry"), std::string::npos) << report;
+  EXPECT_NE(
+      report.find("| textured | cv::rgbd rgbdicp (cv::rgbd::Fakergbdicp) | 0.0030 | 0.0030 | "
+                  "0.300 | 3.5 | 0 |"),
+      std::string::npos)
+      << report;
+  // Ours beside it: the fake traditional ORB run's ATE 0.013 m, 1.5 s over 10 frames.
+  EXPECT_NE(
+      report.find("| textured | ours, best: test 2 traditional ORB | 0.0130 | 0.0030 | 0.100 | "
+                  "150.0 |"),
+      std::string::npos)
+      << report;
+  const std::string csv = readFile(out + "/results.csv");
+  EXPECT_NE(csv.find(",ms_per_frame,"), std::string::npos);
+  EXPECT_NE(csv.find("ref-textured-cv_rgbd,0,textured,cv-odometry,cv_rgbd,"), std::string::npos)
+      << csv;
+}
+
 TEST(CBenchRunner, summarySaysFailedAndMissingSummary)
 {
   Fixture fx;
@@ -179,7 +222,7 @@ TEST(CBenchApp, emitJobsAndMerge)
       lines[0], "/usr/local/bin/roi-bench --datasets " + fx.textured + " " + fx.featureless +
                     " --output-dir " + fx.tmp + "/shared_out --tests 1 --jobs 1 --no-report " +
                     "--bin-dir " + fx.tmp + " --config-dir " + fx.tmp +
-                    "/config --only t1-textured-surf");
+                    "/config --reference-methods none --only t1-textured-surf");
   EXPECT_EQ(countLines(fx.tmp + "/calls.log"), 0) << "--emit-jobs must not run anything";
 
   // Two "machines" each run half of the jobs into their own folder, then merge.

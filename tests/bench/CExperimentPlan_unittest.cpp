@@ -22,7 +22,8 @@ std::vector<TSequence> twoSequences()
 CExperimentPlan::TLocations locations()
 {
   CExperimentPlan::TLocations loc;
-  loc.executables = {{"roi-landmarks", "/bin/lm"}, {"roi-graphslam", "/bin/gs"}};
+  loc.executables = {
+      {"roi-landmarks", "/bin/lm"}, {"roi-graphslam", "/bin/gs"}, {"cv-odometry", "/bin/cv"}};
   loc.configDir = "/cfg";
   loc.outputDir = "/out";
   return loc;
@@ -44,6 +45,8 @@ TEST(CExperimentPlan, countsPerTest)
   EXPECT_EQ(countTest(runs, 4), 0u);
   EXPECT_EQ(countTest(runs, 2), 42u);
   EXPECT_EQ(countTest(runs, 3), 8u);
+  // Reference rows: 2 seq x cv-odometry rgbd, icp, rgbdicp.
+  EXPECT_EQ(countTest(runs, 0), 6u);
   std::set<std::string> ids;
   for (const auto& r : runs)
     ids.insert(r.id);
@@ -134,6 +137,46 @@ TEST(CExperimentPlan, commandLines)
   ASSERT_NE(t3, runs.end());
   EXPECT_EQ(t3->argv[2], "/cfg/traditional.ini");
   EXPECT_NE(std::find(t3->argv.begin(), t3->argv.end(), "50"), t3->argv.end());
+
+  const auto ref = std::find_if(
+      runs.begin(), runs.end(), [](const TBenchRun& r) { return r.id == "ref-seq_B-cv_icp"; });
+  ASSERT_NE(ref, runs.end());
+  EXPECT_EQ(ref->test, 0);
+  EXPECT_EQ(ref->app, "cv-odometry");
+  const std::vector<std::string> eref{
+      "/bin/cv",  "--input", "/data/seq B", "--output-dir", "/out/runs/ref-seq_B-cv_icp/output",
+      "--method", "icp"};
+  EXPECT_EQ(ref->argv, eref);
+}
+
+TEST(CExperimentPlan, referenceMethodsFromIni)
+{
+  mrpt::config::CConfigFileMemory cfg;
+  cfg.write("Bench", "reference_methods", "rgbdicp");
+  CExperimentPlan::TOptions o;
+  o.loadFromConfigFile(cfg, "Bench");
+  EXPECT_EQ(o.reference_methods, std::vector<std::string>{"rgbdicp"});
+  cfg.write("Bench", "reference_methods", "none");
+  o.loadFromConfigFile(cfg, "Bench");
+  EXPECT_TRUE(o.reference_methods.empty());
+  EXPECT_EQ(countTest(CExperimentPlan(o, locations()).build(twoSequences()), 0), 0u);
+  // Round trip: "none" is written for an empty list and reads back as empty.
+  mrpt::config::CConfigFileMemory saved;
+  o.saveToConfigFile(saved, "Bench");
+  CExperimentPlan::TOptions back;
+  back.loadFromConfigFile(saved, "Bench");
+  EXPECT_TRUE(back.reference_methods.empty());
+  cfg.write("Bench", "reference_methods", "rgbd,fovis");
+  try
+  {
+    o.loadFromConfigFile(cfg, "Bench");
+    FAIL() << "expected an exception";
+  }
+  catch (const std::invalid_argument& e)
+  {
+    EXPECT_NE(std::string(e.what()).find("[Bench] reference_methods"), std::string::npos)
+        << e.what();
+  }
 }
 
 TEST(CExperimentPlan, optionsFromIniAndBadKeys)

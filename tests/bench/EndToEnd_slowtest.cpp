@@ -16,7 +16,7 @@ TEST(EndToEnd, figuresEqualHandRuns)
 {
   ROISLAM_REQUIRE_SYNTHETIC(seq, "textured");
   const std::string bin = roislam::testing::binaryDir() + "/apps";
-  for (const char* app : {"roi-landmarks", "roi-graphslam"})
+  for (const char* app : {"roi-landmarks", "roi-graphslam", "cv-odometry"})
     if (!fs::exists(bin + "/" + app + "/" + app))
       GTEST_SKIP() << app << " not built";
   const std::string tmp = roislam::testing::makeTempDir("bench_e2e");
@@ -29,10 +29,11 @@ TEST(EndToEnd, figuresEqualHandRuns)
   o.plan.features = {"surf"};
   o.plan.modes = {"traditional"};
   o.noDefaultVariants = true;
+  o.referenceMethods = "rgbdicp";
   std::ostringstream out, err;
   ASSERT_EQ(CBenchApp(o).run(out, err), 0) << err.str();
   const auto records = CResultsCollector::loadFolder(o.outputDir);
-  ASSERT_EQ(records.size(), 2u);
+  ASSERT_EQ(records.size(), 3u);  // Test 1, Test 2 and the reference row
   EXPECT_TRUE(fs::exists(o.outputDir + "/report.md"));
   EXPECT_TRUE(fs::exists(o.outputDir + "/results.csv"));
 
@@ -52,7 +53,7 @@ TEST(EndToEnd, figuresEqualHandRuns)
     const auto hand = nlohmann::json::parse(readFile(handOut + "/summary.json"));
     for (const char* key :
          {"frames", "landmarks", "false_positives", "false_negatives", "precision", "recall",
-          "keyframes", "ate_rmse", "rpe_trans_rmse"})
+          "keyframes", "ate_rmse", "rpe_trans_rmse", "failed_frames"})
     {
       if (hand.contains(key))
       {

@@ -3,7 +3,8 @@
  * summary.json, so the runner, merge and report logic is tested without SLAM.
  * roi-graphslam fails (exit 1) in an ROI mode on a sequence whose path
  * contains "featureless" when the ini sets strict_roi = true, like the
- * dissertation's ROI versions. Every invocation appends a line to calls.log.
+ * dissertation's ROI versions. cv-odometry's ATE is 0.00k for --method number
+ * k (rgbd 1, icp 2, rgbdicp 3). Every invocation appends a line to calls.log.
  */
 #pragma once
 
@@ -21,7 +22,7 @@ inline void writeExecutable(const std::filesystem::path& p, const std::string& t
              std::filesystem::perms::others_read);
 }
 
-/** Creates <dir>/roi-landmarks, <dir>/roi-graphslam and a config folder
+/** Creates <dir>/roi-landmarks, <dir>/roi-graphslam, <dir>/cv-odometry and a config folder
  *  <dir>/config with the four ini files. */
 inline void makeFakeApps(const std::string& dir)
 {
@@ -64,6 +65,19 @@ cat > "$out/summary.json" <<JSON
 {"frames": 10, "keyframes": 4, "loop_closures": 0, "tracked_frames": 10, "fallback_frames": 0,
  "lost_frames": 0, "wall_s": $m.5, "fps": $((10 * k)), "peak_rss_mb": 100,
  "ate_rmse": 0.0$m$k, "rpe_trans_rmse": 0.00$k, "rpe_rot_rmse_deg": 0.$m}
+JSON
+)");
+  // cv-odometry: --method read before the common part consumes the arguments.
+  const std::string shebang = "#!/bin/sh\n";
+  writeExecutable(
+      fs::path(dir) / "cv-odometry", shebang + R"(method=""; prev=""
+for a in "$@"; do [ "$prev" = --method ] && method="$a"; prev="$a"; done
+)" + common.substr(shebang.size()) +
+                                         R"(case "$method" in rgbd) k=1;; icp) k=2;; *) k=3;; esac
+cat > "$out/summary.json" <<JSON
+{"frames": 10, "tracked_frames": 10, "failed_frames": 0, "ms_per_frame": $k.5,
+ "opencv_class": "cv::rgbd::Fake$method", "wall_s": 0.5, "fps": 20,
+ "ate_rmse": 0.00$k, "rpe_trans_rmse": 0.00$k, "rpe_rot_rmse_deg": 0.$k}
 JSON
 )");
   for (const char* f : {"roi_landmarks.ini", "traditional.ini", "roi_small.ini", "roi_big.ini"})

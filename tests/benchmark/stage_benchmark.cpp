@@ -777,12 +777,15 @@ void printPairedSlamTable(const CCollectingReporter& rep, int passes, const std:
         const std::string ini = configDir + "/" + roislam::frontend::toString(modes[m]) + ".ini";
         if (!fs::exists(ini))
           throw std::runtime_error(ini + ": no such config");
-        auto cfg =
-            roislam::graphslam::CSlamContext::loadConfig(mrpt::config::CConfigFile(ini), ini);
+        const mrpt::config::CConfigFile file(ini);
+        auto cfg = roislam::graphslam::CSlamContext::loadConfig(file, ini);
         cfg.frontEnd.extractor.feature_type = type;
         cfg.frontEnd.extractor.max_features = kMatchCap;
-        pipe[m] = std::make_unique<roislam::graphslam::CSlamPipeline>(
-            cfg, roislam::io::CFrameSource::open(d.path));
+        auto source = roislam::io::CFrameSource::open(d.path);
+        // As roi-graphslam: the readout is the sensor's unless the ini sets it.
+        if (!file.keyExists("FrontEnd", "rolling_shutter_ms"))
+          cfg.frontEnd.rolling_shutter_ms = source->sensor().sensor.signedReadoutMs();
+        pipe[m] = std::make_unique<roislam::graphslam::CSlamPipeline>(cfg, std::move(source));
         pipe[m]->waitForPrefetch();
       }
       bool more = true;

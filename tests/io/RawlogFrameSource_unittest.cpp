@@ -62,6 +62,8 @@ TEST(RawlogFrameSource, RoundTripIsBitExact)
   EXPECT_TRUE(fs::is_regular_file(tmp + "/out/seq.groundtruth.txt"));
   ASSERT_TRUE(r.accelerometer);
   EXPECT_TRUE(fs::is_regular_file(tmp + "/out/seq.accelerometer.txt"));
+  ASSERT_TRUE(r.sensorFile);
+  EXPECT_TRUE(fs::is_regular_file(tmp + "/out/seq.camera.ini"));
   // Only the final names remain (no temporary leftovers).
   std::size_t entries = 0;
   for (const auto& e : fs::directory_iterator(tmp + "/out"))
@@ -69,7 +71,7 @@ TEST(RawlogFrameSource, RoundTripIsBitExact)
     ++entries;
     EXPECT_EQ(e.path().string().find("partial"), std::string::npos) << e.path();
   }
-  EXPECT_EQ(entries, 4u);
+  EXPECT_EQ(entries, 5u);
 
   CTumFrameSource tum(dir, smallCamera());
   CRawlogFrameSource raw(out);

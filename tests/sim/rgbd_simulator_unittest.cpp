@@ -15,6 +15,7 @@
 #include <opencv2/features2d.hpp>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
+#include <optional>
 #include <string>
 
 namespace fs = std::filesystem;
@@ -40,14 +41,17 @@ struct TDepthCheck
 
 /** Compares the rendered depth of a noise-free frame with the analytic scene on
  *  a pixel grid, away from depth discontinuities; rowPose(v) is the camera
- *  pose row v was rendered from (default: the frame's). */
+ *  pose row v was rendered from (default: the frame's, carried to the depth
+ *  camera); cam the depth camera (default: the simulator's). */
 TDepthCheck checkDepth(
     const CRgbdSimulator& sim, const CRgbdSimulator::TFrame& frame,
-    const std::function<mrpt::poses::CPose3D(int)>& rowPose = {})
+    const std::function<mrpt::poses::CPose3D(int)>& rowPose = {},
+    std::optional<mrpt::img::TCamera> camera = std::nullopt)
 {
-  const auto cam = sim.camera();
+  const auto cam = camera ? *camera : sim.depthCamera();
   TDepthCheck res;
   CRgbdSimulator::TFrame f = frame;
+  f.pose = f.pose + sim.depthPoseInColour();
   for (int v = 4; v < f.depth.rows - 4; v += 7)
     for (int u = 4; u < f.depth.cols - 4; u += 7)
     {
@@ -149,6 +153,79 @@ TEST(RgbdSimulator, RollingShutterRowsSeeTheScenesFromTheirOwnTime)
   // Read with the one middle-row pose, the rows away from the middle are off.
   const auto one = checkDepth(sim, f);
   EXPECT_LT(one.surfaceOk, own.surfaceOk * 0.8);
+}
+
+TEST(RgbdSimulator, UnregisteredDepthIsTheDepthCamerasView)
+{
+  auto o = opts("textured", false);
+  o.depthRegistered = false;
+  o.depthFx = o.depthFy = 575.8;
+  o.depthCx = 322.0;
+  o.depthCy = 236.0;
+  // 2.5 cm baseline and a slight misalignment, as a Kinect's IR camera has.
+  o.depthPoseInColour = "[-0.025 0.002 0.001 0.8 -0.5 0.3]";
+  CRgbdSimulator sim(o);
+  const auto f = sim.renderFrame(4);
+  EXPECT_DOUBLE_EQ(sim.depthCamera().fx(), 575.8);
+  EXPECT_NEAR(sim.depthPoseInColour().x(), -0.025, 1e-12);
+  const auto own = checkDepth(sim, f);
+  EXPECT_GT(own.compared, 3000);
+  EXPECT_GE(own.depthOk, own.compared * 0.995);
+  EXPECT_GE(own.surfaceOk, own.compared * 0.995);
+  // Read as if it were registered (colour camera, colour pose), it is not.
+  const auto asRegistered = checkDepth(
+      sim, f, [&](int) { return f.pose; }, sim.camera());
+  EXPECT_LT(asRegistered.depthOk, own.depthOk * 0.5);
+}
+
+TEST(RgbdSimulator, DisparityNoiseModelIsSelectable)
+{
+  auto o = opts("textured", true);
+  o.noiseModel = "disparity";
+  auto clean = o;
+  clean.noise = false;
+  CRgbdSimulator::TFrame f, g;
+  roislam::io::TSensorDescription noisy, noiseFree;
+  {  // one rendering simulator per thread at a time
+    CRgbdSimulator sim(o);
+    f = sim.renderFrame(3);
+    noisy = sim.sensorDescription();
+  }
+  {
+    CRgbdSimulator sim(clean);
+    g = sim.renderFrame(3);
+    noiseFree = sim.sensorDescription();
+  }
+  // Every noisy reading is a quantised disparity: bf * steps / k for an integer k.
+  int checked = 0, onGrid = 0;
+  double sumSq = 0;
+  int nDiff = 0;
+  for (int v = 10; v < f.depth.rows - 10; v += 5)
+    for (int u = 10; u < f.depth.cols - 10; u += 5)
+    {
+      const float z = f.depth.at<float>(v, u), z0 = g.depth.at<float>(v, u);
+      if (!(z > 0) || !(z0 > 0))
+        continue;
+      const double k = o.disparityBf * o.disparityStepsPerPx / z;
+      ++checked;
+      onGrid += std::abs(k - std::round(k)) < 1e-3 * k ? 1 : 0;
+      if (std::abs(z - z0) < 0.05 * z0)
+      {
+        sumSq += (z - z0) * (z - z0) / (z0 * z0 * z0 * z0);
+        ++nDiff;
+      }
+    }
+  ASSERT_GT(checked, 3000);
+  EXPECT_GT(onGrid, checked * 0.99);
+  // Away from edges the error per z^2 follows the model's sigma(z) / z^2
+  // (noise and quantisation in disparity), widened by the lateral jitter on
+  // slanted surfaces: within a factor 2 of the model.
+  const double perZ2 = std::sqrt(sumSq / nDiff);
+  EXPECT_EQ(noisy.depth_noise.model, "disparity");
+  const double model = noisy.depth_noise.sigma(1.0);
+  EXPECT_GT(perZ2, 0.7 * model);
+  EXPECT_LT(perZ2, 2.0 * model);
+  EXPECT_EQ(noiseFree.depth_noise.model, "none");
 }
 
 TEST(RgbdSimulator, TexturedSceneIsRichFeaturelessIsFlat)
@@ -311,6 +388,13 @@ TEST(RgbdSimulator, OptionsLoadValidateAndRoundTrip)
   expectError("rolling_shutter_ms", "-1");
   expectError("rolling_shutter_ms", "40");  // longer than a 30 Hz frame
   expectError("framez", "10");              // unknown key
+  expectError("noise_model", "gauss");
+  expectError("disparity_bf", "0");
+  expectError("lateral_sigma_px", "-1");
+  expectError("depth_registered", "perhaps");
+  expectError("depth_fx", "-500");
+  expectError("depth_cx", "900");
+  expectError("depth_pose_in_colour", "[1 2 3]");
 }
 
 // The accelerometer reads gravity plus the path's acceleration, in the
@@ -389,6 +473,16 @@ TEST(RgbdSimulator, WritesTumLayoutMatchingRenderedFrames)
     EXPECT_DOUBLE_EQ(cam.fx(), 517.3);
     EXPECT_DOUBLE_EQ(cam.cy(), 255.3);
     EXPECT_EQ(cam.ncols, 640u);
+    // camera.ini is the whole sensor description.
+    roislam::io::TSensorDescription d;
+    d.loadFromConfigFile(
+        mrpt::config::CConfigFile((out / "camera.ini").string()), "SensorDescription");
+    EXPECT_EQ(d.name, "rgbd-simul");
+    EXPECT_TRUE(d.depth_registered);
+    EXPECT_DOUBLE_EQ(d.rolling_shutter_ms, o.rollingShutterMs);
+    EXPECT_DOUBLE_EQ(d.frame_rate, 30);
+    EXPECT_DOUBLE_EQ(d.depth_scale, 5000);
+    EXPECT_EQ(d.depth_noise.model, "kinect");
   }
   // Writing again replaces the earlier output.
   auto o2 = o;

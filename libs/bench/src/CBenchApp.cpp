@@ -48,6 +48,8 @@ CBenchApp::CBenchApp(const TOptions& options) : m_options(options)
   }
   for (const auto& spec : m_options.variantSpecs)
     m_options.plan.variants.push_back(TVariant::parse(spec));
+  m_options.plan.reference_methods =
+      CExperimentPlan::parseReferenceMethods(m_options.referenceMethods);
   m_options.plan.validate();
   if (!m_options.merge && m_options.datasets.empty())
     throw std::invalid_argument("--datasets is required (unless --merge)");
@@ -104,7 +106,7 @@ std::string CBenchApp::referenceFile() const
 std::vector<TBenchRun> CBenchApp::plan() const
 {
   CExperimentPlan::TLocations loc;
-  for (const auto& app : {"roi-landmarks", "roi-graphslam"})
+  for (const auto& app : {"roi-landmarks", "roi-graphslam", "cv-odometry"})
     loc.executables[app] = executableFor(app);
   loc.configDir = configDir();
   loc.outputDir = fs::absolute(m_options.outputDir).lexically_normal().string();
@@ -143,6 +145,7 @@ std::vector<std::string> CBenchApp::jobCommands() const
     base.push_back("--no-default-variants");
   for (const auto& v : m_options.variantSpecs)
     base.insert(base.end(), {"--variant", v});
+  base.insert(base.end(), {"--reference-methods", m_options.referenceMethods});
   std::vector<std::string> out;
   for (const auto& r : plan())
   {

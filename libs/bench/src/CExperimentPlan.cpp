@@ -67,6 +67,10 @@ void CExperimentPlan::TOptions::validate(const std::string& section) const
   for (const auto& m : test3_modes)
     if (std::find(knownM.begin(), knownM.end(), m) == knownM.end())
       throw bad("test3_modes", "unknown mode '" + m + "'");
+  const std::vector<std::string> knownR{"rgbd", "icp", "rgbdicp"};
+  for (const auto& m : reference_methods)
+    if (std::find(knownR.begin(), knownR.end(), m) == knownR.end())
+      throw bad("reference_methods", "unknown cv::rgbd odometry '" + m + "' (rgbd, icp, rgbdicp)");
   if (test1_max_features < 0)
     throw bad("test1_max_features", "must be >= 0");
   if (test2_max_features <= 0)
@@ -105,6 +109,8 @@ void CExperimentPlan::TOptions::loadFromConfigFile(
   test3_feature = cfg.read_string(section, "test3_feature", test3_feature);
   test3_modes = splitList(cfg.read_string(section, "test3_modes", joinList(test3_modes)));
   snapshots = cfg.read_bool(section, "snapshots", snapshots);
+  reference_methods = parseReferenceMethods(
+      cfg.read_string(section, "reference_methods", joinList(reference_methods)));
   validate(section);
 }
 
@@ -123,6 +129,17 @@ void CExperimentPlan::TOptions::saveToConfigFile(
   cfg.write(section, "test3_feature", test3_feature);
   cfg.write(section, "test3_modes", joinList(test3_modes));
   cfg.write(section, "snapshots", snapshots);
+  cfg.write(
+      section, "reference_methods",
+      reference_methods.empty() ? std::string("none") : joinList(reference_methods));
+}
+
+std::vector<std::string> CExperimentPlan::parseReferenceMethods(const std::string& text)
+{
+  auto list = splitList(text);
+  if (list.size() == 1 && list[0] == "none")
+    list.clear();
+  return list;
 }
 
 CExperimentPlan::CExperimentPlan(const TOptions& options, const TLocations& locations)
@@ -215,6 +232,22 @@ TBenchRun CExperimentPlan::makeTest4Run(
   return r;
 }
 
+TBenchRun CExperimentPlan::makeReferenceRun(const TSequence& seq, const std::string& method) const
+{
+  TBenchRun r;
+  r.test = 0;
+  r.sequence = seq.name;
+  r.sequencePath = seq.path;
+  r.app = "cv-odometry";
+  r.mode = "cv_" + method;
+  r.id = "ref-" + safeName(seq.name) + "-" + r.mode;
+  placeRun(r);
+  // cv-odometry has no mode config: its options are OpenCV's defaults.
+  r.argv = {r.argv[0],      "--input",  r.sequencePath, "--output-dir",
+            r.appOutputDir, "--method", method};
+  return r;
+}
+
 std::vector<TBenchRun> CExperimentPlan::build(const std::vector<TSequence>& sequences) const
 {
   std::vector<TBenchRun> runs;
@@ -249,6 +282,9 @@ std::vector<TBenchRun> CExperimentPlan::build(const std::vector<TSequence>& sequ
       for (const auto& f : m_options.features)
         for (const std::string kind : {"kf_slam", "graph_slam"})
           runs.push_back(makeTest4Run(s, kind, f));
+  for (const auto& s : sequences)
+    for (const auto& m : m_options.reference_methods)
+      runs.push_back(makeReferenceRun(s, m));
   return runs;
 }
 

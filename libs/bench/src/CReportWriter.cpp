@@ -307,6 +307,9 @@ std::string CReportWriter::render(const std::vector<TRunRecord>& records) const
   const auto t4 = select(all, 4);
   if (!t4.empty())
     renderTest4(md, t4);
+  const auto reference = select(all, 0);
+  if (!reference.empty())
+    renderReference(md, reference, all);
   if (!t2.empty())
     renderSpeed(md, t2);
   renderFailures(md, records);
@@ -715,6 +718,75 @@ void CReportWriter::renderTest4(std::ostream& md, const TRecordList& t4) const
     md << " " << (ms ? num(ms->mean, 4) + " (n=" + std::to_string(ms->n) + ")" : "n/a") << " |";
   }
   md << " | | |\n\n";
+}
+
+void CReportWriter::renderReference(
+    std::ostream& md, const TRecordList& ref, const TRecordList& all) const
+{
+  md << "## Reference: OpenCV's cv::rgbd odometry, frame to frame\n\n"
+        "cv-odometry runs OpenCV's RgbdOdometry (photometric), ICPOdometry (depth) and "
+        "RgbdICPOdometry (both) with OpenCV's default parameters, each frame against the "
+        "previous one, no keyframes, no loop closure, on the same frames with the same "
+        "intrinsics (a distorted camera is undistorted first). A sequence where the "
+        "reference fails too is hard; one where it beats us points to our system. Below each "
+        "sequence's reference rows, our best and worst trajectory on it (Tests 2-4); our ms "
+        "per frame is the whole run's wall time per frame, the reference's its odometry "
+        "alone.\n\n"
+        "| sequence | method | ATE RMSE (m) | RPE trans (m) | RPE rot (deg) | ms per frame | "
+        "failed frames |\n|---|---|---|---|---|---|---|\n";
+  const auto msPerFrame = [](const TRunRecord& r) -> std::optional<double>
+  {
+    if (auto ms = r.number("ms_per_frame"))
+      return ms;
+    const auto frames = r.number("frames");
+    if (!frames || *frames <= 0)
+      return std::nullopt;
+    return 1000 * durationOf(r) / *frames;
+  };
+  const auto row = [&](const std::string& seq, const std::string& label, const TRunRecord& r)
+  {
+    md << "| " << seq << " | " << label << " | ";
+    if (!r.ok)
+    {
+      md << oneLine("FAILED: " + r.failureReason) << " | | | | |\n";
+      return;
+    }
+    md << optNum(r.number("ate_rmse"), 4) << " | " << optNum(r.number("rpe_trans_rmse"), 4) << " | "
+       << optNum(r.number("rpe_rot_rmse_deg"), 3) << " | " << optNum(msPerFrame(r), 1) << " | "
+       << optNum(r.number("failed_frames"), 0) << " |\n";
+  };
+  for (const auto& s : distinct(ref, [](const TRunRecord& r) { return r.run.sequence; }))
+  {
+    for (const auto* r : ref)
+      if (r->run.sequence == s)
+        row(s,
+            "cv::rgbd " + r->run.mode.substr(3) + " (" +
+                r->summary.value("opencv_class", std::string("reference")) + ")",
+            *r);
+    const TRunRecord *best = nullptr, *worst = nullptr;
+    for (const auto* r : all)
+    {
+      const auto ate = r->number("ate_rmse");
+      if (r->run.test < 2 || r->run.sequence != s || !r->ok || !ate)
+        continue;
+      if (!best || *ate < *best->number("ate_rmse"))
+        best = r;
+      if (!worst || *ate > *worst->number("ate_rmse"))
+        worst = r;
+    }
+    const auto ours = [&](const char* which, const TRunRecord* r)
+    {
+      row(s,
+          std::string("ours, ") + which + ": test " + std::to_string(r->run.test) + " " +
+              versionLabel(*r) + " " + mrpt::system::upperCase(r->run.feature),
+          *r);
+    };
+    if (best)
+      ours("best", best);
+    if (worst && worst != best)
+      ours("worst", worst);
+  }
+  md << "\n";
 }
 
 void CReportWriter::renderFailures(std::ostream& md, const std::vector<TRunRecord>& records) const

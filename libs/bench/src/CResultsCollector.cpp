@@ -168,6 +168,8 @@ std::string CResultsCollector::toCsv(const std::vector<TRunRecord>& records)
       "lost_frames",
       "wall_s",
       "fps",
+      "ms_per_frame",
+      "failed_frames",
       "peak_rss_mb",
       "ate_rmse",
       "rpe_trans_rmse",

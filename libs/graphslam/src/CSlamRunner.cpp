@@ -163,6 +163,9 @@ nlohmann::json CSlamRunner::summaryJson(
   j["feature"] = features::toString(fe.extractor.feature_type);
   j["max_features"] = fe.extractor.max_features;
   j["strict_roi"] = fe.strict_roi;
+  j["sensor"] = pipeline.source().sensor().toJson();
+  j["sensor"]["rolling_shutter_ms_used"] = fe.rolling_shutter_ms;
+  j["sensor"]["rolling_shutter_from"] = m_settings.readoutFrom;
   j["frames"] = s.frames;
   j["skipped_frames"] = pipeline.source().skippedFrames();
   j["keyframes"] = s.keyframes;

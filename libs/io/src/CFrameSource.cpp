@@ -1,5 +1,6 @@
 #include "roislam/io/CFrameSource.h"
 
+#include <roislam/io/COpenNI2FrameSource.h>
 #include <roislam/io/CRawlogFrameSource.h>
 #include <roislam/io/CTumFrameSource.h>
 #include <roislam/io/CameraPresets.h>
@@ -14,13 +15,31 @@ namespace roislam::io
 std::unique_ptr<CFrameSource> CFrameSource::open(
     const std::string& path, const std::string& cameraSpec)
 {
+  if (COpenNI2FrameSource::isDeviceSpec(path))
+  {
+    // A live device has no folder: "auto" lets the device describe itself.
+    std::optional<TSensorChoice> given;
+    if (cameraSpec != "auto")
+      given = resolveSensor(cameraSpec, ".");
+    return std::make_unique<COpenNI2FrameSource>(path, given);
+  }
   if (fs::is_directory(path))
-    return std::make_unique<CTumFrameSource>(path, resolveCamera(cameraSpec, path));
+    return std::make_unique<CTumFrameSource>(
+        path, resolveSensor(cameraSpec, path), CTumFrameSource::TOptions());
   if (!fs::exists(path))
     throw std::runtime_error(path + ": no such file or folder");
+  if (fs::path(path).extension() == ".oni")
+    return std::make_unique<COpenNI2FrameSource>(path, resolveSensorForFile(cameraSpec, path));
+  // A rawlog's observations carry their own depth geometry and units; a
+  // description replaces the colour intrinsics and brings the camera facts.
+  const auto choice = resolveSensorForFile(cameraSpec, path);
   std::optional<mrpt::img::TCamera> override;
-  if (cameraSpec != "auto")
-    override = resolveCamera(cameraSpec, fs::absolute(path).parent_path().string());
-  return std::make_unique<CRawlogFrameSource>(path, CRawlogFrameSource::TOptions(), override);
+  if (choice)
+    override = choice->sensor.colour;
+  auto source =
+      std::make_unique<CRawlogFrameSource>(path, CRawlogFrameSource::TOptions(), override);
+  if (choice)
+    static_cast<CFrameSource&>(*source).m_sensor = *choice;
+  return source;
 }
 }  // namespace roislam::io

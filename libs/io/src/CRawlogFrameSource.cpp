@@ -5,6 +5,7 @@
 #include <mrpt/obs/CActionCollection.h>
 #include <mrpt/obs/CSensoryFrame.h>
 #include <mrpt/serialization/CArchive.h>
+#include <roislam/io/CameraPresets.h>
 #include <roislam/io/ObservationConversion.h>
 
 #include <filesystem>
@@ -23,6 +24,24 @@ namespace
 bool isRgbd(const CObservation3DRangeScan& o)
 {
   return o.hasRangeImage && o.hasIntensityImage;
+}
+
+// What an observation says about its sensor (the rest: TSensorDescription's
+// defaults, i.e. a global shutter).
+TSensorDescription sensorOfObservation(const CObservation3DRangeScan& o, const std::string& name)
+{
+  TSensorDescription d;
+  d.name = name;
+  d.colour = o.cameraParamsIntensity;
+  d.depth = o.cameraParams;
+  d.depth_scale = o.rangeUnits > 0 ? 1.0 / double(o.rangeUnits) : d.depth_scale;
+  d.depth_registered = o.doDepthAndIntensityCamerasCoincide() &&
+                       o.cameraParams.ncols == o.cameraParamsIntensity.ncols &&
+                       o.cameraParams.nrows == o.cameraParamsIntensity.nrows &&
+                       o.cameraParams.intrinsicParams == o.cameraParamsIntensity.intrinsicParams;
+  if (!d.depth_registered)
+    d.depth_pose_in_colour = depthPoseInColour(o);
+  return d;
 }
 }  // namespace
 
@@ -57,6 +76,7 @@ CRawlogFrameSource::CRawlogFrameSource(
   // Counting pass: validates the whole file and the sensor labels.
   std::set<std::string> labels;
   std::optional<mrpt::img::TCamera> firstCamera;
+  std::optional<TSensorDescription> firstSensor;
   openStream();
   while (readMore())
   {
@@ -65,7 +85,10 @@ CRawlogFrameSource::CRawlogFrameSource(
       const auto& o = *m_pending.front();
       labels.insert(o.sensorLabel);
       if (!firstCamera)
+      {
         firstCamera = o.cameraParamsIntensity;
+        firstSensor = sensorOfObservation(o, fs::path(m_file).stem().string());
+      }
       ++m_count;
       m_pending.pop_front();
     }
@@ -85,6 +108,12 @@ CRawlogFrameSource::CRawlogFrameSource(
         "); choose one with [RawlogFrameSource] sensor_label");
   }
   m_camera = m_cameraOverride ? *m_cameraOverride : *firstCamera;
+  m_sensor = {
+      *firstSensor, "rawlog observations",
+      "--camera auto and no " + fs::path(sensorFileBeside(m_file)).filename().string() +
+          " beside the rawlog: the observations' intrinsics, depth units and registration; "
+          "no rolling shutter assumed (pass --camera for the real camera)"};
+  m_sensor.sensor.colour = m_camera;
   rewind();
 }
 

@@ -1,15 +1,19 @@
 #include "roislam/io/CTum2RawlogApp.h"
 
 #include <mrpt/system/CTicTac.h>
+#include <roislam/io/COpenNI2FrameSource.h>
 #include <roislam/io/CRawlogWriter.h>
 #include <roislam/io/CameraPresets.h>
 #include <roislam/io/ObservationConversion.h>
 #include <stdlib.h>
 #include <sys/stat.h>
 
+#include <algorithm>
 #include <cerrno>
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
 #include <optional>
 #include <stdexcept>
 
@@ -89,6 +93,14 @@ class CSideFile
   CRemoveOnExit m_removeTemp, m_removeTarget;
 };
 
+void writeTextFile(const fs::path& file, const std::string& text)
+{
+  std::ofstream out(file);
+  out << text;
+  if (!out.flush())
+    throw std::runtime_error(file.string() + ": cannot write");
+}
+
 void linkOrCopy(const fs::path& from, const fs::path& to)
 {
   std::error_code ec;
@@ -100,6 +112,58 @@ void linkOrCopy(const fs::path& from, const fs::path& to)
     throw std::runtime_error(to.string() + ": cannot write (" + ec.message() + ")");
 }
 }  // namespace
+
+void CTum2RawlogApp::writeTumFrames(
+    const CTumFrameSource& source, CRawlogWriter& writer, const fs::path& staging,
+    const fs::path& imagesDir)
+{
+  const TSensorDescription& sensor = source.sensor().sensor;
+  const mrpt::img::TCamera& depthCamera = sensor.depth_registered ? sensor.colour : sensor.depth;
+  const auto& entries = source.entries();
+  const std::size_t n =
+      m_options.maxFrames ? std::min(m_options.maxFrames, entries.size()) : entries.size();
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    const auto& e = entries[i];
+    // Decoding both images validates them (corrupt file, bit depth, size).
+    CTumFrameSource::readColourImage(e.rgbFile, sensor.colour);
+    const cv::Mat depth = CTumFrameSource::readDepthImage(e.depthFile, depthCamera);
+
+    const std::string name = fs::path(e.rgbFile).filename().string();
+    if (!fs::exists(staging / name))
+      linkOrCopy(e.rgbFile, staging / name);
+
+    auto obs = observationFromRawDepth(depth, sensor, e.rgbStamp);
+    obs->intensityImage.setExternalStorage((imagesDir / name).string());
+    obs->hasIntensityImage = true;
+    writer.write(*obs);
+
+    if ((i + 1) % 50 == 0 || i + 1 == n)
+      MRPT_LOG_INFO_STREAM("frame " << (i + 1) << " / " << n);
+  }
+}
+
+void CTum2RawlogApp::writeOpenNI2Frames(
+    COpenNI2FrameSource& source, CRawlogWriter& writer, const fs::path& staging,
+    const fs::path& imagesDir)
+{
+  const std::size_t max = m_options.maxFrames;
+  for (std::size_t i = 0; max == 0 || i < max; ++i)
+  {
+    const auto obs = source.nextObservation();
+    if (!obs)
+      break;
+    // The colour as a lossless PNG beside the rawlog, like a TUM folder's.
+    char name[32];
+    std::snprintf(name, sizeof(name), "colour_%06zu.png", i);
+    if (!obs->intensityImage.saveToFile((staging / name).string()))
+      throw std::runtime_error((staging / name).string() + ": cannot write");
+    obs->intensityImage.setExternalStorage((imagesDir / name).string());
+    writer.write(*obs);
+    if ((i + 1) % 50 == 0 || i + 1 == source.size())
+      MRPT_LOG_INFO_STREAM("frame " << (i + 1) << " / " << source.size());
+  }
+}
 
 CTum2RawlogApp::CTum2RawlogApp(const TOptions& options)
     : mrpt::system::COutputLogger("tum2rawlog"), m_options(options)
@@ -116,13 +180,26 @@ CTum2RawlogApp::TResult CTum2RawlogApp::run()
   if (o.output.empty())
     throw std::invalid_argument("tum2rawlog: no output rawlog given");
 
-  const auto camera = resolveCamera(o.camera, o.input);
-  CTumFrameSource source(o.input, camera, o.tum);
+  std::unique_ptr<CFrameSource> source;
+  if (fs::is_directory(o.input))
+  {
+    source = std::make_unique<CTumFrameSource>(o.input, resolveSensor(o.camera, o.input), o.tum);
+  }
+  else if (COpenNI2FrameSource::isDeviceSpec(o.input) || fs::path(o.input).extension() == ".oni")
+  {
+    const bool live = COpenNI2FrameSource::isDeviceSpec(o.input);
+    if (live && o.maxFrames == 0)
+      throw std::invalid_argument(o.input + ": a live device needs --max-frames N");
+    if (!live && !fs::exists(o.input))
+      throw std::runtime_error(o.input + ": no such file");
+    source = CFrameSource::open(o.input, o.camera);
+  }
+  else
+    throw std::runtime_error(
+        o.input + ": not a TUM folder nor an OpenNI recording (.oni) or device (openni2)");
   MRPT_LOG_INFO_STREAM(
-      source.directory() << ": " << source.size() << " associated frames, "
-                         << source.skippedFrames() << " colour frames without depth; camera fx="
-                         << camera.fx() << " fy=" << camera.fy() << " cx=" << camera.cx()
-                         << " cy=" << camera.cy());
+      source->name() << ": " << source->size() << " frames, " << source->skippedFrames()
+                     << " colour frames without depth; " << source->sensor().summary());
 
   CRawlogWriter writer(o.output, o.compressLevel);
   const fs::path rawlog(writer.file());
@@ -136,35 +213,26 @@ CTum2RawlogApp::TResult CTum2RawlogApp::run()
   const fs::path staging(stagingName);
   CRemoveOnExit removeStaging(staging);
 
-  const float rangeUnits = static_cast<float>(1.0 / o.tum.depthScale);
-  const auto& entries = source.entries();
-  for (std::size_t i = 0; i < entries.size(); ++i)
-  {
-    const auto& e = entries[i];
-    // Decoding both images validates them (corrupt file, bit depth, size).
-    CTumFrameSource::readColourImage(e.rgbFile, camera);
-    const cv::Mat depth = CTumFrameSource::readDepthImage(e.depthFile, camera);
+  if (auto* tum = dynamic_cast<CTumFrameSource*>(source.get()))
+    writeTumFrames(*tum, writer, staging, imagesDir);
+  else
+    writeOpenNI2Frames(static_cast<COpenNI2FrameSource&>(*source), writer, staging, imagesDir);
 
-    const std::string name = fs::path(e.rgbFile).filename().string();
-    if (!fs::exists(staging / name))
-      linkOrCopy(e.rgbFile, staging / name);
-
-    auto obs = observationFromRawDepth(depth, rangeUnits, camera, e.rgbStamp);
-    obs->intensityImage.setExternalStorage((imagesDir / name).string());
-    obs->hasIntensityImage = true;
-    writer.write(*obs);
-
-    if ((i + 1) % 50 == 0 || i + 1 == entries.size())
-      MRPT_LOG_INFO_STREAM("frame " << (i + 1) << " / " << entries.size());
-  }
-
+  // The sensor description travels with the rawlog (<stem>.camera.ini): the
+  // readout, noise and rate that the observations cannot carry.
+  const fs::path sensorText = staging / "sensor-description.ini";
+  writeTextFile(sensorText, source->sensor().sensor.toIniText());
   // Ground truth and accelerometer log next to the rawlog, also via temporary names.
   TResult result;
   CSideFile groundTruth(
-      source.groundTruthFile(), outDir / (stem + ".groundtruth.txt"), staging.extension().string());
-  CSideFile accelerometer(
-      source.accelerometerFile(), outDir / (stem + ".accelerometer.txt"),
+      source->groundTruthFile(), outDir / (stem + ".groundtruth.txt"),
       staging.extension().string());
+  CSideFile accelerometer(
+      source->accelerometerFile(), outDir / (stem + ".accelerometer.txt"),
+      staging.extension().string());
+  CSideFile sensorFile(
+      sensorText.string(), outDir / (stem + ".camera.ini"), staging.extension().string());
+  fs::remove(sensorText);
 
   // Commit: images folder, side files, then the rawlog itself; undo on failure.
   std::error_code ec;
@@ -173,6 +241,7 @@ CTum2RawlogApp::TResult CTum2RawlogApp::run()
   fs::permissions(staging, static_cast<fs::perms>(0777 & ~mask), ec);
   groundTruth.setPermissions(mask);
   accelerometer.setPermissions(mask);
+  sensorFile.setPermissions(mask);
   if (fs::exists(imagesDir))
   {
     fs::remove_all(imagesDir, ec);
@@ -186,13 +255,16 @@ CTum2RawlogApp::TResult CTum2RawlogApp::run()
   CRemoveOnExit removeImages(imagesDir);
   groundTruth.commit();
   accelerometer.commit();
+  sensorFile.commit();
   writer.commit();
   removeImages.release();
   groundTruth.release();
   accelerometer.release();
+  sensorFile.release();
 
   result.frames = writer.count();
-  result.skipped = source.skippedFrames();
+  result.skipped = source->skippedFrames();
+  result.sensorFile = sensorFile.written();
   result.rawlog = rawlog.string();
   result.imagesDir = imagesDir.string();
   result.groundTruth = groundTruth.written();

@@ -2,6 +2,7 @@
 
 #include <mrpt/config/CConfigFileBase.h>
 #include <roislam/common/IniRead.h>
+#include <roislam/io/ObservationConversion.h>
 #include <roislam/io/StampAssociation.h>
 
 #include <algorithm>
@@ -109,16 +110,46 @@ void CTumFrameSource::TOptions::saveToConfigFile(
   cfg.write(section, "depth_scale", depthScale);
 }
 
+namespace
+{
+TSensorChoice registeredSensor(const mrpt::img::TCamera& camera, double depthScale)
+{
+  TSensorChoice c;
+  c.sensor.name = camera.cameraName.empty() ? "camera" : camera.cameraName;
+  c.sensor.colour = camera;
+  c.sensor.depth_scale = depthScale;
+  c.source = "intrinsics given in code";
+  c.reason = "CTumFrameSource(dir, camera): registered depth, no rolling shutter";
+  return c;
+}
+
+CTumFrameSource::TOptions withScale(CTumFrameSource::TOptions o, double depthScale)
+{
+  o.depthScale = depthScale;
+  return o;
+}
+}  // namespace
+
 CTumFrameSource::CTumFrameSource(
     const std::string& dir, const mrpt::img::TCamera& camera, const TOptions& options)
-    : m_camera(camera), m_options(options)
+    : CTumFrameSource(dir, registeredSensor(camera, options.depthScale), options)
 {
+}
+
+CTumFrameSource::CTumFrameSource(
+    const std::string& dir, const TSensorChoice& choice, const TOptions& options)
+    : m_camera(choice.sensor.colour),
+      m_depthCamera(choice.sensor.depth_registered ? choice.sensor.colour : choice.sensor.depth),
+      m_options(withScale(options, choice.sensor.depth_scale))
+{
+  m_sensor = choice;
   if (!fs::is_directory(dir))
     throw std::runtime_error(dir + ": dataset folder not found");
-  if (!(options.maxTimeDifference > 0) || !(options.depthScale > 0))
+  if (!(options.maxTimeDifference > 0) || !(m_options.depthScale > 0))
     throw std::invalid_argument("CTumFrameSource: maxTimeDifference and depthScale must be > 0");
-  if (camera.ncols == 0 || camera.nrows == 0 || !(camera.fx() > 0) || !(camera.fy() > 0))
-    throw std::invalid_argument(dir + ": camera intrinsics are not set");
+  for (const mrpt::img::TCamera* c : {&m_camera, &m_depthCamera})
+    if (c->ncols == 0 || c->nrows == 0 || !(c->fx() > 0) || !(c->fy() > 0))
+      throw std::invalid_argument(dir + ": camera intrinsics are not set");
   const fs::path root = fs::absolute(dir).lexically_normal();
   m_dir = root.string();
   if (!m_dir.empty() && m_dir.back() == '/' && m_dir.size() > 1)
@@ -195,7 +226,7 @@ std::optional<TRGBDFrame> CTumFrameSource::next()
   f.timestamp = e.rgbStamp;
   f.depthTimestamp = e.depthStamp;
   f.rgb = readColourImage(e.rgbFile, m_camera);
-  const cv::Mat raw = readDepthImage(e.depthFile, m_camera);
+  const cv::Mat raw = readDepthImage(e.depthFile, m_depthCamera);
   // Exact float(raw / scale) per pixel (cv::convertTo scales in float and can
   // be one ulp off), so rawlog and folder readers agree bit for bit.
   f.depth.create(raw.size(), CV_32FC1);
@@ -207,6 +238,9 @@ std::optional<TRGBDFrame> CTumFrameSource::next()
     for (int c = 0; c < raw.cols; ++c)
       dst[c] = static_cast<float>(src[c] / scale);
   }
+  const TSensorDescription& sensor = m_sensor.sensor;
+  if (!sensor.depth_registered)
+    f.depth = registerDepthToColour(f.depth, m_depthCamera, m_camera, sensor.depth_pose_in_colour);
   f.camera = m_camera;
   f.rgbSource = e.rgbFile;
   ++m_next;

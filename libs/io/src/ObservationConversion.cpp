@@ -1,8 +1,8 @@
 #include "roislam/io/ObservationConversion.h"
 
 #include <mrpt/core/bits_math.h>
-#include <mrpt/math/CMatrixFixed.h>
 #include <mrpt/img/CImage.h>
+#include <mrpt/math/CMatrixFixed.h>
 #include <mrpt/system/datetime.h>
 
 #include <algorithm>
@@ -34,45 +34,6 @@ bool sameIntrinsics(const mrpt::img::TCamera& a, const mrpt::img::TCamera& b)
          a.cx() == b.cx() && a.cy() == b.cy();
 }
 
-// Depth (metres, depth-camera pixels) re-projected into the colour camera,
-// used only for unregistered sensors (e.g. Kinect via freenect or OpenNI2
-// without registration). OpenCV's cv::rgbd::registerDepth does it (z-buffer,
-// nearest pixel) and, unlike a pinhole re-projection, projects with the
-// colour camera's distortion, so the depth lands on the distorted colour
-// image the features are detected in: on a synthetic scene with fr1's colour
-// distortion, depth RMSE 17.6 mm against 25.4 mm for a pinhole projection,
-// 335 against 1119 pixels off by more than 5 cm (identical without
-// distortion). Two defects of OpenCV 4.6's function are worked around here:
-// it crashes when the depth grid is larger than the output plane
-// (opencv_contrib#3761, e.g. 640x480 depth into 320x240 colour), so the plane
-// is made at least as large as the depth grid and cropped; and it marks "no
-// depth" with NaN, where our frames use 0.
-cv::Mat registerDepth(const cv::Mat& depth, const CObservation3DRangeScan& obs)
-{
-  const auto& dc = obs.cameraParams;
-  const auto& cc = obs.cameraParamsIntensity;
-  // relativePoseIntensityWRTDepth maps optical-intensity coordinates into the
-  // MRPT depth frame; the fixed twist maps optical-depth into the MRPT depth frame.
-  const mrpt::poses::CPose3D twist(0, 0, 0, mrpt::DEG2RAD(-90.0), 0, mrpt::DEG2RAD(-90.0));
-  const mrpt::poses::CPose3D depthOptToColourOpt = (-obs.relativePoseIntensityWRTDepth) + twist;
-  cv::Matx44d Rt;
-  const auto H = depthOptToColourOpt.getHomogeneousMatrixVal<mrpt::math::CMatrixDouble44>();
-  for (int r = 0; r < 4; ++r)
-    for (int c = 0; c < 4; ++c)
-      Rt(r, c) = H(r, c);
-  const cv::Matx33d Kd(dc.fx(), 0, dc.cx(), 0, dc.fy(), dc.cy(), 0, 0, 1);
-  const cv::Matx33d Kc(cc.fx(), 0, cc.cx(), 0, cc.fy(), cc.cy(), 0, 0, 1);
-  cv::Mat dist(1, static_cast<int>(cc.dist.size()), CV_64F);
-  for (std::size_t i = 0; i < cc.dist.size(); ++i)
-    dist.at<double>(0, static_cast<int>(i)) = cc.dist[i];
-  const int cols = static_cast<int>(cc.ncols), rows = static_cast<int>(cc.nrows);
-  const cv::Size plane(std::max(cols, depth.cols), std::max(rows, depth.rows));
-  cv::Mat registered;
-  cv::rgbd::registerDepth(Kd, Kc, dist, Rt, depth, plane, registered, false);
-  cv::Mat out = registered(cv::Rect(0, 0, cols, rows)).clone();
-  cv::patchNaNs(out, 0);
-  return out;
-}
 // Metres for every raw 16-bit value, cached per rangeUnits (a frame has 300k
 // pixels, the table 65536 entries). rangeUnits is a float, so 1/5000 and 0.001
 // are not exact: when it is the inverse of an integer we divide by that
@@ -94,6 +55,65 @@ const std::vector<float>& metresTable(float rangeUnits)
   return table;
 }
 }  // namespace
+
+static const mrpt::poses::CPose3D& opticalToMrptDepthTwist()
+{
+  // Maps optical coordinates (x right, y down, z forward) into MRPT's depth
+  // frame (x forward, y left, z up).
+  static const mrpt::poses::CPose3D twist(0, 0, 0, mrpt::DEG2RAD(-90.0), 0, mrpt::DEG2RAD(-90.0));
+  return twist;
+}
+
+mrpt::poses::CPose3D intensityPoseWrtDepth(const mrpt::poses::CPose3D& depthPoseInColour)
+{
+  // relativePoseIntensityWRTDepth maps optical-intensity coordinates into the
+  // MRPT depth frame: twist (+) the colour optical frame in the depth optical one.
+  return opticalToMrptDepthTwist() + (-depthPoseInColour);
+}
+
+mrpt::poses::CPose3D depthPoseInColour(const CObservation3DRangeScan& obs)
+{
+  return (-obs.relativePoseIntensityWRTDepth) + opticalToMrptDepthTwist();
+}
+
+// OpenCV's cv::rgbd::registerDepth does the re-projection (z-buffer, nearest
+// pixel) and, unlike a pinhole re-projection, projects with the colour
+// camera's distortion, so the depth lands on the distorted colour image the
+// features are detected in: on a synthetic scene with fr1's colour
+// distortion, depth RMSE 17.6 mm against 25.4 mm for a pinhole projection,
+// 335 against 1119 pixels off by more than 5 cm (identical without
+// distortion). Two defects of OpenCV 4.6's function are worked around here:
+// it crashes when the depth grid is larger than the output plane
+// (opencv_contrib#3761, e.g. 640x480 depth into 320x240 colour), so the plane
+// is made at least as large as the depth grid and cropped; and it marks "no
+// depth" with NaN, where our frames use 0.
+cv::Mat registerDepthToColour(
+    const cv::Mat& depth, const mrpt::img::TCamera& dc, const mrpt::img::TCamera& cc,
+    const mrpt::poses::CPose3D& depthOptToColourOpt)
+{
+  if (depth.type() != CV_32FC1 || depth.cols != static_cast<int>(dc.ncols) ||
+      depth.rows != static_cast<int>(dc.nrows))
+    throw std::invalid_argument(
+        "registerDepthToColour: depth must be CV_32FC1 of the depth camera's " +
+        sizeText(dc.ncols, dc.nrows));
+  cv::Matx44d Rt;
+  const auto H = depthOptToColourOpt.getHomogeneousMatrixVal<mrpt::math::CMatrixDouble44>();
+  for (int r = 0; r < 4; ++r)
+    for (int c = 0; c < 4; ++c)
+      Rt(r, c) = H(r, c);
+  const cv::Matx33d Kd(dc.fx(), 0, dc.cx(), 0, dc.fy(), dc.cy(), 0, 0, 1);
+  const cv::Matx33d Kc(cc.fx(), 0, cc.cx(), 0, cc.fy(), cc.cy(), 0, 0, 1);
+  cv::Mat dist(1, static_cast<int>(cc.dist.size()), CV_64F);
+  for (std::size_t i = 0; i < cc.dist.size(); ++i)
+    dist.at<double>(0, static_cast<int>(i)) = cc.dist[i];
+  const int cols = static_cast<int>(cc.ncols), rows = static_cast<int>(cc.nrows);
+  const cv::Size plane(std::max(cols, depth.cols), std::max(rows, depth.rows));
+  cv::Mat registered;
+  cv::rgbd::registerDepth(Kd, Kc, dist, Rt, depth, plane, registered, false);
+  cv::Mat out = registered(cv::Rect(0, 0, cols, rows)).clone();
+  cv::patchNaNs(out, 0);
+  return out;
+}
 
 mrpt::poses::CPose3D tumSensorPose()
 {
@@ -118,8 +138,7 @@ CObservation3DRangeScan::Ptr observationFromRawDepth(
   obs->cameraParams = camera;
   obs->cameraParamsIntensity = camera;
   // The default value, meaning "both cameras coincide" (TUM depth is registered).
-  obs->relativePoseIntensityWRTDepth =
-      mrpt::poses::CPose3D(0, 0, 0, mrpt::DEG2RAD(-90.0), 0, mrpt::DEG2RAD(-90.0));
+  obs->relativePoseIntensityWRTDepth = opticalToMrptDepthTwist();
   obs->sensorPose = tumSensorPose();
   obs->range_is_depth = true;
   obs->rangeUnits = rangeUnits;
@@ -134,6 +153,18 @@ CObservation3DRangeScan::Ptr observationFromRawDepth(
   }
   obs->hasIntensityImage = false;
   obs->intensityImageChannel = CObservation3DRangeScan::CH_VISIBLE;
+  return obs;
+}
+
+CObservation3DRangeScan::Ptr observationFromRawDepth(
+    const cv::Mat& depthU16, const TSensorDescription& sensor, double timestamp)
+{
+  const float rangeUnits = static_cast<float>(1.0 / sensor.depth_scale);
+  if (sensor.depth_registered)
+    return observationFromRawDepth(depthU16, rangeUnits, sensor.colour, timestamp);
+  auto obs = observationFromRawDepth(depthU16, rangeUnits, sensor.depth, timestamp);
+  obs->cameraParamsIntensity = sensor.colour;
+  obs->relativePoseIntensityWRTDepth = intensityPoseWrtDepth(sensor.depth_pose_in_colour);
   return obs;
 }
 
@@ -232,7 +263,9 @@ TRGBDFrame observationToFrame(const CObservation3DRangeScan& obs, const std::str
   if (obs.doDepthAndIntensityCamerasCoincide() && sameIntrinsics(dc, cc))
     f.depth = depth;
   else
-    f.depth = registerDepth(depth, obs);
+  {
+    f.depth = registerDepthToColour(depth, dc, cc, depthPoseInColour(obs));
+  }
   return f;
 }
 }  // namespace roislam::io

@@ -62,6 +62,9 @@ std::vector<std::string> keysOf(
 frontend::CRgbdOdometry::TOptions CKfSlamSession::frontEndOptions(const TSetup& setup)
 {
   frontend::CRgbdOdometry::TOptions o;
+  // The readout is a camera fact (the sensor description's); an older
+  // front-end ini that sets it still wins.
+  bool readoutFromIni = false;
   if (!setup.options.front_end_ini.empty())
   {
     const std::string file = resolve(setup.options.front_end_ini, setup.iniDir);
@@ -73,12 +76,15 @@ frontend::CRgbdOdometry::TOptions CKfSlamSession::frontEndOptions(const TSetup& 
     try
     {
       o.loadFromConfigFile(cfg, "FrontEnd");
+      readoutFromIni = cfg.keyExists("FrontEnd", "rolling_shutter_ms");
     }
     catch (const std::exception& e)
     {
       throw std::runtime_error("ini " + file + ": " + firstLine(e.what()));
     }
   }
+  if (!readoutFromIni)
+    o.rolling_shutter_ms = setup.sensorReadoutMs;
   if (setup.feature)
     o.extractor.feature_type = *setup.feature;
   if (setup.maxFeatures)

@@ -424,7 +424,7 @@ CRoiLandmarksApp::CRoiLandmarksApp(TArguments arguments) : m_args(std::move(argu
     throw std::invalid_argument("no output folder given");
 }
 
-kfslam::CKfSlamSession::TSetup CRoiLandmarksApp::kfSlamSetup() const
+kfslam::CKfSlamSession::TSetup CRoiLandmarksApp::kfSlamSetup(const io::CFrameSource& source) const
 {
   kfslam::CKfSlamSession::TSetup s;
   s.options = m_options.kfSlam;
@@ -435,6 +435,7 @@ kfslam::CKfSlamSession::TSetup CRoiLandmarksApp::kfSlamSetup() const
   if (m_args.feature)
     s.feature = m_options.features.feature_type;
   s.maxFeatures = m_args.maxFeatures;
+  s.sensorReadoutMs = source.sensor().sensor.signedReadoutMs();
   return s;
 }
 
@@ -463,9 +464,11 @@ CRoiLandmarksApp::TSummary CRoiLandmarksApp::run()
       "roi-landmarks: " + source->name() + ", " + std::to_string(source->size()) + " frames, " +
       features::toString(m_options.features.feature_type) + ", ROI preset " + m_options.roi.preset +
       (scorer ? ", ground truth " + *gtFile : ", no ground truth"));
+  progress("roi-landmarks: " + source->sensor().summary());
 
   TAnnotatedRawlog rawlog = openAnnotatedRawlog(m_args.outputRawlog);
-  auto kfSlam = m_args.kfSlam ? std::make_unique<kfslam::CKfSlamSession>(kfSlamSetup()) : nullptr;
+  auto kfSlam =
+      m_args.kfSlam ? std::make_unique<kfslam::CKfSlamSession>(kfSlamSetup(*source)) : nullptr;
   CObservationProcessor processor(m_options);
   const TFrameLog log = processFrames(
       *source, m_args.maxFrames, processor, m_options.observations.sensor_pose, patchesTmp, rawlog,
@@ -499,6 +502,7 @@ CRoiLandmarksApp::TSummary CRoiLandmarksApp::run()
   }
   sum.wallS = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
   auto j = summaryJson(runJson(m_args, m_options, source->name(), gtFile), sum, scores);
+  j["sensor"] = source->sensor().toJson();
   if (kfSlam)
     j["kf_slam"] = sum.kfSlam;
   common::writeFileAtomically((outDir / "summary.json").string(), j.dump(2) + "\n");

@@ -24,6 +24,7 @@
 
 #include "roislam/io/TumAccelerometer.h"
 #include "roislam/io/TumTrajectory.h"
+#include "roislam/sim/CDisparityNoiseModel.h"
 #include "roislam/sim/CKinectNoiseModel.h"
 
 namespace fs = std::filesystem;
@@ -175,6 +176,53 @@ mrpt::img::TCamera CRgbdSimulator::camera() const
   return c;
 }
 
+mrpt::img::TCamera CRgbdSimulator::depthCamera() const
+{
+  if (m_opts.depthRegistered)
+    return camera();
+  mrpt::img::TCamera c = camera();
+  c.fx(m_opts.depthFx);
+  c.fy(m_opts.depthFy);
+  c.cx(m_opts.depthCx);
+  c.cy(m_opts.depthCy);
+  c.cameraName = "rgbd-simul depth";
+  return c;
+}
+
+mrpt::poses::CPose3D CRgbdSimulator::depthPoseInColour() const
+{
+  mrpt::poses::CPose3D p;
+  if (!m_opts.depthRegistered)
+    p.fromString(m_opts.depthPoseInColour);
+  return p;
+}
+
+io::TSensorDescription CRgbdSimulator::sensorDescription() const
+{
+  io::TSensorDescription d;
+  d.name = "rgbd-simul";
+  d.colour = camera();
+  d.depth_registered = m_opts.depthRegistered;
+  if (!m_opts.depthRegistered)
+  {
+    d.depth = depthCamera();
+    d.depth_pose_in_colour = depthPoseInColour();
+  }
+  d.depth_scale = kDepthScale;
+  d.rolling_shutter_ms = m_opts.rollingShutterMs;
+  d.frame_rate = m_opts.fps;
+  auto& n = d.depth_noise;
+  n.model = m_opts.noise ? m_opts.noiseModel : "none";
+  n.a = m_opts.depthNoiseA;
+  n.b = m_opts.depthNoiseB;
+  n.z0 = m_opts.depthNoiseZ0;
+  n.disparity_bf = m_opts.disparityBf;
+  n.disparity_steps_per_px = m_opts.disparityStepsPerPx;
+  n.disparity_noise_steps = m_opts.disparityNoiseSteps;
+  n.lateral_sigma_px = m_opts.lateralSigmaPx;
+  return d;
+}
+
 unsigned CRgbdSimulator::bandHeight() const
 {
   // 8 rows: the camera turns at most 60 deg/s * 20 ms / 60 bands = 0.02 deg
@@ -208,6 +256,88 @@ mrpt::math::TVector3D CRgbdSimulator::accelerometerReading(std::size_t i) const
   return io::accelerometerToOptical(optical);
 }
 
+struct CRgbdSimulator::TBands
+{
+  cv::Mat rgbSS;                     //!< supersampled colour
+  mrpt::math::CMatrixFloat depthSS;  //!< supersampled depth, m
+};
+
+CRgbdSimulator::TBands CRgbdSimulator::renderBands(
+    std::size_t i, const mrpt::poses::CPose3D& offset, double fx, double fy, double cx, double cy)
+{
+  const unsigned ss = m_opts.supersampling;
+  const unsigned W = m_opts.width, H = m_opts.height;
+  auto& fbo = *m_impl->fbo;
+  auto& glScene = *m_impl->glScene;
+  // One render per band of rows, each from the camera pose at that band's
+  // time (rolling shutter; one band = a global shutter). The band's frustum
+  // is the full image's cut to its rows: the principal point moves up.
+  const unsigned bandRows = bandHeight();
+  const double tFrame = static_cast<double>(i) / m_opts.fps;
+  TBands out;
+  out.rgbSS = cv::Mat(H * ss, W * ss, CV_8UC3);
+  out.depthSS.setSize(H * ss, W * ss);
+  for (unsigned r0 = 0; r0 < H; r0 += bandRows)
+  {
+    // Row y is read at t + (y / H - 0.5) * readout: the middle row at the
+    // frame's stamp, where the ground truth is.
+    const double yMid = r0 + (bandRows - 1) / 2.0;
+    const double t = tFrame + (yMid / H - 0.5) * m_opts.rollingShutterMs * 1e-3;
+    mrpt::opengl::CCamera cam;
+    cam.set6DOFMode(true);
+    cam.setPose((bandRows == H ? groundTruthPose(i) : m_path.opticalPoseAt(t)) + offset);
+    // OpenGL samples pixel (u, v) at (u + 0.5, v + 0.5): shift the principal
+    // point so rays go through integer pixel centres as in MRPT/TUM. With
+    // ss x ss supersampling, output pixel u is the block centred at
+    // ss * u + ss / 2.
+    mrpt::img::TCamera pinhole;
+    pinhole.ncols = W * ss;
+    pinhole.nrows = bandRows * ss;
+    pinhole.fx(fx * ss);
+    pinhole.fy(fy * ss);
+    pinhole.cx(cx * ss + ss / 2.0);
+    pinhole.cy(cy * ss + ss / 2.0 - static_cast<double>(r0 * ss));
+    cam.setProjectiveFromPinhole(pinhole);
+    fbo.setCamera(glScene, cam);
+    mrpt::img::CImage rgbImg;
+    mrpt::math::CMatrixFloat depthM;
+    fbo.render_RGBD(glScene, rgbImg, depthM);
+    const unsigned rows = std::min(bandRows, H - r0) * ss;
+    rgbImg.asCvMatRef()(cv::Rect(0, 0, static_cast<int>(W * ss), static_cast<int>(rows)))
+        .copyTo(out.rgbSS(cv::Rect(
+            0, static_cast<int>(r0 * ss), static_cast<int>(W * ss), static_cast<int>(rows))));
+    out.depthSS.asEigen().block(r0 * ss, 0, rows, W * ss) =
+        depthM.asEigen().block(0, 0, rows, W * ss);
+  }
+  return out;
+}
+
+void CRgbdSimulator::corrupt(TFrame& f, std::size_t i) const
+{
+  CKinectNoiseModel::applyRange(f.depth, m_opts.minDepth, m_opts.maxDepth);
+  if (!m_opts.noise)
+    return;
+  CKinectNoiseModel::TParams np;
+  np.sigmaA = m_opts.depthNoiseA;
+  np.sigmaB = m_opts.depthNoiseB;
+  np.sigmaZ0 = m_opts.depthNoiseZ0;
+  np.edgeJumpRatio = m_opts.edgeJumpRatio;
+  np.rgbNoiseStd = m_opts.rgbNoiseStd;
+  const CKinectNoiseModel kinect(np);
+  // One stream per (seed, frame): frames can be rendered in any order.
+  mrpt::random::CRandomGenerator rng(
+      m_opts.seed * 2654435761u ^ (static_cast<uint32_t>(i) * 40503u + 0x9e3779b9u));
+  if (m_opts.noiseModel == "disparity")
+  {
+    CDisparityNoiseModel(sensorDescription().depth_noise).corruptDepth(f.depth, rng);
+    // The quantised depth may leave the sensor's range at its ends.
+    CKinectNoiseModel::applyRange(f.depth, m_opts.minDepth, m_opts.maxDepth);
+  }
+  else
+    kinect.corruptDepth(f.depth, rng);
+  kinect.corruptColour(f.rgb, rng);
+}
+
 CRgbdSimulator::TFrame CRgbdSimulator::renderFrame(std::size_t i)
 {
   if (i >= m_opts.frames)
@@ -237,75 +367,26 @@ CRgbdSimulator::TFrame CRgbdSimulator::renderFrame(std::size_t i)
           "cannot create the offscreen OpenGL (EGL) renderer: " + msg.substr(0, msg.find('\n')));
     }
   }
-  auto& fbo = *m_impl->fbo;
-  auto& glScene = *m_impl->glScene;
 
   TFrame f;
   f.index = i;
   f.timestamp = timestamp(i);
   f.depthTimestamp = f.timestamp + m_opts.depthTimeOffset;
   f.pose = groundTruthPose(i);
-
-  // One render per band of rows, each from the camera pose at that band's
-  // time (rolling shutter; one band = a global shutter). The band's frustum
-  // is the full image's cut to its rows: the principal point moves up.
-  const unsigned bandRows = bandHeight();
-  const double tFrame = static_cast<double>(i) / m_opts.fps;
-  cv::Mat rgbSS(H * ss, W * ss, CV_8UC3);
-  mrpt::math::CMatrixFloat depthSS(H * ss, W * ss);
-  for (unsigned r0 = 0; r0 < H; r0 += bandRows)
-  {
-    // Row y is read at t + (y / H - 0.5) * readout: the middle row at the
-    // frame's stamp, where the ground truth is.
-    const double yMid = r0 + (bandRows - 1) / 2.0;
-    const double t = tFrame + (yMid / H - 0.5) * m_opts.rollingShutterMs * 1e-3;
-    mrpt::opengl::CCamera cam;
-    cam.set6DOFMode(true);
-    cam.setPose(bandRows == H ? f.pose : m_path.opticalPoseAt(t));
-    // OpenGL samples pixel (u, v) at (u + 0.5, v + 0.5): shift the principal
-    // point so rays go through integer pixel centres as in MRPT/TUM. With
-    // ss x ss supersampling, output pixel u is the block centred at
-    // ss * u + ss / 2.
-    mrpt::img::TCamera pinhole;
-    pinhole.ncols = W * ss;
-    pinhole.nrows = bandRows * ss;
-    pinhole.fx(m_opts.fx * ss);
-    pinhole.fy(m_opts.fy * ss);
-    pinhole.cx(m_opts.cx * ss + ss / 2.0);
-    pinhole.cy(m_opts.cy * ss + ss / 2.0 - static_cast<double>(r0 * ss));
-    cam.setProjectiveFromPinhole(pinhole);
-    fbo.setCamera(glScene, cam);
-    mrpt::img::CImage rgbImg;
-    mrpt::math::CMatrixFloat depthM;
-    fbo.render_RGBD(glScene, rgbImg, depthM);
-    const unsigned rows = std::min(bandRows, H - r0) * ss;
-    rgbImg.asCvMatRef()(cv::Rect(0, 0, static_cast<int>(W * ss), static_cast<int>(rows)))
-        .copyTo(rgbSS(cv::Rect(
-            0, static_cast<int>(r0 * ss), static_cast<int>(W * ss), static_cast<int>(rows))));
-    depthSS.asEigen().block(r0 * ss, 0, rows, W * ss) = depthM.asEigen().block(0, 0, rows, W * ss);
-  }
+  TBands colour =
+      renderBands(i, mrpt::poses::CPose3D(), m_opts.fx, m_opts.fy, m_opts.cx, m_opts.cy);
   if (ss == 1)
-    f.rgb = rgbSS;
+    f.rgb = colour.rgbSS;
   else
-    cv::resize(rgbSS, f.rgb, cv::Size(W, H), 0, 0, cv::INTER_AREA);
-  f.depth = depthAtPixelCentres(depthSS, ss, W, H);
-
-  CKinectNoiseModel::applyRange(f.depth, m_opts.minDepth, m_opts.maxDepth);
-  if (m_opts.noise)
-  {
-    CKinectNoiseModel::TParams np;
-    np.sigmaA = m_opts.depthNoiseA;
-    np.sigmaB = m_opts.depthNoiseB;
-    np.sigmaZ0 = m_opts.depthNoiseZ0;
-    np.edgeJumpRatio = m_opts.edgeJumpRatio;
-    np.rgbNoiseStd = m_opts.rgbNoiseStd;
-    const CKinectNoiseModel model(np);
-    // One stream per (seed, frame): frames can be rendered in any order.
-    mrpt::random::CRandomGenerator rng(
-        m_opts.seed * 2654435761u ^ (static_cast<uint32_t>(i) * 40503u + 0x9e3779b9u));
-    model.corruptDepth(f.depth, rng);
-    model.corruptColour(f.rgb, rng);
-  }
+    cv::resize(colour.rgbSS, f.rgb, cv::Size(W, H), 0, 0, cv::INTER_AREA);
+  // Unregistered depth: its own camera, rendered from where it sits on the
+  // sensor, at the same row times (its rows read out with the colour's).
+  const TBands depth = m_opts.depthRegistered ? std::move(colour)
+                                              : renderBands(
+                                                    i, depthPoseInColour(), m_opts.depthFx,
+                                                    m_opts.depthFy, m_opts.depthCx, m_opts.depthCy);
+  f.depth = depthAtPixelCentres(depth.depthSS, ss, W, H);
+  corrupt(f, i);
   return f;
 }
 
@@ -390,9 +471,7 @@ CRgbdSimulator::TWriteStats CRgbdSimulator::writeSequence(const std::string& out
         (tmp / "accelerometer.txt").string(), accelerometer,
         "accelerometer data of " + desc + " (TUM Kinect axes)");
 
-    mrpt::config::CConfigFileMemory camCfg;
-    camera().saveToConfigFile("CAMERA_PARAMS", camCfg);
-    writeTextFile(tmp / "camera.ini", camCfg.getContent());
+    writeTextFile(tmp / "camera.ini", sensorDescription().toIniText());
     mrpt::config::CConfigFileMemory simCfg;
     m_opts.saveToConfigFile(simCfg, "RgbdSimulator");
     writeTextFile(tmp / "simulator.ini", simCfg.getContent());

@@ -118,6 +118,17 @@ void CRgbdSimulator::TOptions::loadFromConfigFile(
   r.get("depth_noise_b", depthNoiseB);
   r.get("depth_noise_z0", depthNoiseZ0);
   r.get("edge_jump_ratio", edgeJumpRatio);
+  r.get("noise_model", noiseModel);
+  r.get("disparity_bf", disparityBf);
+  r.get("disparity_steps_per_px", disparityStepsPerPx);
+  r.get("disparity_noise_steps", disparityNoiseSteps);
+  r.get("lateral_sigma_px", lateralSigmaPx);
+  r.get("depth_registered", depthRegistered);
+  r.get("depth_fx", depthFx);
+  r.get("depth_fy", depthFy);
+  r.get("depth_cx", depthCx);
+  r.get("depth_cy", depthCy);
+  r.get("depth_pose_in_colour", depthPoseInColour);
   r.get("rgb_noise_std", rgbNoiseStd);
   r.get("supersampling", supersampling);
   r.get("texels_per_metre", texelsPerMetre);
@@ -157,6 +168,17 @@ void CRgbdSimulator::TOptions::saveToConfigFile(
   wd("depth_noise_b", depthNoiseB);
   wd("depth_noise_z0", depthNoiseZ0);
   wd("edge_jump_ratio", edgeJumpRatio);
+  w("noise_model", noiseModel);
+  wd("disparity_bf", disparityBf);
+  wd("disparity_steps_per_px", disparityStepsPerPx);
+  wd("disparity_noise_steps", disparityNoiseSteps);
+  wd("lateral_sigma_px", lateralSigmaPx);
+  w("depth_registered", depthRegistered ? "true" : "false");
+  wd("depth_fx", depthFx);
+  wd("depth_fy", depthFy);
+  wd("depth_cx", depthCx);
+  wd("depth_cy", depthCy);
+  w("depth_pose_in_colour", depthPoseInColour);
   wd("rgb_noise_std", rgbNoiseStd);
   w("supersampling", std::to_string(supersampling));
   wd("texels_per_metre", texelsPerMetre);
@@ -204,6 +226,33 @@ void CRgbdSimulator::TOptions::validate(const std::string& section) const
     fail("depth_noise_b", "must be >= 0");
   if (!(edgeJumpRatio > 0))
     fail("edge_jump_ratio", "must be > 0");
+  if (noiseModel != "kinect" && noiseModel != "disparity")
+    fail("noise_model", "'" + noiseModel + "' is not kinect|disparity");
+  if (!(disparityBf > 0))
+    fail("disparity_bf", "must be > 0");
+  if (!(disparityStepsPerPx > 0))
+    fail("disparity_steps_per_px", "must be > 0");
+  if (!(disparityNoiseSteps >= 0))
+    fail("disparity_noise_steps", "must be >= 0");
+  if (!(lateralSigmaPx >= 0 && lateralSigmaPx <= 5))
+    fail("lateral_sigma_px", "must be in [0, 5]");
+  if (!(depthFx > 0))
+    fail("depth_fx", "must be > 0");
+  if (!(depthFy > 0))
+    fail("depth_fy", "must be > 0");
+  if (!(depthCx >= 0 && depthCx <= width))
+    fail("depth_cx", "must lie inside the image");
+  if (!(depthCy >= 0 && depthCy <= height))
+    fail("depth_cy", "must lie inside the image");
+  try
+  {
+    mrpt::poses::CPose3D p;
+    p.fromString(depthPoseInColour);
+  }
+  catch (const std::exception&)
+  {
+    fail("depth_pose_in_colour", "'" + depthPoseInColour + "' is not [x y z yaw pitch roll]");
+  }
   if (!(rgbNoiseStd >= 0 && rgbNoiseStd <= 64))
     fail("rgb_noise_std", "must be in [0, 64]");
   if (supersampling < 1 || supersampling > 4)

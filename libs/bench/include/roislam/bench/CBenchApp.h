@@ -45,8 +45,11 @@ class CBenchApp
     bool retryFailed = false;
     std::vector<std::string> variantSpecs;  //!< extra variants, TVariant::parse syntax
     bool noDefaultVariants = false;         //!< drop strict/fallback
-    std::string selfExe;                    //!< path of roi-bench ("" = /proc/self/exe)
-    CExperimentPlan::TOptions plan;         //!< tests/variants are set from the fields above
+    /** cv-odometry methods of the reference rows, "none" = no reference rows
+     *  (CExperimentPlan::parseReferenceMethods). */
+    std::string referenceMethods = "rgbd,icp,rgbdicp";
+    std::string selfExe;             //!< path of roi-bench ("" = /proc/self/exe)
+    CExperimentPlan::TOptions plan;  //!< tests/variants are set from the fields above
   };
 
   explicit CBenchApp(const TOptions& options);

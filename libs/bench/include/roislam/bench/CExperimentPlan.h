@@ -9,7 +9,10 @@
  * in the default list): EKF-SLAM on ROI landmarks, per sequence x feature
  * roi-landmarks --kf-slam (its summary also holds the odometry alone) and
  * roi-graphslam with the same front end (roi_big.ini, whose [FrontEnd]
- * [KfSlam] front_end_ini names), for the three-way comparison.
+ * [KfSlam] front_end_ini names), for the three-way comparison. Reference
+ * rows (test 0, planned with any test): per sequence x reference method,
+ * cv-odometry (OpenCV's cv::rgbd odometry frame to frame, libs/reference), so
+ * a report shows whether a sequence is hard or our system is at fault.
  *
  * ini section [Bench] (TOptions):
  *   tests               list of 1..4    1,2,3          tests to plan
@@ -21,6 +24,8 @@
  *   test3_feature       string          surf
  *   test3_modes         list            traditional,roi_big
  *   snapshots           bool            false          false passes --no-snapshot
+ *   reference_methods   list            rgbd,icp,rgbdicp  cv-odometry --method per
+ *                                       sequence ("none" = no reference rows)
  * Variants (variants: Tests 2-3; test1_variants: Test 1) are set in code or
  * by roi-bench --variant / --no-default-variants (not from the ini).
  */
@@ -52,6 +57,7 @@ class CExperimentPlan
     std::string test3_feature = "surf";
     std::vector<std::string> test3_modes{"traditional", "roi_big"};
     bool snapshots = false;
+    std::vector<std::string> reference_methods{"rgbd", "icp", "rgbdicp"};
     std::vector<TVariant> variants = defaultVariants();
     std::vector<TVariant> test1_variants = defaultTest1Variants();
 
@@ -73,7 +79,8 @@ class CExperimentPlan
 
   CExperimentPlan(const TOptions& options, const TLocations& locations);
 
-  /** Every run, in the order test 1, 2, 3; sequence; mode; feature; variant. */
+  /** Every run, in the order test 1, 2, 3, 4, reference rows; sequence; mode;
+   *  feature; variant. */
   std::vector<TBenchRun> build(const std::vector<TSequence>& sequences) const;
 
   /** Writes each distinct derived ini file (variant configs) of `runs`, from
@@ -84,6 +91,9 @@ class CExperimentPlan
    *  names are made unique. Throws std::runtime_error naming a dir without
    *  any sequence. */
   static std::vector<TSequence> discoverSequences(const std::vector<std::string>& dirs);
+
+  /** "rgbd,icp" -> its list; "none" (or empty) -> no reference rows. */
+  static std::vector<std::string> parseReferenceMethods(const std::string& text);
 
   /** Parses "1,2,3,4" into a set; throws std::invalid_argument on other values. */
   static std::set<int> parseTests(const std::string& text);
@@ -100,6 +110,8 @@ class CExperimentPlan
    *  (roi-graphslam, big ROI, the EKF's front end). */
   TBenchRun makeTest4Run(
       const TSequence& seq, const std::string& kind, const std::string& feature) const;
+  /** Reference row (test 0): cv-odometry --method `method` on the sequence. */
+  TBenchRun makeReferenceRun(const TSequence& seq, const std::string& method) const;
   /** The folder, output and executable of a run whose id is set. */
   void placeRun(TBenchRun& r) const;
 };

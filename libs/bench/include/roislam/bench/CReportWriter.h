@@ -1,7 +1,8 @@
 /* Writes report.md: the dissertation's tables (Test 1 per-sequence landmarks,
  * precision/recall per extractor, with and without hue verification; Test 2
  * mean +- std of ATE / RPE per version x extractor, durations, per-sequence
- * table; Test 3; Test 4, EKF-SLAM vs odometry vs graph SLAM; speed) from run records,
+ * table; Test 3; Test 4, EKF-SLAM vs odometry vs graph SLAM; the reference rows,
+ * OpenCV's cv::rgbd odometries beside our best and worst run; speed) from run records,
  * each figure next to the dissertation's. Failed runs appear as failures,
  * never dropped. Called by CBenchApp after the runs.
  */
@@ -60,6 +61,9 @@ class CReportWriter
   void renderHueVerification(std::ostream& md, const TRecordList& t1) const;
   /** Test 4: EKF-SLAM, odometry alone and graph SLAM per sequence and extractor. */
   void renderTest4(std::ostream& md, const TRecordList& t4) const;
+  /** Reference rows (test 0): per sequence each cv::rgbd odometry, then our
+   *  best and worst trajectory of Tests 2-4 on it. */
+  void renderReference(std::ostream& md, const TRecordList& ref, const TRecordList& all) const;
   void renderTest2(std::ostream& md, const TRecordList& t2) const;
   /** One metric: a row per version, per extractor our cell and ref's. */
   void renderVersionTable(

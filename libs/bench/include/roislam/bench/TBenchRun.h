@@ -15,14 +15,14 @@ namespace roislam::bench
 struct TBenchRun
 {
   std::string id;            //!< unique, file-name safe, e.g. t2-seq-roi_big-surf-600-strict
-  int test = 0;              //!< 1, 2 or 3
+  int test = 0;              //!< 1..4, or 0: a reference row (cv-odometry)
   std::string sequence;      //!< TSequence::name
   std::string sequencePath;  //!< input folder
-  std::string app;           //!< roi-landmarks | roi-graphslam
-  std::string mode;          //!< "" (test 1) | traditional | roi_small | roi_big
-  std::string feature;       //!< surf | sift | orb
-  int maxFeatures = 0;       //!< 0 = the app's default (not passed)
-  std::string variant;       //!< "" = none (test 1, traditional)
+  std::string app;           //!< roi-landmarks | roi-graphslam | cv-odometry
+  std::string mode;     //!< "" (test 1) | traditional | roi_small | roi_big | cv_<method> (test 0)
+  std::string feature;  //!< surf | sift | orb ("" for reference rows)
+  int maxFeatures = 0;  //!< 0 = the app's default (not passed)
+  std::string variant;  //!< "" = none (test 1, traditional)
   std::string variantLabel;
   std::string baseIni;  //!< config file of the mode
   std::string iniFile;  //!< file passed to --ini (derived from baseIni for a variant)

@@ -114,9 +114,11 @@
  *                             software; a sequence played backwards). Each keypoint's point is
  * carried to the middle row's time with the velocity of the last motion, then, once registered,
  * with the one measured since the last frame, and the registration is refined again on the same
- *                             matches (FeatureLifting.h). The shipped configs
- *                             use 25 for the TUM Kinect (fr1/rpy, 9 runs: mean
- *                             ATE 0.0265 m at 0, 0.0119 m at 25)
+ *                             matches (FeatureLifting.h). A camera fact:
+ *                             roi-graphslam sets it from the sensor description
+ *                             (io::TSensorDescription; presets fr1/fr2/fr3: 25,
+ *                             fr1/rpy, 9 runs: mean ATE 0.0265 m at 0, 0.0119 m
+ *                             at 25); a value in [FrontEnd] overrides that
  *  - icp_fallback             bool (true): depth ICP when features fail
  *  - icp_refine_sigma_m       [m] >= 0 (0.01; 0 = off): a feature
  *                             registration whose worst translation 1-sigma

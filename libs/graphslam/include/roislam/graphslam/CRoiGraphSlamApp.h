@@ -4,14 +4,20 @@
  * same path as roi-graphslam-engine), configured by roi-graphslam's ini
  * ([FrontEnd], [GraphSlam], ...; MRPT's graph-SLAM sections are read too,
  * SlamIni.h) and the command line. While frame i is processed, frame i+1 is
- * decoded on a second thread. Outputs: CSlamRunner.h. Called by
- * apps/roi-graphslam and tests.
+ * decoded on a second thread. Outputs: CSlamRunner.h. The colour camera's
+ * rolling-shutter readout comes from the sensor description
+ * (io::CFrameSource::sensor(), --camera): the run prints which description
+ * it picked and why, and summary.json records it ("sensor"). An ini that
+ * still sets [FrontEnd] rolling_shutter_ms (configs before the sensor
+ * description) overrides the description's readout, and the run says so.
+ * Called by apps/roi-graphslam and tests.
  */
 #pragma once
 
 #include <roislam/graphslam/CSlamContext.h>
 #include <roislam/graphslam/CSlamObserver.h>
 #include <roislam/graphslam/TSlamSummary.h>
+#include <roislam/io/CFrameSource.h>
 
 #include <functional>
 #include <optional>
@@ -67,7 +73,13 @@ class CRoiGraphSlamApp
   static std::string listRegistrars(const std::string& type);
 
  private:
+  /** Prints the source's sensor description and takes its readout into the
+   *  front end (unless the ini set [FrontEnd] rolling_shutter_ms). */
+  void applySensor(const io::CFrameSource& source);
+
   TArguments m_args;
   CSlamContext::TConfig m_config;
+  /** [FrontEnd] rolling_shutter_ms was in the ini (it then overrides the sensor's). */
+  bool m_iniReadout = false;
 };
 }  // namespace roislam::graphslam

@@ -66,6 +66,9 @@ class CSlamRunner
     /** Watches the run (the live view); not owned, may be null. Its
      *  stopRequested() ends the run early, the outputs still written. */
     CSlamObserver* observer = nullptr;
+    /** Where the front end's rolling-shutter readout came from
+     *  (summary.json sensor.rolling_shutter_from). */
+    std::string readoutFrom = "ini";
   };
   using TMakePipeline =
       std::function<std::unique_ptr<CSlamPipeline>(std::unique_ptr<io::CFrameSource>)>;

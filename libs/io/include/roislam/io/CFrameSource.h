@@ -1,13 +1,18 @@
 /* Sequential source of RGB-D frames: the one input layer of every app.
  *
- * open() accepts either a TUM benchmark folder (rgb.txt, depth.txt, rgb/,
- * depth/) read directly, or an MRPT .rawlog of CObservation3DRangeScan (as
- * written by tum2rawlog or rawlog-grabber). Errors (missing files, malformed
- * lines, corrupt images) throw std::runtime_error naming the file and line.
+ * open() accepts a TUM benchmark folder (rgb.txt, depth.txt, rgb/, depth/)
+ * read directly, an MRPT .rawlog of CObservation3DRangeScan (as written by
+ * tum2rawlog or rawlog-grabber), an OpenNI .oni recording, or a live OpenNI2
+ * device ("openni2", "openni2://<uri>"). Every source holds the sensor
+ * description it reads with (sensor(): depth scale, registration of
+ * unregistered depth, and the camera facts the front end needs) and why it
+ * was picked. Errors (missing files, malformed lines, corrupt images, no
+ * device) throw std::runtime_error naming the file and line.
  */
 #pragma once
 
 #include <roislam/io/TRGBDFrame.h>
+#include <roislam/io/TSensorChoice.h>
 
 #include <memory>
 #include <optional>
@@ -41,10 +46,19 @@ class CFrameSource
    *  window (TUM folders only; 0 for rawlogs). */
   virtual std::size_t skippedFrames() const { return 0; }
 
-  /** Opens a TUM folder or a .rawlog. cameraSpec as in resolveCamera(); for
-   *  rawlogs the intrinsics stored in the observations win unless the spec is
-   *  not "auto". */
+  /** The sensor description the frames were read with, its source and the
+   *  reason it was picked (printed by the apps, recorded in summary.json). */
+  const TSensorChoice& sensor() const { return m_sensor; }
+
+  /** Opens a TUM folder (cameraSpec as resolveSensor()), a .rawlog or a .oni
+   *  (as resolveSensorForFile(): with "auto" and no <stem>.camera.ini, a
+   *  rawlog's observations and an OpenNI2 recording's device describe the
+   *  camera), or an OpenNI2 device: "openni2" (the first one) or
+   *  "openni2://<uri>" (COpenNI2FrameSource). */
   static std::unique_ptr<CFrameSource> open(
       const std::string& path, const std::string& cameraSpec = "auto");
+
+ protected:
+  TSensorChoice m_sensor;
 };
 }  // namespace roislam::io

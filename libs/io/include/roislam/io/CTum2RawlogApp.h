@@ -1,6 +1,6 @@
-/* Converts a TUM RGB-D benchmark folder into an MRPT rawlog of
- * CObservation3DRangeScan (the library side of the tum2rawlog app; also used
- * by tests and scripts).
+/* Converts a TUM RGB-D benchmark folder, an OpenNI .oni recording or a live
+ * OpenNI2 device into an MRPT rawlog of CObservation3DRangeScan (the library
+ * side of the tum2rawlog app; also used by tests and scripts).
  *
  * Output for --output DIR/NAME.rawlog:
  *  - DIR/NAME.rawlog: one observation per associated colour/depth pair,
@@ -10,13 +10,21 @@
  *    relativePoseIntensityWRTDepth = "cameras coincide"; range_is_depth;
  *    timestamp = colour stamp; sensorPose = tumSensorPose() (robot frame = TUM
  *    optical frame, see ObservationConversion.h).
+ *    A folder whose sensor description has unregistered depth keeps it raw
+ *    on the depth camera's grid: cameraParams = the depth camera,
+ *    relativePoseIntensityWRTDepth from depth_pose_in_colour (MRPT's tools
+ *    and our reader re-project it). OpenNI2 input: the depth stream's raw
+ *    values (rangeUnits 1/1000 for mm), the same cameras and extrinsics
+ *    (COpenNI2FrameSource::nextObservation()), sensorLabel "OPENNI2".
  *  - DIR/NAME_Images/<colour file name>: the colour PNGs, hard-linked from the
- *    dataset when possible, otherwise copied. Observations reference them by
- *    ABSOLUTE path, so rawlog-edit / RawLogViewer find them from any working
- *    directory despite MRPT 2.5.8's broken images-folder detection. (Our own
- *    reader also finds them after rawlog and folder are moved together.)
+ *    dataset when possible, otherwise copied (OpenNI2: colour_NNNNNN.png). Observations reference
+ * them by ABSOLUTE path, so rawlog-edit / RawLogViewer find them from any working directory despite
+ * MRPT 2.5.8's broken images-folder detection. (Our own reader also finds them after rawlog and
+ * folder are moved together.)
  *  - DIR/NAME.groundtruth.txt: copy of groundtruth.txt when present.
  *  - DIR/NAME.accelerometer.txt: copy of accelerometer.txt when present.
+ *  - DIR/NAME.camera.ini: the sensor description used (TSensorDescription),
+ *    which CFrameSource::open() picks up with --camera auto.
  * Everything is written under temporary names and renamed at the end; on any
  * error nothing is left behind. An existing NAME_Images folder is replaced.
  * Progress goes to the COutputLogger (console output disabled: the app prints
@@ -25,8 +33,11 @@
 #pragma once
 
 #include <mrpt/system/COutputLogger.h>
+#include <roislam/io/COpenNI2FrameSource.h>
+#include <roislam/io/CRawlogWriter.h>
 #include <roislam/io/CTumFrameSource.h>
 
+#include <filesystem>
 #include <optional>
 #include <string>
 
@@ -37,9 +48,10 @@ class CTum2RawlogApp : public mrpt::system::COutputLogger
  public:
   struct TOptions
   {
-    std::string input;              //!< TUM folder
+    std::string input;              //!< TUM folder, .oni, openni2 or openni2://<uri>
     std::string output;             //!< .rawlog file
-    std::string camera = "auto";    //!< as resolveCamera()
+    std::string camera = "auto";    //!< as resolveSensor() / resolveSensorForFile()
+    std::size_t maxFrames = 0;      //!< 0 = all; a live device needs a limit
     int compressLevel = 1;          //!< gz level of the rawlog, 0..9
     CTumFrameSource::TOptions tum;  //!< association window, depth scale
   };
@@ -52,6 +64,7 @@ class CTum2RawlogApp : public mrpt::system::COutputLogger
     std::string imagesDir;                     //!< absolute path of NAME_Images
     std::optional<std::string> groundTruth;    //!< copied ground truth, if any
     std::optional<std::string> accelerometer;  //!< copied accelerometer log, if any
+    std::optional<std::string> sensorFile;     //!< NAME.camera.ini
     double seconds = 0;                        //!< wall time
   };
 
@@ -61,6 +74,13 @@ class CTum2RawlogApp : public mrpt::system::COutputLogger
   TResult run();
 
  private:
+  void writeTumFrames(
+      const CTumFrameSource& source, CRawlogWriter& writer, const std::filesystem::path& staging,
+      const std::filesystem::path& imagesDir);
+  void writeOpenNI2Frames(
+      COpenNI2FrameSource& source, CRawlogWriter& writer, const std::filesystem::path& staging,
+      const std::filesystem::path& imagesDir);
+
   TOptions m_options;
 };
 }  // namespace roislam::io

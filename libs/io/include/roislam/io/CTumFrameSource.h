@@ -6,10 +6,14 @@
  * associateStamps()); colour frames without a partner are skipped and counted.
  * Images are read lazily, one frame per next(). Created by CFrameSource::open()
  * and used directly by tum2rawlog (entries(), readColourImage(), readDepthImage()).
+ * With a sensor description whose depth is not registered (e.g. a 7-Scenes-like
+ * rgbd-simul folder), depth PNGs are on the depth camera's grid and next()
+ * re-projects them into the colour camera (registerDepthToColour()).
  *
  * ini section [TumFrameSource] (TOptions):
  *   max_time_difference  double  0.02    s    colour/depth association window
- *   depth_scale          double  5000    1/m  depth PNG value per metre (TUM: 5000)
+ *   depth_scale          double  5000    1/m  depth PNG value per metre (TUM: 5000);
+ *                                             a sensor description's depth_scale replaces it
  */
 #pragma once
 
@@ -52,6 +56,11 @@ class CTumFrameSource : public CFrameSource
       const std::string& dir, const mrpt::img::TCamera& camera, const TOptions& options);
   /** As above with default TOptions. */
   CTumFrameSource(const std::string& dir, const mrpt::img::TCamera& camera);
+  /** Reads `dir` with a sensor description (sensor() returns `choice`): its
+   *  colour intrinsics, its depth_scale (replacing options.depthScale) and,
+   *  when its depth is not registered, its depth camera and
+   *  depth_pose_in_colour. */
+  CTumFrameSource(const std::string& dir, const TSensorChoice& choice, const TOptions& options);
 
   std::optional<TRGBDFrame> next() override;
   void rewind() override { m_next = 0; }
@@ -72,12 +81,14 @@ class CTumFrameSource : public CFrameSource
    *  undecodable or not camera.ncols x camera.nrows. */
   static cv::Mat readColourImage(const std::string& file, const mrpt::img::TCamera& camera);
   /** Reads a depth PNG as raw CV_16UC1; throws "<file>: ..." when missing,
-   *  undecodable, not single-channel 16-bit or of the wrong size. */
+   *  undecodable, not single-channel 16-bit or not of `camera`'s size (the
+   *  depth camera's when depth is not registered). */
   static cv::Mat readDepthImage(const std::string& file, const mrpt::img::TCamera& camera);
 
  private:
   std::string m_dir;
   mrpt::img::TCamera m_camera;
+  mrpt::img::TCamera m_depthCamera;  //!< the grid of the depth PNGs
   TOptions m_options;
   std::vector<TEntry> m_entries;
   std::size_t m_skipped = 0;

@@ -14,6 +14,7 @@
 #include <mrpt/obs/CObservation3DRangeScan.h>
 #include <mrpt/poses/CPose3D.h>
 #include <roislam/io/TRGBDFrame.h>
+#include <roislam/io/TSensorDescription.h>
 
 #include <string>
 
@@ -32,6 +33,32 @@ mrpt::poses::CPose3D tumSensorPose();
  *  or a size different from camera.ncols x camera.nrows. */
 mrpt::obs::CObservation3DRangeScan::Ptr observationFromRawDepth(
     const cv::Mat& depthU16, float rangeUnits, const mrpt::img::TCamera& camera, double timestamp);
+
+/** As above for a sensor whose depth may not be registered: the raw depth is
+ *  on sensor.depth's grid when !sensor.depth_registered, and the observation
+ *  then carries cameraParams = sensor.depth and relativePoseIntensityWRTDepth
+ *  from sensor.depth_pose_in_colour, so that observationToFrame() (and MRPT's
+ *  own tools) re-project it into the colour camera. rangeUnits = 1/depth_scale. */
+mrpt::obs::CObservation3DRangeScan::Ptr observationFromRawDepth(
+    const cv::Mat& depthU16, const TSensorDescription& sensor, double timestamp);
+
+/** relativePoseIntensityWRTDepth of an observation whose depth optical frame
+ *  sits at depthPoseInColour in the colour optical frame (identity: the value
+ *  MRPT reads as "cameras coincide"). */
+mrpt::poses::CPose3D intensityPoseWrtDepth(const mrpt::poses::CPose3D& depthPoseInColour);
+
+/** The depth optical frame in the colour optical frame of an observation
+ *  (the inverse of intensityPoseWrtDepth()). */
+mrpt::poses::CPose3D depthPoseInColour(const mrpt::obs::CObservation3DRangeScan& obs);
+
+/** Depth in metres on the depth camera's grid, re-projected into the colour
+ *  camera (the depth camera's pinhole model, the colour camera's with its
+ *  distortion; z-buffer: the nearest reading wins; pixels no reading lands
+ *  on are 0). The one registration of the project: used by
+ *  observationToFrame() and the TUM folder reader. */
+cv::Mat registerDepthToColour(
+    const cv::Mat& depthMetres, const mrpt::img::TCamera& depthCamera,
+    const mrpt::img::TCamera& colourCamera, const mrpt::poses::CPose3D& depthPoseInColour);
 
 /** Builds an observation with embedded colour from a frame; metric depth is
  *  quantised to rangeUnits (rounded; depths beyond 65535 * rangeUnits become 0). */

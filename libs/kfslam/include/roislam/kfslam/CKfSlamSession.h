@@ -57,6 +57,9 @@ class CKfSlamSession
     /** Extractor overrides (roi-landmarks --feature / --max-features). */
     std::optional<features::EFeatureType> feature;
     std::optional<int> maxFeatures;
+    /** The sensor description's signed rolling-shutter readout (ms), for the
+     *  front end unless front_end_ini sets [FrontEnd] rolling_shutter_ms. */
+    double sensorReadoutMs = 0;
   };
 
   /** Loads the kf-slam ini and the front end (errors name the file and key)

@@ -31,6 +31,7 @@
  */
 #pragma once
 
+#include <roislam/io/CFrameSource.h>
 #include <roislam/kfslam/CKfSlamSession.h>
 #include <roislam/landmarks/TPipelineOptions.h>
 
@@ -114,7 +115,7 @@ class CRoiLandmarksApp
 
  private:
   void progress(const std::string& line) const;
-  kfslam::CKfSlamSession::TSetup kfSlamSetup() const;
+  kfslam::CKfSlamSession::TSetup kfSlamSetup(const io::CFrameSource& source) const;
 
   TArguments m_args;
   TPipelineOptions m_options;

@@ -14,7 +14,11 @@
  *                       force (motion and gravity, m/s^2) in the TUM Kinect's
  *                       accelerometer axes (io/TumAccelerometer.h), with
  *                       0.05 m/s^2 noise per axis when noise is on
- *   camera.ini          [CAMERA_PARAMS] intrinsics (mrpt::img::TCamera), read by roislam::io
+ *   camera.ini          the sensor description (io::TSensorDescription): [CAMERA_PARAMS]
+ *                       colour intrinsics (mrpt::img::TCamera), [SensorDescription]
+ *                       readout, depth scale, noise model, frame rate and, for
+ *                       unregistered depth, [DEPTH_CAMERA_PARAMS] and the depth
+ *                       camera's pose; read by roislam::io
  *   simulator.ini       [RgbdSimulator] options used (also marks the folder as ours)
  * Everything goes to a temporary folder next to the output, renamed at the end.
  *
@@ -36,10 +40,25 @@
  *   fx, fy, cx, cy     pinhole intrinsics, px (no distortion)         [517.3 516.5 318.6 255.3]
  *   min_depth          no reading below, m                            [0.4]
  *   max_depth          no reading beyond, m (<= 13.1, PNG range)      [4.0]
- *   depth_noise_a      sigma(z) = a + b (z - z0)^2: a, m              [0.0012]
+ *   noise_model        kinect | disparity                             [kinect]
+ *                      kinect: CKinectNoiseModel (axial Gaussian, edges dropped);
+ *                      disparity: CDisparityNoiseModel (ICL-NUIM-like: jittered
+ *                      lookup, disparity noise and quantisation)
+ *   depth_noise_a      kinect: sigma(z) = a + b (z - z0)^2: a, m      [0.0012]
  *   depth_noise_b      b, 1/m                                         [0.0019]
  *   depth_noise_z0     z0, m                                          [0.4]
- *   edge_jump_ratio    relative 3x3 depth jump that drops a pixel     [0.03]
+ *   edge_jump_ratio    kinect: relative 3x3 depth jump that drops a pixel [0.03]
+ *   disparity_bf       disparity: baseline x focal, m px              [43.125]
+ *   disparity_steps_per_px  disparity: quantisation steps per px      [8]
+ *   disparity_noise_steps   disparity: noise sigma, steps             [0.16666666666666666]
+ *   lateral_sigma_px   disparity: jitter of the depth lookup, px      [0.5]
+ *   depth_registered   depth on the colour camera's grid (bool)       [true]
+ *                      false: depth is rendered by its own camera (below), as
+ *                      a Kinect delivers it before registration
+ *   depth_fx, depth_fy, depth_cx, depth_cy  depth camera pinhole, px  [575.8 575.8 319.5 239.5]
+ *                      (same image size as colour)
+ *   depth_pose_in_colour  depth optical frame in the colour optical frame,
+ *                      [x y z yaw pitch roll] m, deg (MRPT CPose3D)   [[-0.025 0 0 0 0 0]]
  *   rgb_noise_std      colour noise, grey levels                      [2.0]
  *   supersampling      render ss x ss samples per pixel, 1..4         [2]
  *                      (colour: block mean; depth stays exact at pixel centres)
@@ -59,6 +78,7 @@
 #include <mrpt/img/TCamera.h>
 #include <mrpt/poses/CPose3D.h>
 #include <mrpt/system/COutputLogger.h>
+#include <roislam/io/TSensorDescription.h>
 
 #include <cstdint>
 #include <memory>
@@ -89,6 +109,12 @@ class CRgbdSimulator : public mrpt::system::COutputLogger
     double minDepth = 0.4, maxDepth = 4.0;
     double depthNoiseA = 0.0012, depthNoiseB = 0.0019, depthNoiseZ0 = 0.4;
     double edgeJumpRatio = 0.03;
+    std::string noiseModel = "kinect";
+    double disparityBf = 43.125, disparityStepsPerPx = 8, disparityNoiseSteps = 1.0 / 6;
+    double lateralSigmaPx = 0.5;
+    bool depthRegistered = true;
+    double depthFx = 575.8, depthFy = 575.8, depthCx = 319.5, depthCy = 239.5;
+    std::string depthPoseInColour = "[-0.025 0 0 0 0 0]";
     double rgbNoiseStd = 2.0;
     unsigned supersampling = 2;
     double texelsPerMetre = 600.0;
@@ -110,7 +136,9 @@ class CRgbdSimulator : public mrpt::system::COutputLogger
     double timestamp = 0, depthTimestamp = 0;
     mrpt::poses::CPose3D pose;  //!< colour optical frame in the world (ground truth)
     cv::Mat rgb;                //!< CV_8UC3 BGR
-    cv::Mat depth;              //!< CV_32FC1 metres, 0 = no reading (not yet quantised)
+    /** CV_32FC1 metres, 0 = no reading (not yet quantised), on the depth
+     *  camera's grid (depthCamera(); the colour grid when registered). */
+    cv::Mat depth;
   };
 
   struct TWriteStats
@@ -128,8 +156,16 @@ class CRgbdSimulator : public mrpt::system::COutputLogger
   CRgbdSimulator& operator=(const CRgbdSimulator&) = delete;
 
   const TOptions& options() const { return m_opts; }
-  /** Intrinsics of the written images (integer pixel centres, TUM convention). */
+  /** Intrinsics of the written colour images (integer pixel centres, TUM convention). */
   mrpt::img::TCamera camera() const;
+  /** Intrinsics of the written depth images: camera() when depth is
+   *  registered, else the depth camera's. */
+  mrpt::img::TCamera depthCamera() const;
+  /** The depth camera's optical frame in the colour optical frame (identity
+   *  when registered). */
+  mrpt::poses::CPose3D depthPoseInColour() const;
+  /** What camera.ini holds: the sensor that rendered the sequence. */
+  io::TSensorDescription sensorDescription() const;
   const CSceneModel& scene() const { return m_scene; }
   const CCameraPath& path() const { return m_path; }
 
@@ -161,6 +197,14 @@ class CRgbdSimulator : public mrpt::system::COutputLogger
 
  private:
   struct Impl;
+  struct TBands;
+  /** The frame's bands rendered from (band pose (+) offset) with the pinhole
+   *  fx, fy, cx, cy (output pixels), supersampled. */
+  TBands renderBands(
+      std::size_t i, const mrpt::poses::CPose3D& offset, double fx, double fy, double cx,
+      double cy);
+  /** Range limits and the options' noise model on a rendered frame. */
+  void corrupt(TFrame& f, std::size_t i) const;
   TOptions m_opts;
   CSceneModel m_scene;
   CCameraPath m_path;

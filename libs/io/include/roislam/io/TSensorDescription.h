@@ -1,0 +1,108 @@
+/* What roislam knows about an RGB-D sensor, beside the colour intrinsics: the
+ * depth camera and its pose when depth is not registered to colour, the depth
+ * scale, the colour camera's rolling-shutter readout, the depth-noise model
+ * and the frame rate. The mode configs hold algorithm settings only; camera
+ * facts live here. Presets fr1, fr2, fr3, ros (sensorPreset()); files are an
+ * MRPT ini (a TUM-layout folder may carry one as camera.ini, a rawlog or .oni
+ * one as <stem>.camera.ini; rgbd-simul and tum2rawlog write one). Resolved by
+ * resolveSensor() (CameraPresets.h), held by every frame source
+ * (CFrameSource::sensor()), which registers unregistered depth with it; the
+ * front end takes its readout (CRoiGraphSlamApp).
+ *
+ * File layout (MRPT ini):
+ *   [CAMERA_PARAMS]        colour camera, mrpt::img::TCamera keys (resolution,
+ *                          cx, cy, fx, fy, dist, distortion_model); required
+ *   [DEPTH_CAMERA_PARAMS]  depth camera, same keys; required when
+ *                          depth_registered = false, ignored otherwise
+ *   [SensorDescription]    optional: a file with only [CAMERA_PARAMS] is a
+ *                          plain calibration and gets the defaults below.
+ *                          Every key optional; unknown keys are an error.
+ *     key                        type / range                 default
+ *     name                       non-empty string             file stem
+ *         shown in logs and summary.json
+ *     depth_registered           bool                         true
+ *         true: depth is already on the colour camera's pixel grid
+ *     depth_pose_in_colour       [x y z yaw pitch roll]       [0 0 0 0 0 0]
+ *         m, deg: the depth optical frame in the colour optical frame
+ *         (MRPT CPose3D text); used when depth_registered = false
+ *     depth_scale                double > 0                   5000
+ *         raw depth units per metre (TUM PNG 5000, OpenNI mm 1000)
+ *     rolling_shutter_ms         double in [0, 1000/frame_rate]  0
+ *         colour readout from first to last row, ms; 0 = global shutter
+ *     rolling_shutter_direction  top_to_bottom | bottom_to_top  top_to_bottom
+ *     frame_rate                 double > 0                   30 (Hz)
+ *     depth_noise_model          kinect | disparity | none    kinect
+ *     depth_noise_a              double >= 0                  0.0012 (m)
+ *     depth_noise_b              double >= 0                  0.0019 (1/m)
+ *     depth_noise_z0             double >= 0                  0.4 (m)
+ *         kinect: sigma(z) = a + b (z - z0)^2
+ *     disparity_bf               double > 0                   43.125 (m px)
+ *         disparity: z = bf / d (baseline x focal; Kinect v1 7.5 cm x 575 px)
+ *     disparity_steps_per_px     double > 0                   8
+ *         disparity quantisation steps per pixel
+ *     disparity_noise_steps      double >= 0                  0.1667
+ *         disparity noise sigma, in steps
+ *     lateral_sigma_px           double >= 0                  0.5 (px)
+ *         jitter of the depth lookup
+ * A bad value throws std::invalid_argument "[<section>] <key>: ..."; file
+ * readers prefix the file name.
+ */
+#pragma once
+
+#include <mrpt/config/CLoadableOptions.h>
+#include <mrpt/img/TCamera.h>
+#include <mrpt/poses/CPose3D.h>
+
+#include <string>
+
+namespace roislam::io
+{
+struct TSensorDescription : public mrpt::config::CLoadableOptions
+{
+  /** How the depth readings scatter around the truth. */
+  struct TDepthNoise
+  {
+    std::string model = "kinect";  //!< kinect | disparity | none
+    double a = 0.0012, b = 0.0019, z0 = 0.4;
+    double disparity_bf = 43.125, disparity_steps_per_px = 8, disparity_noise_steps = 1.0 / 6;
+    double lateral_sigma_px = 0.5;
+
+    /** 1-sigma axial depth error at depth z (m): kinect a + b (z - z0)^2;
+     *  disparity: the noise and the quantisation step (its uniform sigma,
+     *  step / sqrt(12)) carried to depth (dz = z^2 / bf dd); none: 0. */
+    double sigma(double z) const;
+  };
+
+  std::string name = "ros";
+  mrpt::img::TCamera colour;  //!< [CAMERA_PARAMS]
+  bool depth_registered = true;
+  mrpt::img::TCamera depth;                   //!< [DEPTH_CAMERA_PARAMS], when !depth_registered
+  mrpt::poses::CPose3D depth_pose_in_colour;  //!< depth optical frame in the colour optical frame
+  double depth_scale = 5000;                  //!< raw units per metre
+  double rolling_shutter_ms = 0;              //!< readout of all rows, >= 0
+  bool rolling_shutter_bottom_to_top = false;
+  double frame_rate = 30;  //!< Hz
+  TDepthNoise depth_noise;
+
+  /** The readout as the front end uses it: positive top to bottom, negative
+   *  bottom to top (CRgbdOdometry's rolling_shutter_ms convention). */
+  double signedReadoutMs() const;
+
+  /** Throws std::invalid_argument "[<section>] <key>: ..." on a bad value. */
+  void validate(const std::string& section = "SensorDescription") const;
+  /** Reads [CAMERA_PARAMS], [SensorDescription] (keys optional, unknown
+   *  keys rejected) and, when unregistered, [DEPTH_CAMERA_PARAMS]; `section`
+   *  names the scalar keys' section. */
+  void loadFromConfigFile(
+      const mrpt::config::CConfigFileBase& cfg, const std::string& section) override;
+  /** Writes every key (the depth camera only when unregistered). */
+  void saveToConfigFile(
+      mrpt::config::CConfigFileBase& cfg, const std::string& section) const override;
+
+  /** The whole description as ini text (saveToConfigFile into memory). */
+  std::string toIniText() const;
+};
+
+/** "SensorDescription": the section of the scalar keys. */
+const char* sensorSection();
+}  // namespace roislam::io

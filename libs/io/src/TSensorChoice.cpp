@@ -1,0 +1,42 @@
+#include "roislam/io/TSensorChoice.h"
+
+#include <cstdio>
+
+namespace roislam::io
+{
+std::string TSensorChoice::summary() const
+{
+  const auto& s = sensor;
+  const auto& c = s.colour;
+  char intrinsics[160];
+  std::snprintf(
+      intrinsics, sizeof(intrinsics), "%dx%d fx %.1f fy %.1f cx %.1f cy %.1f%s",
+      static_cast<int>(c.ncols), static_cast<int>(c.nrows), c.fx(), c.fy(), c.cx(), c.cy(),
+      c.distortion == mrpt::img::DistortionModel::none ? ", no distortion" : ", distorted");
+  char rest[200];
+  std::snprintf(
+      rest, sizeof(rest), ", rolling shutter %g ms%s, %g Hz, depth scale %g, depth noise %s",
+      s.rolling_shutter_ms,
+      s.rolling_shutter_ms == 0
+          ? " (global)"
+          : (s.rolling_shutter_bottom_to_top ? " bottom to top" : " top to bottom"),
+      s.frame_rate, s.depth_scale, s.depth_noise.model.c_str());
+  const std::string registration =
+      s.depth_registered ? ", depth registered"
+                         : ", depth not registered (re-projected into the colour camera)";
+  return "sensor '" + s.name + "' (" + source + ", because " + reason + "): " + intrinsics +
+         registration + rest;
+}
+
+nlohmann::json TSensorChoice::toJson() const
+{
+  return {
+      {"name", sensor.name},
+      {"source", source},
+      {"reason", reason},
+      {"depth_registered", sensor.depth_registered},
+      {"rolling_shutter_ms", sensor.signedReadoutMs()},
+      {"frame_rate", sensor.frame_rate},
+      {"description", sensor.toIniText()}};
+}
+}  // namespace roislam::io
