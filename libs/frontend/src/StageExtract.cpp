@@ -44,11 +44,12 @@ void CRgbdOdometry::extractFeatures(TFrameWork& w) const
   if (describesRegions() && !m_keyframes.empty())
     work.region =
         detail::followRegion(m_keyframes[w.lastKf], w.predictedRel, I.pinhole, grey.size());
+  // Its size is the one the registrations ask for now (regionGrowth, from
+  // their determinacy), not the keyframe's: it shrinks back after a growth.
   if (!work.region.empty())
-    work.region = detail::trackingRegion(work.region, grey.size(), minArea, o.roi_min_aspect);
+    work.region = detail::regionOfArea(work.region, grey.size(), minArea, o.roi_min_aspect);
   if (describesRegions() && work.region.empty() && res.roi)
-    work.region =
-        detail::trackingRegion(*res.roi, grey.size(), o.roi_min_area_fraction, o.roi_min_aspect);
+    work.region = detail::trackingRegion(*res.roi, grey.size(), minArea, o.roi_min_aspect);
   if (!work.region.empty())
   {
     w.all = I.extractor.extractIn(
