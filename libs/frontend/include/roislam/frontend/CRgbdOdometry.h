@@ -89,6 +89,13 @@
  *                             dissertation's largest component is often a
  *                             thin strip (180 x 36 px on fr1), whose features
  *                             leave the pose poorly determined across it
+ *  - roi_extension_scale      [0.25, 1] (1): roi_extraction = region, the
+ *                             resolution (share of the image's) at which the
+ *                             extension describes the rest of the image. The
+ *                             frames track with the region's full-resolution
+ *                             features; the rest serves keyframe edges, loop
+ *                             closures and fallbacks, and at 0.5 costs a
+ *                             quarter (SIFT, ORB, SURF scale with the pixels)
  *  - min_inliers              int >= 3 (15): fewer inliers -> features failed
  *  - keyframe_translation_m   [m] > 0 (0.10): new keyframe beyond this distance
  *  - keyframe_rotation_deg    [deg] > 0 (10): ... or beyond this rotation angle
@@ -207,6 +214,7 @@ class CRgbdOdometry : public mrpt::system::COutputLogger
     std::string roi_extraction = "image";
     double roi_min_area_fraction = 0.15;
     double roi_min_aspect = 0.5;
+    double roi_extension_scale = 1.0;
     int min_inliers = 15;
     double keyframe_translation_m = 0.10;
     double keyframe_rotation_deg = 10.0;
