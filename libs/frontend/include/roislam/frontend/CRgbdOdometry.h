@@ -76,11 +76,10 @@
  *                             image max_features x its share of the image.
  *                             image: the whole image once, the ROI selecting
  *                             its subset (strict_roi always works so). image
- *                             stays the default until region is as accurate
- *                             (fr1/rpy, 600 features, shipped configs: big ROI
- *                             ATE ORB 0.0155 / SIFT 0.0106 m with region,
- *                             0.0130 / 0.0097 with image; README "ROI that
- *                             pays")
+ *                             stays the default until region is as accurate:
+ *                             with roi_extension_scale = 0.5 it is within 1.10
+ *                             x traditional's ATE in 2 of 6 runs on fr1/rpy
+ *                             and none on fr1/xyz (README "ROI that pays")
  *  - roi_min_area_fraction    [0, 1] (0.15): the tracking region is the ROI
  *                             grown about its centre to at least this share
  *                             of the image ...
