@@ -29,7 +29,7 @@ int main(int argc, char** argv)
   cli.add_option("--variant", o.variantSpecs, "Extra variant name:Section.key=value[,...]");
   cli.add_flag(
       "--no-default-variants", o.noDefaultVariants,
-      "Drop the default variants (strict/fallback/roicap, Test 1's hue)");
+      "Drop the default variants (strict/fallback/roicap/region, Test 1's hue)");
   cli.add_option(
          "--reference-methods", o.referenceMethods,
          "Reference rows: cv-odometry methods (rgbd,icp,rgbdicp) per sequence, or none")

@@ -78,14 +78,16 @@ std::vector<TRunRecord> fakeResults()
              {"rpe_trans_rmse", 0.01},
              {"rpe_rot_rmse_deg", 1.0},
              {"wall_s", 10.0},
-             {"fps", 20.0}}));
+             {"fps", 20.0},
+             {"frontend_ms_per_frame", 40.0}}));
     v.push_back(
         rec(2, seq, "roi_big", "surf", "fallback",
             {{"ate_rmse", ate / 2},
              {"rpe_trans_rmse", 0.01},
              {"rpe_rot_rmse_deg", 1.0},
              {"wall_s", 15.0},
-             {"fps", 10.0}}));
+             {"fps", 10.0},
+             {"frontend_ms_per_frame", 30.0}}));
   }
   v.push_back(rec(
       2, "a", "roi_big", "surf", "strict",
@@ -150,9 +152,11 @@ TEST(CReportWriter, tablesHaveOurAndDissertationCells)
               "5.91 | 5.0 (n=1) | 3.18 |"),
       std::string::npos)
       << md;
-  // Speed: ROI/traditional wall-time ratio over sequences where both succeeded.
+  // Speed: ROI/traditional wall-time and front-end ratios over sequences
+  // where both succeeded.
   EXPECT_NE(
-      md.find("| big ROI + fallback (**ours**) | SURF | 10.00 ± 0.00 (n=2) | 1.50 |"),
+      md.find("| big ROI + fallback (**ours**) | SURF | 10.00 ± 0.00 (n=2) | 1.50 | 30.0 ± 0.0 "
+              "(n=2) | 0.75 |"),
       std::string::npos)
       << md;
   EXPECT_NE(md.find("- `t2-b-roi_big-surf-strict`: exit code 1: no ROI"), std::string::npos);

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 #include <roislam/testing/TestData.h>
 
+#include <algorithm>
 #include <iostream>
 #include <map>
 #include <opencv2/core/types.hpp>
@@ -50,11 +51,15 @@ TEST(OdometrySynthetic, TexturedTraditionalAndRoi)
 TEST(OdometrySynthetic, RegionFramesDescribeOnlyTheirRegion)
 {
   ROISLAM_REQUIRE_SYNTHETIC(dir, "textured");
-  for (auto mode : {EFrontEndMode::RoiBig, EFrontEndMode::RoiSmall})
+  // Both modes, and the half-resolution extension with the small ROI.
+  for (const auto& [mode, scale] :
+       {std::pair{EFrontEndMode::RoiBig, 1.0}, std::pair{EFrontEndMode::RoiSmall, 1.0},
+        std::pair{EFrontEndMode::RoiSmall, 0.5}})
   {
-    SCOPED_TRACE(toString(mode));
+    SCOPED_TRACE(toString(mode) + " extension scale " + std::to_string(scale));
     auto o = orb(mode);
     o.roi_extraction = "region";
+    o.roi_extension_scale = scale;
     const auto s = runOdometry(dir, o);
     ASSERT_TRUE(s.ate.has_value());
     std::map<roislam::frontend::EExtension, std::size_t> counted;
@@ -87,6 +92,24 @@ TEST(OdometrySynthetic, RegionFramesDescribeOnlyTheirRegion)
         // Extended once: the region's and the extension's features are all
         // there is.
         EXPECT_EQ(r.features, w.regionFeatures + w.extensionFeatures) << "frame " << r.frameIndex;
+        // Every pixel outside the region once, at the extension's
+        // resolution, each of the four bands around the region with its
+        // margin (ORB: 31 px at that resolution, clipped to the image).
+        if (w.extension != roislam::frontend::EExtension::NoRoi)
+        {
+          const cv::Rect g = w.region;
+          const double rest = image.area() - static_cast<double>(g.area());
+          double bound = 0;
+          for (const cv::Size band :
+               {cv::Size(image.width, g.y), cv::Size(image.width, image.height - g.br().y),
+                cv::Size(g.x, g.height), cv::Size(image.width - g.br().x, g.height)})
+            if (band.area() > 0)
+              bound += std::min(scale * image.width, scale * band.width + 2 * 31 + 2) *
+                       std::min(scale * image.height, scale * band.height + 2 * 31 + 2);
+          EXPECT_LE(w.extensionPixels, bound) << "frame " << r.frameIndex;
+          if (scale == 1.0)
+            EXPECT_GE(w.extensionPixels, rest) << "frame " << r.frameIndex;
+        }
       }
       if (r.isNewKeyframe && r.method != ETrackingMethod::Initial)
         EXPECT_NE(w.extension, roislam::frontend::EExtension::None);
@@ -218,6 +241,25 @@ TEST(OdometrySynthetic, FeaturelessTrackedFromDepth)
   EXPECT_EQ(d.stats.depthIcp, d.results.size() - 1);
   EXPECT_EQ(d.trajectory.size(), d.results.size());
   EXPECT_LT(*d.ate, 0.05);
+}
+
+TEST(OdometrySynthetic, FeaturelessRegionModeIsNeverLost)
+{
+  ROISLAM_REQUIRE_SYNTHETIC(dir, "featureless");
+  // Describing regions only changes nothing here: without a ROI every frame
+  // describes the whole image (counted as no_roi), then depth ICP carries it.
+  for (auto mode : {EFrontEndMode::RoiBig, EFrontEndMode::RoiSmall})
+  {
+    auto o = orb(mode);
+    o.roi_extraction = "region";
+    o.roi_extension_scale = 0.5;
+    const auto s = runOdometry(dir, o);
+    ASSERT_TRUE(s.ate.has_value());
+    EXPECT_EQ(s.stats.lost, 0u) << toString(mode);
+    EXPECT_EQ(s.trajectory.size(), s.results.size());
+    EXPECT_LE(s.stats.constantVelocity, s.results.size() / 20);
+    EXPECT_LT(*s.ate, 0.06) << toString(mode);
+  }
 }
 
 TEST(OdometrySynthetic, FeaturelessStrictRoiIsLost)

@@ -14,6 +14,7 @@
 #include <roislam/testing/TestData.h>
 
 #include <cstdio>
+#include <functional>
 #include <limits>
 
 namespace graphslam = roislam::graphslam;
@@ -26,7 +27,9 @@ struct TOutcome
   double ate = 0;
 };
 
-TOutcome run(const std::string& seq, double minChi2, int every, int window = 0)
+TOutcome run(
+    const std::string& seq, double minChi2, int every, int window = 0,
+    const std::function<void(graphslam::CSlamContext::TConfig&)>& configure = {})
 {
   graphslam::CSlamContext::TConfig cfg;
   cfg.frontEnd.extractor.feature_type = roislam::features::EFeatureType::ORB;
@@ -37,6 +40,8 @@ TOutcome run(const std::string& seq, double minChi2, int every, int window = 0)
   cfg.backEnd.optimize_min_chi2 = minChi2;
   cfg.backEnd.optimize_every_keyframes = every;
   cfg.backEnd.optimize_window_keyframes = window;
+  if (configure)
+    configure(cfg);
   auto source = roislam::io::CFrameSource::open(seq);
   const std::string gt = *source->groundTruthFile();
   graphslam::CSlamPipeline p(cfg, std::move(source));
@@ -80,6 +85,28 @@ TEST(SlamPipeline, OptimisationPolicyOnTheTexturedLoop)
   ASSERT_GT(eager.loopKeyframes, 0u);
   EXPECT_EQ(eager.optimizations, eager.loopKeyframes + 1);
   EXPECT_EQ(lazy.optimizations, 1u);
+}
+
+TEST(SlamPipeline, RegionModesOnTheTexturedLoop)
+{
+  ROISLAM_REQUIRE_SYNTHETIC(seq, "textured");
+  // Both ROI modes describing their tracking region only, extended at half
+  // resolution when a frame needs it (issue 15): still within 1 cm.
+  for (const auto mode :
+       {roislam::frontend::EFrontEndMode::RoiSmall, roislam::frontend::EFrontEndMode::RoiBig})
+  {
+    const auto o =
+        run(seq, 0.0, 1, 0,
+            [&](graphslam::CSlamContext::TConfig& cfg)
+            {
+              cfg.frontEnd.mode = mode;
+              cfg.frontEnd.roi_extraction = "region";
+              cfg.frontEnd.roi_extension_scale = 0.5;
+            });
+    std::printf("%s region: ATE %.4f\n", roislam::frontend::toString(mode).c_str(), o.ate);
+    EXPECT_EQ(o.posed, o.frames);
+    EXPECT_LT(o.ate, 0.01) << roislam::frontend::toString(mode);
+  }
 }
 
 TEST(SlamPipeline, WindowedOptimisationsMoveOnlyTheNewestKeyframes)

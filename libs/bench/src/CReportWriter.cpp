@@ -638,15 +638,22 @@ void CReportWriter::renderSpeed(std::ostream& md, const TRecordList& t2) const
         "within that band are not differences; `roislam-stage-bench --paired-passes 2 "
         "--benchmark_filter=FrontEnd` interleaves the versions frame by frame for a robust "
         "ratio.\n\n"
-        "| version | extractor | fps | wall time ratio vs traditional | peak RSS (MiB) "
-        "|\n|---|---|---|---|---|\n";
+        "front end = all front-end work per frame, decoding excluded (summary.json "
+        "frontend_ms_per_frame, mean over the sequences), and its ratio to the traditional "
+        "version's on the same sequences. The paired figures, which load cannot bias: "
+        "`roislam-stage-bench --paired-passes 0 --paired-slam-passes 1 --frames 250` "
+        "(fe_cost_vs_trad).\n\n"
+        "| version | extractor | fps | wall time ratio vs traditional | front end (ms/frame) | "
+        "front-end ratio vs traditional | peak RSS (MiB) "
+        "|\n|---|---|---|---|---|---|---|\n";
   const auto feats = featuresOf(t2);
   for (const auto& vk : versionKeys(t2))
     for (const auto& f : feats)
     {
       const TCell fps = cellFor(t2, vk, f, getter("fps"));
-      double sumV = 0, sumT = 0, rss = 0;
-      bool any = false;
+      const TCell front = cellFor(t2, vk, f, getter("frontend_ms_per_frame"));
+      double sumV = 0, sumT = 0, rss = 0, feV = 0, feT = 0;
+      bool any = false, anyFe = false;
       for (const auto* r : t2)
       {
         if (r->run.versionKey() != vk || r->run.feature != f)
@@ -661,11 +668,21 @@ void CReportWriter::renderSpeed(std::ostream& md, const TRecordList& t2) const
             sumV += durationOf(*r);
             sumT += durationOf(*t);
             any = true;
+            const auto fv = r->number("frontend_ms_per_frame");
+            const auto ft = t->number("frontend_ms_per_frame");
+            if (fv && ft)
+            {
+              feV += *fv;
+              feT += *ft;
+              anyFe = true;
+            }
           }
       }
       md << "| " << labelOf(t2, vk) << " | " << mrpt::system::upperCase(f) << " | "
          << renderCell(fps, 2, true) << " | "
-         << (any && sumT > 0 ? num(sumV / sumT, 2) : std::string("n/a")) << " | " << num(rss, 0)
+         << (any && sumT > 0 ? num(sumV / sumT, 2) : std::string("n/a")) << " | "
+         << renderCell(front, 1, true) << " | "
+         << (anyFe && feT > 0 ? num(feV / feT, 2) : std::string("n/a")) << " | " << num(rss, 0)
          << " |\n";
     }
   md << "\n";

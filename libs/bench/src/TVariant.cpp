@@ -63,7 +63,15 @@ std::vector<TVariant> defaultVariants()
            {{"FrontEnd", "strict_roi", "false"}, {"FrontEnd", "roi_feature_cap", "image"}}},
           {"roicap",
            "ROI with fallback, N features in the ROI (ours)",
-           {{"FrontEnd", "strict_roi", "false"}, {"FrontEnd", "roi_feature_cap", "roi"}}}};
+           {{"FrontEnd", "strict_roi", "false"}, {"FrontEnd", "roi_feature_cap", "roi"}}},
+          // Issue 15: stage 2 on the tracking region only, the rest of the
+          // image at half resolution when a frame needs it.
+          {"region",
+           "ROI with fallback, features described in the tracking region only (ours)",
+           {{"FrontEnd", "strict_roi", "false"},
+            {"FrontEnd", "roi_feature_cap", "image"},
+            {"FrontEnd", "roi_extraction", "region"},
+            {"FrontEnd", "roi_extension_scale", "0.5"}}}};
 }
 
 std::vector<TVariant> defaultTest1Variants()

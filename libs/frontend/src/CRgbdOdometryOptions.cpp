@@ -105,6 +105,7 @@ void CRgbdOdometry::TOptions::loadFromConfigFile(
   roi_extraction = c.read_string(s, "roi_extraction", roi_extraction);
   roi_min_area_fraction = c.read_double(s, "roi_min_area_fraction", roi_min_area_fraction);
   roi_min_aspect = c.read_double(s, "roi_min_aspect", roi_min_aspect);
+  roi_extension_scale = c.read_double(s, "roi_extension_scale", roi_extension_scale);
   min_inliers = c.read_int(s, "min_inliers", min_inliers);
   keyframe_translation_m = c.read_double(s, "keyframe_translation_m", keyframe_translation_m);
   keyframe_rotation_deg = c.read_double(s, "keyframe_rotation_deg", keyframe_rotation_deg);
@@ -152,6 +153,7 @@ void CRgbdOdometry::TOptions::saveToConfigFile(
   c.write(s, "roi_extraction", roi_extraction);
   c.write(s, "roi_min_area_fraction", roi_min_area_fraction);
   c.write(s, "roi_min_aspect", roi_min_aspect);
+  c.write(s, "roi_extension_scale", roi_extension_scale);
   c.write(s, "min_inliers", min_inliers);
   c.write(s, "keyframe_translation_m", keyframe_translation_m);
   c.write(s, "keyframe_rotation_deg", keyframe_rotation_deg);
@@ -201,6 +203,8 @@ void CRgbdOdometry::TOptions::validate(const std::string& s) const
     common::throwBadIniKey(s, "roi_min_area_fraction", "must be in [0, 1]");
   if (!(roi_min_aspect >= 0 && roi_min_aspect <= 1))
     common::throwBadIniKey(s, "roi_min_aspect", "must be in [0, 1]");
+  if (!(roi_extension_scale >= 0.25 && roi_extension_scale <= 1))
+    common::throwBadIniKey(s, "roi_extension_scale", "must be in [0.25, 1]");
   if (min_inliers < 3)
     common::throwBadIniKey(s, "min_inliers", "must be >= 3");
   if (!(keyframe_translation_m > 0))

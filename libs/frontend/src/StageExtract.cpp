@@ -6,6 +6,7 @@
 // corrected for the rolling shutter with the last motion's velocity.
 #include <algorithm>
 #include <cmath>
+#include <opencv2/imgproc.hpp>
 
 #include "OdometryWork.h"
 #include "TrackingRegion.h"
@@ -14,6 +15,59 @@ namespace roislam::frontend
 {
 using detail::Clock;
 using detail::msSince;
+
+namespace
+{
+/** The image outside `region`, band by band (detail::outside), with the
+ *  cap's share of each band's area, at `scale` of the image's resolution:
+ *  the region's pixels are never described again. Keypoints come back in
+ *  image coordinates (sizes too); `pixels` counts the pixels the detector
+ *  ran on, at its resolution (the work). */
+features::TFeatureSet describeOutside(
+    const features::CFeatureExtractor& extractor, const cv::Mat& grey, const cv::Rect& region,
+    int cap, double scale, std::size_t* pixels)
+{
+  const cv::Size image = grey.size();
+  cv::Mat img = grey;
+  if (scale < 1)
+    cv::resize(grey, img, cv::Size(), scale, scale, cv::INTER_AREA);
+  features::TFeatureSet ext;
+  *pixels = 0;
+  for (const cv::Rect& band : detail::outside(region, image))
+  {
+    const int bandCap =
+        cap > 0 ? std::max(
+                      1, static_cast<int>(
+                             std::ceil(cap * static_cast<double>(band.area()) / image.area())))
+                : 0;
+    // The band in the scaled image, rounded outwards (keypoints that land in
+    // the region once scaled back are dropped below).
+    const int x0 = static_cast<int>(std::floor(band.x * scale));
+    const int y0 = static_cast<int>(std::floor(band.y * scale));
+    const int x1 = static_cast<int>(std::ceil(band.br().x * scale));
+    const int y1 = static_cast<int>(std::ceil(band.br().y * scale));
+    std::size_t px = 0;
+    ext = features::concat(
+        ext, extractor.extractIn(img, cv::Rect(x0, y0, x1 - x0, y1 - y0), bandCap, &px));
+    *pixels += px;
+  }
+  if (scale >= 1)
+    return ext;
+  std::vector<int> keep;
+  const cv::Rect2f inRegion(region);
+  for (std::size_t i = 0; i < ext.size(); ++i)
+  {
+    cv::KeyPoint& k = ext.keypoints[i];
+    // Pixel centres: (u + 0.5) / scale - 0.5.
+    k.pt.x = static_cast<float>((k.pt.x + 0.5) / scale - 0.5);
+    k.pt.y = static_cast<float>((k.pt.y + 0.5) / scale - 0.5);
+    k.size = static_cast<float>(k.size / scale);
+    if (!inRegion.contains(k.pt))
+      keep.push_back(static_cast<int>(i));
+  }
+  return ext.select(keep);
+}
+}  // namespace
 
 bool CRgbdOdometry::describesRegions() const
 {
@@ -44,11 +98,12 @@ void CRgbdOdometry::extractFeatures(TFrameWork& w) const
   if (describesRegions() && !m_keyframes.empty())
     work.region =
         detail::followRegion(m_keyframes[w.lastKf], w.predictedRel, I.pinhole, grey.size());
+  // Its size is the one the registrations ask for now (regionGrowth, from
+  // their determinacy), not the keyframe's: it shrinks back after a growth.
   if (!work.region.empty())
-    work.region = detail::trackingRegion(work.region, grey.size(), minArea, o.roi_min_aspect);
+    work.region = detail::regionOfArea(work.region, grey.size(), minArea, o.roi_min_aspect);
   if (describesRegions() && work.region.empty() && res.roi)
-    work.region =
-        detail::trackingRegion(*res.roi, grey.size(), o.roi_min_area_fraction, o.roi_min_aspect);
+    work.region = detail::trackingRegion(*res.roi, grey.size(), minArea, o.roi_min_aspect);
   if (!work.region.empty())
   {
     w.all = I.extractor.extractIn(
@@ -138,23 +193,12 @@ void CRgbdOdometry::extendToImage(TFrameWork& w, EExtension reason) const
   const TOptions& o = m_options;
   TFrameResult& res = w.res;
   auto t0 = Clock::now();
-  // The rest of the image, band by band, with the cap's share of each band's
-  // area: the region's pixels are never described again.
-  const cv::Size image = w.in.grey.size();
-  const int cap = o.extractor.max_features;
-  features::TFeatureSet ext;
+  std::size_t px = 0;
+  features::TFeatureSet ext = describeOutside(
+      I.extractor, w.in.grey, res.work.region, o.extractor.max_features, o.roi_extension_scale,
+      &px);
   ext.type = w.all.type;
-  for (const cv::Rect& band : detail::outside(res.work.region, image))
-  {
-    const int bandCap =
-        cap > 0 ? std::max(
-                      1, static_cast<int>(
-                             std::ceil(cap * static_cast<double>(band.area()) / image.area())))
-                : 0;
-    std::size_t px = 0;
-    ext = features::concat(ext, I.extractor.extractIn(w.in.grey, band, bandCap, &px));
-    res.work.extensionPixels += px;
-  }
+  res.work.extensionPixels += px;
   res.work.extensionFeatures = ext.size();
   res.work.extension = reason;
   res.times.extract_ms += msSince(t0);

@@ -28,39 +28,53 @@ cv::Rect trackingRegion(
   return cv::Rect(x, y, W, H) | roi;  // never smaller than the ROI itself
 }
 
+cv::Rect regionOfArea(const cv::Rect& region, const cv::Size& image, double area, double minAspect)
+{
+  double w = std::max(region.width, 1), h = std::max(region.height, 1);
+  w = std::max(w, minAspect * h);
+  h = std::max(h, minAspect * w);
+  const double s = std::sqrt(area * image.area() / (w * h));
+  // Clamped to the image: a region wider than the image gives its excess
+  // area to the height (and the other way round).
+  w = std::min<double>(image.width, w * s);
+  h = std::min<double>(image.height, std::max(h * s, area * image.area() / w));
+  w = std::min<double>(image.width, std::max(w, area * image.area() / h));
+  const int W = std::max(1, static_cast<int>(std::lround(w)));
+  const int H = std::max(1, static_cast<int>(std::lround(h)));
+  const double cx = region.x + 0.5 * region.width, cy = region.y + 0.5 * region.height;
+  const int x = std::clamp(static_cast<int>(std::lround(cx - 0.5 * W)), 0, image.width - W);
+  const int y = std::clamp(static_cast<int>(std::lround(cy - 0.5 * H)), 0, image.height - H);
+  return cv::Rect(x, y, W, H);
+}
+
 /** The reference keyframe's tracking region as this frame should see it:
- *  its corners, at the region's median depth, moved by the predicted motion
- *  (keyframe -> frame) and projected. Empty when it leaves the image. */
+ *  its centre, at the region's median depth, moved by the predicted motion
+ *  (keyframe -> frame) and projected; its size scaled by the change of
+ *  depth. Not the bounding box of its moved corners: under a roll that box
+ *  is up to 1.4 times wider and higher, and since each keyframe stores the
+ *  region it followed, the region would ratchet up keyframe by keyframe
+ *  towards the whole image. Empty when it leaves the image. */
 cv::Rect followRegion(
     const TKeyframe& kf, const mrpt::poses::CPose3D& predictedRel, const detail::TPinhole& cam,
     const cv::Size& image)
 {
   if (kf.region.empty() || !(kf.regionDepth > 0))
     return {};
-  const mrpt::poses::CPose3D toFrame = -predictedRel;
-  float x0 = 1e9F, y0 = 1e9F, x1 = -1e9F, y1 = -1e9F;
-  for (int c = 0; c < 4; ++c)
-  {
-    const double u = kf.region.x + (c & 1 ? kf.region.width : 0);
-    const double v = kf.region.y + (c & 2 ? kf.region.height : 0);
-    const double z = kf.regionDepth;
-    double X, Y, Z;
-    toFrame.composePoint((u - cam.cx) / cam.fx * z, (v - cam.cy) / cam.fy * z, z, X, Y, Z);
-    if (!(Z > 0.05))
-      return {};
-    const auto pu = static_cast<float>(cam.fx * X / Z + cam.cx);
-    const auto pv = static_cast<float>(cam.fy * Y / Z + cam.cy);
-    x0 = std::min(x0, pu);
-    y0 = std::min(y0, pv);
-    x1 = std::max(x1, pu);
-    y1 = std::max(y1, pv);
-  }
+  const double z = kf.regionDepth;
+  const double u = kf.region.x + 0.5 * kf.region.width, v = kf.region.y + 0.5 * kf.region.height;
+  double X, Y, Z;
+  (-predictedRel).composePoint((u - cam.cx) / cam.fx * z, (v - cam.cy) / cam.fy * z, z, X, Y, Z);
+  if (!(Z > 0.05))
+    return {};
+  const double scale = z / Z;
+  const double w = kf.region.width * scale, h = kf.region.height * scale;
+  const double cu = cam.fx * X / Z + cam.cx, cv = cam.fy * Y / Z + cam.cy;
   const cv::Rect predicted(
-      cv::Point(static_cast<int>(std::floor(x0)), static_cast<int>(std::floor(y0))),
-      cv::Point(static_cast<int>(std::ceil(x1)), static_cast<int>(std::ceil(y1))));
+      static_cast<int>(std::lround(cu - 0.5 * w)), static_cast<int>(std::lround(cv - 0.5 * h)),
+      static_cast<int>(std::lround(w)), static_cast<int>(std::lround(h)));
   const cv::Rect inside = predicted & cv::Rect(0, 0, image.width, image.height);
   // Mostly out of view: the region is lost, stage 1 finds a new one.
-  if (inside.area() < 0.5 * predicted.area() || inside.area() < 0.5 * kf.region.area())
+  if (inside.area() < 0.5 * predicted.area())
     return {};
   return inside;
 }

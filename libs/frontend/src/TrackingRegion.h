@@ -19,10 +19,15 @@ namespace roislam::frontend::detail
 cv::Rect trackingRegion(
     const cv::Rect& roi, const cv::Size& image, double minArea, double minAspect);
 
+/** `region` resized about its centre to exactly a share `area` of the image
+ *  (growing or shrinking), its aspect (short side / long side) at least
+ *  `minAspect`, moved inside the image. */
+cv::Rect regionOfArea(const cv::Rect& region, const cv::Size& image, double area, double minAspect);
+
 /** The reference keyframe's tracking region as this frame should see it:
- *  its corners, at the region's median depth, moved by the predicted motion
- *  (pose of the frame relative to the keyframe) and projected. Empty when it
- *  leaves the image. */
+ *  its centre, at the region's median depth, moved by the predicted motion
+ *  (pose of the frame relative to the keyframe) and projected, its size
+ *  scaled by the change of depth. Empty when it leaves the image. */
 cv::Rect followRegion(
     const TKeyframe& kf, const mrpt::poses::CPose3D& predictedRel, const TPinhole& cam,
     const cv::Size& image);

@@ -209,6 +209,12 @@ nlohmann::json CSlamRunner::summaryJson(
   j["described_pixel_fraction"] = st.frames > 0 ? st.describedFractionSum / st.frames : 0.0;
   j["roi_only_frames"] = roiOnly == st.extensions.end() ? 0 : roiOnly->second;
   j["extended_frames"] = ext;
+  // All front-end work per frame (frames.csv frontend_ms: decoding excluded),
+  // the cost the ROI versions are compared by.
+  double frontMs = 0;
+  for (const auto& r : pipeline.records())
+    frontMs += r.result.times.total_ms;
+  j["frontend_ms_per_frame"] = s.frames > 0 ? frontMs / s.frames : 0.0;
   j["failed"] = s.failed;
   j["stopped_by_user"] = s.stoppedByUser;
   j["wall_s"] = s.wallS;
