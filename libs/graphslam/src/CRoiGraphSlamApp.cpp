@@ -2,6 +2,7 @@
 #include <mrpt/core/format.h>
 #include <roislam/graphslam/CRoiGraphSlamApp.h>
 #include <roislam/graphslam/CRoislamOptionsChecker.h>
+#include <roislam/graphslam/CSlamOutputWriter.h>
 #include <roislam/graphslam/CSlamRunner.h>
 #include <roislam/io/CFrameSource.h>
 
@@ -70,6 +71,8 @@ void CRoiGraphSlamApp::applySensor(const io::CFrameSource& source)
 CRoiGraphSlamApp::TSummary CRoiGraphSlamApp::run()
 {
   auto source = io::CFrameSource::open(m_args.input, m_args.camera);
+  // An unwritable output folder is the one line, before the sensor's line.
+  CSlamOutputWriter::checkWritableDir(m_args.outputDir);
   applySensor(*source);
   CSlamRunner::TSettings settings;
   settings.app = "roi-graphslam";
