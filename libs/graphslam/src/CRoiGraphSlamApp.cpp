@@ -2,7 +2,6 @@
 #include <mrpt/core/format.h>
 #include <roislam/graphslam/CRoiGraphSlamApp.h>
 #include <roislam/graphslam/CRoislamOptionsChecker.h>
-#include <roislam/graphslam/CSlamOutputWriter.h>
 #include <roislam/graphslam/CSlamRunner.h>
 #include <roislam/io/CFrameSource.h>
 
@@ -71,9 +70,6 @@ void CRoiGraphSlamApp::applySensor(const io::CFrameSource& source)
 CRoiGraphSlamApp::TSummary CRoiGraphSlamApp::run()
 {
   auto source = io::CFrameSource::open(m_args.input, m_args.camera);
-  // An unwritable output folder is the one line, before the sensor's line.
-  CSlamOutputWriter::checkWritableDir(m_args.outputDir);
-  applySensor(*source);
   CSlamRunner::TSettings settings;
   settings.app = "roi-graphslam";
   settings.input = m_args.input;
@@ -90,7 +86,13 @@ CRoiGraphSlamApp::TSummary CRoiGraphSlamApp::run()
   // ini; our deciders take m_config as it is.
   return CSlamRunner(std::move(settings))
       .run(
-          std::move(source), [this](std::unique_ptr<io::CFrameSource> s)
-          { return std::make_unique<CSlamPipeline>(m_config, std::move(s), m_args.iniFile); });
+          std::move(source),
+          [this](std::unique_ptr<io::CFrameSource> s)
+          {
+            // Called once the runner has checked the output folder: an
+            // unwritable one stays the run's only line.
+            applySensor(*s);
+            return std::make_unique<CSlamPipeline>(m_config, std::move(s), m_args.iniFile);
+          });
 }
 }  // namespace roislam::graphslam
