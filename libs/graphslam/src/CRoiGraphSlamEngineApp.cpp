@@ -63,6 +63,7 @@ TSlamSummary CRoiGraphSlamEngineApp::run()
   settings.groundTruthFile = m_args.groundTruth;
   settings.snapshot = m_args.snapshot;
   settings.progress = m_args.progress;
+  settings.observer = m_args.observer;
   // As graphslam-engine does: the parameters in use, before the run.
   settings.started = [gt = m_args.groundTruth](const CSlamPipeline& p)
   {
