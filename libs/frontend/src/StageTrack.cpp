@@ -10,11 +10,16 @@ namespace roislam::frontend
 {
 void CRgbdOdometry::registerWithRecent(const TKeyframe& query, TFrameWork& w) const
 {
-  // The last keyframe, then the recent older ones, until one registers.
+  // The best-overlapping keyframes (overlap policy), then the last keyframe
+  // and the recent older ones, until one registers.
   const std::size_t nTry = 1 + static_cast<std::size_t>(m_options.recent_keyframes);
-  for (std::size_t k = 0; k < nTry && k <= w.lastKf; ++k)
+  std::vector<std::size_t> order = w.candidates;
+  for (std::size_t k = 0; order.size() < nTry && k <= w.lastKf; ++k)
+    if (std::find(order.begin(), order.end(), w.lastKf - k) == order.end())
+      order.push_back(w.lastKf - k);
+  for (std::size_t k = 0; k < order.size(); ++k)
   {
-    const std::size_t id = w.lastKf - k;
+    const std::size_t id = order[k];
     std::size_t nm = 0;
     w.reg = m_impl->registerSets(m_keyframes[id], query, m_options, &nm, &w.res.times);
     if (k == 0 || w.reg)
@@ -36,8 +41,18 @@ void CRgbdOdometry::predictMotion(TFrameWork& w) const
   w.lastWorld = m_keyframes[w.lastKf].pose;
   if (I.haveLast)
     w.lastWorld = m_keyframes[I.lastRef].pose + I.lastRel;
-  const mrpt::poses::CPose3D predictedWorld = w.lastWorld + I.velocity;
-  w.predictedRel = predictedWorld - m_keyframes[w.lastKf].pose;
+  w.predictedWorld = w.lastWorld + I.velocity;
+  w.predictedRel = w.predictedWorld - m_keyframes[w.lastKf].pose;
+  if (!usesOverlapPolicy())
+    return;
+  // The reference: the keyframe whose view overlaps the predicted one best,
+  // wherever it was made (a revisit tracks against the old keyframes).
+  // 100 points per keyframe give the overlap to about a percent.
+  const std::size_t nTry = 1 + static_cast<std::size_t>(m_options.recent_keyframes);
+  w.candidates = detail::bestOverlapping(
+      m_keyframes, w.predictedWorld, I.view(w.in.grey.size(), m_options), nTry, 100);
+  if (!w.candidates.empty())
+    w.ref = w.candidates.front();
 }
 
 void CRgbdOdometry::trackFeatures(TFrameWork& w)
