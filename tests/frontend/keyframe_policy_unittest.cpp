@@ -87,8 +87,9 @@ TEST(KeyframePolicy, ViewOverlapOfTheSameAndOfATurnedView)
   // 100 samples give about the same share as every point (binomial 1-sigma
   // 0.05).
   EXPECT_NEAR(detail::viewOverlap(kf, CPose3D(0, 0, 0, 0, half, 0), view, 100), ov, 0.1);
-  // The best-overlapping keyframe of a view near keyframe 0 is keyframe 0.
-  const auto best = detail::bestOverlapping(odo.keyframes(), trajectoryPose(0), view, 3, 100);
+  // The reference candidates of a view near keyframe 0: keyframe 0.
+  const auto best =
+      detail::referenceCandidates(odo.keyframes(), trajectoryPose(0), view, {0.5, 0, 0}, 3, 100);
   ASSERT_EQ(best.size(), 1u);
   EXPECT_EQ(best[0], 0u);
 }

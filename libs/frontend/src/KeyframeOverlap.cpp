@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <utility>
 
+#include "RigidMath.h"
+
 namespace roislam::frontend::detail
 {
 double viewOverlap(
@@ -28,25 +30,32 @@ double viewOverlap(
   return static_cast<double>(seen) / static_cast<double>(tested);
 }
 
-std::vector<std::size_t> bestOverlapping(
+std::vector<std::size_t> referenceCandidates(
     const std::deque<TKeyframe>& keyframes, const mrpt::poses::CPose3D& predicted,
-    const TViewModel& view, std::size_t n, std::size_t samples)
+    const TViewModel& view, const TReferenceGate& gate, std::size_t n, std::size_t samples)
 {
-  std::vector<std::pair<double, std::size_t>> scored;
-  for (const TKeyframe& kf : keyframes)
-  {
-    const double ov = viewOverlap(kf, predicted - kf.pose, view, samples);
-    if (ov > 0)
-      scored.emplace_back(ov, kf.id);
-  }
-  // Best overlap first; among equals the newer keyframe (less drift to it).
-  std::sort(
-      scored.begin(), scored.end(),
-      [](const auto& a, const auto& b)
-      { return a.first != b.first ? a.first > b.first : a.second > b.second; });
   std::vector<std::size_t> ids;
-  for (std::size_t i = 0; i < scored.size() && i < n; ++i)
-    ids.push_back(scored[i].second);
+  std::vector<std::pair<double, std::size_t>> others;
+  for (std::size_t k = keyframes.size(); k-- > 0;)
+  {
+    const TKeyframe& kf = keyframes[k];
+    const mrpt::poses::CPose3D rel = predicted - kf.pose;
+    const double ov = viewOverlap(kf, rel, view, samples);
+    const bool near = (!(gate.maxDistance > 0) || rel.translation().norm() <= gate.maxDistance) &&
+                      (!(gate.maxAngleRad > 0) || rotationAngle(rel) <= gate.maxAngleRad);
+    if (ov >= gate.minOverlap && ov > 0 && near)
+    {
+      if (ids.size() < n)
+        ids.push_back(kf.id);
+    }
+    else if (ov > 0)
+      others.emplace_back(ov, kf.id);
+  }
+  // Stable: among equal overlaps the newer keyframe stays first.
+  std::stable_sort(
+      others.begin(), others.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
+  for (std::size_t i = 0; i < others.size() && ids.size() < n; ++i)
+    ids.push_back(others[i].second);
   return ids;
 }
 }  // namespace roislam::frontend::detail

@@ -36,10 +36,21 @@ double viewOverlap(
     const TKeyframe& kf, const mrpt::poses::CPose3D& rel, const TViewModel& view,
     std::size_t samples = 0);
 
-/** Keyframe ids by their viewOverlap (of `samples` points each) with a camera
- *  at world pose `predicted`, best first (ties: the newer first), those that
- *  overlap at all only, at most `n`. */
-std::vector<std::size_t> bestOverlapping(
+/** What makes a keyframe a good reference for a view: its view overlap, and
+ *  optionally (> 0) how far it may be from the view's pose. */
+struct TReferenceGate
+{
+  double minOverlap = 0;
+  double maxDistance = 0, maxAngleRad = 0;
+};
+
+/** The keyframes to track a view at world pose `predicted` against, at most
+ *  `n`: first those that pass `gate` (overlap of `samples` points each, and
+ *  the bounds), newest first (the least drift to the view, and the ones with
+ *  search indexes and ICP maps); then the others that overlap at all, best
+ *  overlap first. A revisit, whose newest keyframes do not overlap, so gets
+ *  the keyframes made there before. */
+std::vector<std::size_t> referenceCandidates(
     const std::deque<TKeyframe>& keyframes, const mrpt::poses::CPose3D& predicted,
-    const TViewModel& view, std::size_t n, std::size_t samples);
+    const TViewModel& view, const TReferenceGate& gate, std::size_t n, std::size_t samples);
 }  // namespace roislam::frontend::detail

@@ -3,6 +3,7 @@
 // in ROI modes, the whole image's when those fail or leave the pose poorly
 // determined).
 #include <algorithm>
+#include <cmath>
 
 #include "OdometryWork.h"
 
@@ -45,12 +46,16 @@ void CRgbdOdometry::predictMotion(TFrameWork& w) const
   w.predictedRel = w.predictedWorld - m_keyframes[w.lastKf].pose;
   if (!usesOverlapPolicy())
     return;
-  // The reference: the keyframe whose view overlaps the predicted one best,
-  // wherever it was made (a revisit tracks against the old keyframes).
-  // 100 points per keyframe give the overlap to about a percent.
+  // The reference: the newest keyframe whose view still overlaps the
+  // predicted one enough (and within the motion bounds), else the one that
+  // overlaps best, wherever it was made: a revisit tracks against the old
+  // keyframes. 100 points per keyframe give the overlap to about 5 %.
   const std::size_t nTry = 1 + static_cast<std::size_t>(m_options.recent_keyframes);
-  w.candidates = detail::bestOverlapping(
-      m_keyframes, w.predictedWorld, I.view(w.in.grey.size(), m_options), nTry, 100);
+  const detail::TReferenceGate gate{
+      m_options.keyframe_min_overlap, m_options.keyframe_translation_m,
+      m_options.keyframe_rotation_deg * M_PI / 180.0};
+  w.candidates = detail::referenceCandidates(
+      m_keyframes, w.predictedWorld, I.view(w.in.grey.size(), m_options), gate, nTry, 100);
   if (!w.candidates.empty())
     w.ref = w.candidates.front();
 }

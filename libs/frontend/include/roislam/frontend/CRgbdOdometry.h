@@ -103,10 +103,12 @@
  *                             below keyframe_min_inliers, or registered only
  *                             against an older keyframe; every frame is tracked
  *                             against the last keyframe first. overlap: each
- *                             frame is tracked against the keyframes whose
- *                             view overlaps its predicted view best (any
- *                             keyframe, not only the recent ones: a revisit
- *                             re-uses the keyframes made there), and becomes
+ *                             frame is tracked against the newest keyframe
+ *                             whose view overlaps its predicted view by at
+ *                             least keyframe_min_overlap (and lies within the
+ *                             motion bounds below), else the best-overlapping
+ *                             one wherever it was made (a revisit re-uses the
+ *                             keyframes made there), and becomes
  *                             a keyframe when its view overlap with that
  *                             reference falls below keyframe_min_overlap or
  *                             its inliers below keyframe_min_inliers; the
