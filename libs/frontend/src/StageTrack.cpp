@@ -2,22 +2,46 @@
 // frame's features registered against the recent keyframes (the ROI's first
 // in ROI modes, the whole image's when those fail or leave the pose poorly
 // determined).
+#include <roislam/frontend/PoseUncertainty.h>
+
 #include <algorithm>
 #include <cmath>
+#include <optional>
+#include <tuple>
 
 #include "OdometryWork.h"
 
 namespace roislam::frontend
 {
+namespace
+{
+/** Overlap policy: whether a registration against a keyframe may make it the
+ *  reference. A keyframe without an ICP map (not a recent one: a revisited
+ *  place) cannot have a poorly determined registration refined with depth
+ *  (refineWithDepth), so it must not need that: at most icp_refine_sigma_m
+ *  along its worst direction, and enough inliers not to make a keyframe. */
+bool acceptsReference(
+    bool hasIcpMap, const detail::TRegistration& r, const CRgbdOdometry::TOptions& o)
+{
+  if (o.keyframe_policy != "overlap" || hasIcpMap)
+    return true;
+  if (static_cast<int>(r.inliers) < o.keyframe_min_inliers)
+    return false;
+  const auto s = worstSigmas(detail::toMrptEstimate(r).second);
+  return s && !(o.icp_refine_sigma_m > 0 && s->translation_m > o.icp_refine_sigma_m);
+}
+}  // namespace
+
 void CRgbdOdometry::registerWithRecent(const TKeyframe& query, TFrameWork& w) const
 {
-  // The best-overlapping keyframes (overlap policy), then the last keyframe
-  // and the recent older ones, until one registers.
+  // The overlap policy's candidates, then the last keyframe and the recent
+  // older ones, until one registers (the last keyframe is always tried).
   const std::size_t nTry = 1 + static_cast<std::size_t>(m_options.recent_keyframes);
   std::vector<std::size_t> order = w.candidates;
-  for (std::size_t k = 0; order.size() < nTry && k <= w.lastKf; ++k)
+  for (std::size_t k = 0; k <= w.lastKf && (k == 0 || order.size() < nTry); ++k)
     if (std::find(order.begin(), order.end(), w.lastKf - k) == order.end())
       order.push_back(w.lastKf - k);
+  std::optional<std::tuple<detail::TRegistration, std::size_t, std::size_t>> fallback;
   for (std::size_t k = 0; k < order.size(); ++k)
   {
     const std::size_t id = order[k];
@@ -25,12 +49,23 @@ void CRgbdOdometry::registerWithRecent(const TKeyframe& query, TFrameWork& w) co
     w.reg = m_impl->registerSets(m_keyframes[id], query, m_options, &nm, &w.res.times);
     if (k == 0 || w.reg)
       w.res.matches = nm;
+    if (w.reg && k + 1 < order.size() &&
+        !acceptsReference(m_impl->icpMaps.count(id) > 0, *w.reg, m_options))
+    {
+      // Kept in case no later candidate registers.
+      if (!fallback)
+        fallback = {*w.reg, id, nm};
+      w.reg.reset();
+      continue;
+    }
     if (w.reg)
     {
       w.ref = id;
       return;
     }
   }
+  if (fallback)
+    std::tie(w.reg, w.ref, w.res.matches) = *fallback;
 }
 
 void CRgbdOdometry::predictMotion(TFrameWork& w) const
