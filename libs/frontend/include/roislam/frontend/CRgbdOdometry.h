@@ -108,7 +108,10 @@
  *                             least keyframe_min_overlap (and lies within the
  *                             motion bounds below), else the best-overlapping
  *                             one wherever it was made (a revisit re-uses the
- *                             keyframes made there), and becomes
+ *                             keyframes made there; a keyframe without an ICP
+ *                             map is accepted only when its registration needs
+ *                             no depth refinement, icp_refine_sigma_m, and has
+ *                             keyframe_min_inliers), and becomes
  *                             a keyframe when its view overlap with that
  *                             reference falls below keyframe_min_overlap or
  *                             its inliers below keyframe_min_inliers; the
