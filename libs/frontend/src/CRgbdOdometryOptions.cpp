@@ -110,6 +110,8 @@ void CRgbdOdometry::TOptions::loadFromConfigFile(
   keyframe_translation_m = c.read_double(s, "keyframe_translation_m", keyframe_translation_m);
   keyframe_rotation_deg = c.read_double(s, "keyframe_rotation_deg", keyframe_rotation_deg);
   keyframe_min_inliers = c.read_int(s, "keyframe_min_inliers", keyframe_min_inliers);
+  keyframe_policy = c.read_string(s, "keyframe_policy", keyframe_policy);
+  keyframe_min_overlap = c.read_double(s, "keyframe_min_overlap", keyframe_min_overlap);
   recent_keyframes = c.read_int(s, "recent_keyframes", recent_keyframes);
   ransac_threshold_m = c.read_double(s, "ransac_threshold_m", ransac_threshold_m);
   ransac_max_iterations = c.read_int(s, "ransac_max_iterations", ransac_max_iterations);
@@ -158,6 +160,8 @@ void CRgbdOdometry::TOptions::saveToConfigFile(
   c.write(s, "keyframe_translation_m", keyframe_translation_m);
   c.write(s, "keyframe_rotation_deg", keyframe_rotation_deg);
   c.write(s, "keyframe_min_inliers", keyframe_min_inliers);
+  c.write(s, "keyframe_policy", keyframe_policy);
+  c.write(s, "keyframe_min_overlap", keyframe_min_overlap);
   c.write(s, "recent_keyframes", recent_keyframes);
   c.write(s, "ransac_threshold_m", ransac_threshold_m);
   c.write(s, "ransac_max_iterations", ransac_max_iterations);
@@ -207,10 +211,20 @@ void CRgbdOdometry::TOptions::validate(const std::string& s) const
     common::throwBadIniKey(s, "roi_extension_scale", "must be in [0.25, 1]");
   if (min_inliers < 3)
     common::throwBadIniKey(s, "min_inliers", "must be >= 3");
-  if (!(keyframe_translation_m > 0))
-    common::throwBadIniKey(s, "keyframe_translation_m", "must be > 0");
-  if (!(keyframe_rotation_deg > 0))
-    common::throwBadIniKey(s, "keyframe_rotation_deg", "must be > 0");
+  if (keyframe_policy != "motion" && keyframe_policy != "overlap")
+    common::throwBadIniKey(
+        s, "keyframe_policy",
+        "unknown value '" + keyframe_policy + "' (expected motion or overlap)");
+  if (!(keyframe_min_overlap >= 0 && keyframe_min_overlap < 1))
+    common::throwBadIniKey(s, "keyframe_min_overlap", "must be in [0, 1)");
+  // With the overlap policy the motion thresholds are optional bounds.
+  const bool motionPolicy = keyframe_policy == "motion";
+  if (motionPolicy ? !(keyframe_translation_m > 0) : !(keyframe_translation_m >= 0))
+    common::throwBadIniKey(
+        s, "keyframe_translation_m", motionPolicy ? "must be > 0" : "must be >= 0 (0 = no bound)");
+  if (motionPolicy ? !(keyframe_rotation_deg > 0) : !(keyframe_rotation_deg >= 0))
+    common::throwBadIniKey(
+        s, "keyframe_rotation_deg", motionPolicy ? "must be > 0" : "must be >= 0 (0 = no bound)");
   if (keyframe_min_inliers < 0)
     common::throwBadIniKey(s, "keyframe_min_inliers", "must be >= 0");
   if (recent_keyframes < 0)

@@ -18,6 +18,7 @@
 
 #include "CDepthIcp.h"
 #include "FeatureLifting.h"
+#include "KeyframeOverlap.h"
 #include "KeyframeRegistration.h"
 #include "RollingShutter.h"
 #include "Timing.h"
@@ -72,6 +73,11 @@ struct CRgbdOdometry::TImpl
     velocity = motion;
     velocityDt = haveStamp ? stamp - lastStamp : 0;
   }
+  /** The camera and depth range views are compared in (KeyframeOverlap.h). */
+  detail::TViewModel view(const cv::Size& image, const TOptions& o) const
+  {
+    return {pinhole, image, o.min_depth_m, o.max_depth_m};
+  }
   /** registerSets() with this odometry's matcher, RANSAC and camera. */
   std::optional<detail::TRegistration> registerSets(
       const TKeyframe& ref, const TKeyframe& cur, const TOptions& o,
@@ -112,9 +118,12 @@ struct CRgbdOdometry::TFrameWork
 
   // predictMotion
   std::size_t lastKf = 0;
-  /** World pose of the last tracked frame, and the prediction relative to
-   *  the last keyframe (constant velocity). */
-  mrpt::poses::CPose3D lastWorld, predictedRel;
+  /** World pose of the last tracked frame, the predicted one (constant
+   *  velocity), and the prediction relative to the last keyframe. */
+  mrpt::poses::CPose3D lastWorld, predictedWorld, predictedRel;
+  /** keyframe_policy = overlap: the keyframes to track against, best
+   *  overlapping the predicted view first (empty: the recent ones). */
+  std::vector<std::size_t> candidates;
 
   // trackFeatures, refine*
   std::optional<detail::TRegistration> reg;

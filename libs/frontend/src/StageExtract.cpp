@@ -96,8 +96,8 @@ void CRgbdOdometry::extractFeatures(TFrameWork& w) const
   const auto& o = m_options;
   const double minArea = std::min(1.0, o.roi_min_area_fraction * I.regionGrowth);
   if (describesRegions() && !m_keyframes.empty())
-    work.region =
-        detail::followRegion(m_keyframes[w.lastKf], w.predictedRel, I.pinhole, grey.size());
+    work.region = detail::followRegion(
+        m_keyframes[w.ref], w.predictedWorld - m_keyframes[w.ref].pose, I.pinhole, grey.size());
   // Its size is the one the registrations ask for now (regionGrowth, from
   // their determinacy), not the keyframe's: it shrinks back after a growth.
   if (!work.region.empty())

@@ -51,14 +51,25 @@ void CRgbdOdometry::startMap(TFrameWork& w)
 bool CRgbdOdometry::needsKeyframe(const TFrameWork& w) const
 {
   const TOptions& o = m_options;
-  // On the motion since the last keyframe, the inliers left, and whether the
-  // last keyframe still registered.
-  const mrpt::poses::CPose3D sinceLast = *w.res.pose - m_keyframes[w.lastKf].pose;
-  const double dist = sinceLast.translation().norm();
-  const double angDeg = detail::rotationAngle(sinceLast) * 180.0 / M_PI;
-  if (dist > o.keyframe_translation_m || angDeg > o.keyframe_rotation_deg || w.ref != w.lastKf)
+  const bool fewInliers =
+      isFeatureMethod(w.res.method) && static_cast<int>(w.res.inliers) < o.keyframe_min_inliers;
+  const bool overlap = usesOverlapPolicy();
+  // Motion policy: on the motion since the last keyframe, the inliers left,
+  // and whether the last keyframe still registered. Overlap policy: on what
+  // the frame still sees of its reference keyframe (wherever that was made),
+  // the inliers, and the motion since the reference as optional bounds.
+  const TKeyframe& from = m_keyframes[overlap ? w.ref : w.lastKf];
+  const mrpt::poses::CPose3D since = *w.res.pose - from.pose;
+  const double dist = since.translation().norm();
+  const double angDeg = detail::rotationAngle(since) * 180.0 / M_PI;
+  if (!overlap)
+    return dist > o.keyframe_translation_m || angDeg > o.keyframe_rotation_deg ||
+           w.ref != w.lastKf || fewInliers;
+  if ((o.keyframe_translation_m > 0 && dist > o.keyframe_translation_m) ||
+      (o.keyframe_rotation_deg > 0 && angDeg > o.keyframe_rotation_deg) || fewInliers)
     return true;
-  return isFeatureMethod(w.res.method) && static_cast<int>(w.res.inliers) < o.keyframe_min_inliers;
+  return detail::viewOverlap(from, since, m_impl->view(w.in.grey.size(), o)) <
+         o.keyframe_min_overlap;
 }
 
 void CRgbdOdometry::makeKeyframeConstraints(TFrameWork& w)

@@ -2,29 +2,70 @@
 // frame's features registered against the recent keyframes (the ROI's first
 // in ROI modes, the whole image's when those fail or leave the pose poorly
 // determined).
+#include <roislam/frontend/PoseUncertainty.h>
+
 #include <algorithm>
+#include <cmath>
+#include <optional>
+#include <tuple>
 
 #include "OdometryWork.h"
 
 namespace roislam::frontend
 {
+namespace
+{
+/** Overlap policy: whether a registration against a keyframe may make it the
+ *  reference. A keyframe without an ICP map (not a recent one: a revisited
+ *  place) cannot have a poorly determined registration refined with depth
+ *  (refineWithDepth), so it must not need that: at most icp_refine_sigma_m
+ *  along its worst direction, and enough inliers not to make a keyframe. */
+bool acceptsReference(
+    bool hasIcpMap, const detail::TRegistration& r, const CRgbdOdometry::TOptions& o)
+{
+  if (o.keyframe_policy != "overlap" || hasIcpMap)
+    return true;
+  if (static_cast<int>(r.inliers) < o.keyframe_min_inliers)
+    return false;
+  const auto s = worstSigmas(detail::toMrptEstimate(r).second);
+  return s && !(o.icp_refine_sigma_m > 0 && s->translation_m > o.icp_refine_sigma_m);
+}
+}  // namespace
+
 void CRgbdOdometry::registerWithRecent(const TKeyframe& query, TFrameWork& w) const
 {
-  // The last keyframe, then the recent older ones, until one registers.
+  // The overlap policy's candidates, then the last keyframe and the recent
+  // older ones, until one registers (the last keyframe is always tried).
   const std::size_t nTry = 1 + static_cast<std::size_t>(m_options.recent_keyframes);
-  for (std::size_t k = 0; k < nTry && k <= w.lastKf; ++k)
+  std::vector<std::size_t> order = w.candidates;
+  for (std::size_t k = 0; k <= w.lastKf && (k == 0 || order.size() < nTry); ++k)
+    if (std::find(order.begin(), order.end(), w.lastKf - k) == order.end())
+      order.push_back(w.lastKf - k);
+  std::optional<std::tuple<detail::TRegistration, std::size_t, std::size_t>> fallback;
+  for (std::size_t k = 0; k < order.size(); ++k)
   {
-    const std::size_t id = w.lastKf - k;
+    const std::size_t id = order[k];
     std::size_t nm = 0;
     w.reg = m_impl->registerSets(m_keyframes[id], query, m_options, &nm, &w.res.times);
     if (k == 0 || w.reg)
       w.res.matches = nm;
+    if (w.reg && k + 1 < order.size() &&
+        !acceptsReference(m_impl->icpMaps.count(id) > 0, *w.reg, m_options))
+    {
+      // Kept in case no later candidate registers.
+      if (!fallback)
+        fallback = {*w.reg, id, nm};
+      w.reg.reset();
+      continue;
+    }
     if (w.reg)
     {
       w.ref = id;
       return;
     }
   }
+  if (fallback)
+    std::tie(w.reg, w.ref, w.res.matches) = *fallback;
 }
 
 void CRgbdOdometry::predictMotion(TFrameWork& w) const
@@ -36,8 +77,22 @@ void CRgbdOdometry::predictMotion(TFrameWork& w) const
   w.lastWorld = m_keyframes[w.lastKf].pose;
   if (I.haveLast)
     w.lastWorld = m_keyframes[I.lastRef].pose + I.lastRel;
-  const mrpt::poses::CPose3D predictedWorld = w.lastWorld + I.velocity;
-  w.predictedRel = predictedWorld - m_keyframes[w.lastKf].pose;
+  w.predictedWorld = w.lastWorld + I.velocity;
+  w.predictedRel = w.predictedWorld - m_keyframes[w.lastKf].pose;
+  if (!usesOverlapPolicy())
+    return;
+  // The reference: the newest keyframe whose view still overlaps the
+  // predicted one enough (and within the motion bounds), else the one that
+  // overlaps best, wherever it was made: a revisit tracks against the old
+  // keyframes. 100 points per keyframe give the overlap to about 5 %.
+  const std::size_t nTry = 1 + static_cast<std::size_t>(m_options.recent_keyframes);
+  const detail::TReferenceGate gate{
+      m_options.keyframe_min_overlap, m_options.keyframe_translation_m,
+      m_options.keyframe_rotation_deg * M_PI / 180.0};
+  w.candidates = detail::referenceCandidates(
+      m_keyframes, w.predictedWorld, I.view(w.in.grey.size(), m_options), gate, nTry, 100);
+  if (!w.candidates.empty())
+    w.ref = w.candidates.front();
 }
 
 void CRgbdOdometry::trackFeatures(TFrameWork& w)

@@ -96,8 +96,42 @@
  *                             closures and fallbacks, and at 0.5 costs a
  *                             quarter (SIFT, ORB, SURF scale with the pixels)
  *  - min_inliers              int >= 3 (15): fewer inliers -> features failed
- *  - keyframe_translation_m   [m] > 0 (0.10): new keyframe beyond this distance
- *  - keyframe_rotation_deg    [deg] > 0 (10): ... or beyond this rotation angle
+ *  - keyframe_policy          motion|overlap (motion): when a frame becomes a
+ *                             keyframe and which keyframe it is tracked against.
+ *                             motion: beyond keyframe_translation_m or
+ *                             keyframe_rotation_deg from the last keyframe, or
+ *                             below keyframe_min_inliers, or registered only
+ *                             against an older keyframe; every frame is tracked
+ *                             against the last keyframe first. overlap: each
+ *                             frame is tracked against the newest keyframe
+ *                             whose view overlaps its predicted view by at
+ *                             least keyframe_min_overlap (and lies within the
+ *                             motion bounds below), else the best-overlapping
+ *                             one wherever it was made (a revisit re-uses the
+ *                             keyframes made there; a keyframe without an ICP
+ *                             map is accepted only when its registration needs
+ *                             no depth refinement, icp_refine_sigma_m, and has
+ *                             keyframe_min_inliers), and becomes
+ *                             a keyframe when its view overlap with that
+ *                             reference falls below keyframe_min_overlap or
+ *                             its inliers below keyframe_min_inliers; the
+ *                             motion thresholds, when > 0, stay upper bounds
+ *                             (measured from the reference keyframe)
+ *  - keyframe_min_overlap     [0, 1) (0.5): keyframe_policy = overlap, the
+ *                             share of the reference keyframe's feature points
+ *                             the frame's view must still contain (projected
+ *                             with the frame's pose, in front, within the
+ *                             depth range, inside the image; KeyframeOverlap.h).
+ *                             0.5: consecutive keyframes share half a view, so
+ *                             every part of the scene the camera sweeps over
+ *                             is seen by 1 / (1 - 0.5) = 2 keyframes, the
+ *                             fewest that still give each place a second view
+ *                             for edges and loop closures
+ *  - keyframe_translation_m   [m] (0.10): new keyframe beyond this distance;
+ *                             > 0 with keyframe_policy = motion, >= 0 (0 = no
+ *                             bound) with overlap
+ *  - keyframe_rotation_deg    [deg] (10): ... or beyond this rotation angle
+ *                             (> 0, or >= 0 with overlap, as above)
  *  - keyframe_min_inliers     int >= 0 (20): ... or when inliers drop below this
  *  - recent_keyframes         int >= 0 (3): older keyframes (besides the
  *                             reference) tried for tracking fallback and for
@@ -220,6 +254,8 @@ class CRgbdOdometry : public mrpt::system::COutputLogger
     double keyframe_translation_m = 0.10;
     double keyframe_rotation_deg = 10.0;
     int keyframe_min_inliers = 20;
+    std::string keyframe_policy = "motion";
+    double keyframe_min_overlap = 0.5;
     int recent_keyframes = 3;
     double ransac_threshold_m = 0.03;
     int ransac_max_iterations = 200;
@@ -355,6 +391,8 @@ class CRgbdOdometry : public mrpt::system::COutputLogger
   /** Pose from the registration, or from the fallbacks; false when Lost. */
   bool resolvePose(TFrameWork& w);
   bool needsKeyframe(const TFrameWork& w) const;
+  /** keyframe_policy = overlap. */
+  bool usesOverlapPolicy() const { return m_options.keyframe_policy == "overlap"; }
   void makeKeyframeConstraints(TFrameWork& w);
   void insertKeyframe(TFrameWork& w, const mrpt::poses::CPose3D& pose);
   /** Remembers the frame as the last tracked one, counts it, times it. */
