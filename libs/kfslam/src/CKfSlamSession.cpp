@@ -121,10 +121,11 @@ void CKfSlamSession::addFrame(
         "kf-slam: observation sensor pose " + processed.sensorLocationOnRobot.asString() +
         " differs from the session's " + m_setup.sensorPose.asString());
   const auto result = m_odometry.process(frame);
-  const auto observation = m_conditioner.condition(
-      processed, frame.camera, mrpt::Clock::toDouble(processed.timestamp), result.pose);
   mrpt::obs::CActionRobotMovement3D move;
   move.poseChange = m_increments.next(result);
+  m_conditioner.addMotion(move.poseChange.cov);
+  const auto observation = m_conditioner.condition(
+      processed, frame.camera, mrpt::Clock::toDouble(processed.timestamp), result.pose);
   move.estimationMethod = mrpt::obs::CActionRobotMovement3D::emVisualOdometry;
   move.timestamp = mrpt::Clock::fromDouble(frame.timestamp);
   mrpt::obs::CActionCollection actions;

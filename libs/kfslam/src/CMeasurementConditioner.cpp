@@ -52,8 +52,9 @@ CMeasurementConditioner::CMeasurementConditioner(
 
 bool CMeasurementConditioner::withinGate(
     const mrpt::obs::CObservationBearingRange::TMeasurement& m,
-    const mrpt::poses::CPose3D& cameraPose, const std::vector<mrpt::math::TPoint3D>& seen) const
+    const mrpt::poses::CPose3D& cameraPose, const TTrack& track) const
 {
+  const auto& seen = track.points;
   // The landmark's reference point as this camera would measure it.
   const auto q = cameraPose.inverseComposePoint(medianPoint(seen));
   double range, yaw, pitch;
@@ -66,7 +67,15 @@ bool CMeasurementConditioner::withinGate(
   for (int r = 0; r < 3; ++r)
     for (int k = 0; k < 3; ++k)
       c(r, k) = m.covariance(r, k);
-  c *= 1.0 + 1.0 / static_cast<double>(seen.size());
+  const double n = static_cast<double>(seen.size());
+  c *= 1.0 + 1.0 / n;
+  // The odometry's drift since the reference's sightings (their mean epoch):
+  // in range, and in bearing from the translation at this range and the turn.
+  const double driftT = std::max(0.0, m_driftT - track.driftTSum / n);
+  const double driftR = std::max(0.0, m_driftR - track.driftRSum / n);
+  c(0, 0) += driftT;
+  c(1, 1) += driftT / (range * range) + driftR;
+  c(2, 2) += driftT / (range * range) + driftR;
   const Eigen::LDLT<Eigen::Matrix3d> ldlt(c);
   if (ldlt.info() != Eigen::Success || !(c.determinant() > 0))
     return true;
@@ -92,6 +101,12 @@ void CMeasurementConditioner::rectify(
   m.range = static_cast<float>(range);
   m.yaw = static_cast<float>(std::atan2(-Y.x(), Y.z()));
   m.pitch = static_cast<float>(-std::asin(-Y.y() / range));
+}
+
+void CMeasurementConditioner::addMotion(const mrpt::math::CMatrixDouble66& covariance)
+{
+  m_driftT += (covariance(0, 0) + covariance(1, 1) + covariance(2, 2)) / 3;
+  m_driftR += (covariance(3, 3) + covariance(4, 4) + covariance(5, 5)) / 3;
 }
 
 mrpt::obs::CObservationBearingRange CMeasurementConditioner::condition(
@@ -128,13 +143,15 @@ mrpt::obs::CObservationBearingRange CMeasurementConditioner::condition(
       rectify(m, camera, m_readoutS, rate->first, rate->second);
     if (m_gateChi2 > 0 && cameraPose)
     {
-      auto& seen = m_worldPoints[m.landmarkID];
-      if (!seen.empty() && !withinGate(m, *cameraPose, seen))
+      auto& track = m_tracks[m.landmarkID];
+      if (!track.points.empty() && !withinGate(m, *cameraPose, track))
       {
         ++m_gated;
         continue;
       }
-      seen.push_back(cameraPose->composePoint(opticalPoint(m)));
+      track.points.push_back(cameraPose->composePoint(opticalPoint(m)));
+      track.driftTSum += m_driftT;
+      track.driftRSum += m_driftR;
     }
     m_lastMeasured[m.landmarkID] = stamp;
     out.sensedData.push_back(m);

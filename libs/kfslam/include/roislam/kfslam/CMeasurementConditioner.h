@@ -31,13 +31,14 @@
  * poses and seen from this frame's, predicts range / yaw / pitch, and the
  * innovation's Mahalanobis distance under the measurement's own covariance
  * (the processor's per-frame noise model) times (1 + 1/n), n earlier
- * measurements, is within the chi-square quantile of this probability
- * (3 degrees of freedom). Odometry drift between sightings counts against
- * the measurement. 0 = no gate.
+ * measurements, plus the odometry's drift since their sightings (the
+ * frames' motion covariances, addMotion), is within the chi-square quantile
+ * of this probability (3 degrees of freedom). 0 = no gate.
  */
 #pragma once
 
 #include <mrpt/img/TCamera.h>
+#include <mrpt/math/CMatrixFixed.h>
 #include <mrpt/obs/CObservationBearingRange.h>
 #include <mrpt/poses/CPose3D.h>
 
@@ -55,6 +56,10 @@ class CMeasurementConditioner
    *  rectify = false: no correction); intervalS >= 0 (0: every frame). */
   CMeasurementConditioner(
       bool rectify, double readoutMs, double intervalS, double gateProbability = 0);
+
+  /** The frame's odometry motion covariance (x y z yaw pitch roll), before
+   *  condition() of the same frame: the drift the gate allows for. */
+  void addMotion(const mrpt::math::CMatrixDouble66& covariance);
 
   /** The observation the filter gets for a frame at stamp whose optical
    *  camera pose the odometry gave (nullopt: lost, no correction). */
@@ -78,14 +83,22 @@ class CMeasurementConditioner
   double m_readoutS;
   double m_intervalS;
   std::optional<std::pair<double, mrpt::poses::CPose3D>> m_previous;
+  /** A landmark's passed measurements: world points (odometry poses) and
+   *  the sums of the cumulative drift variances at their frames. */
+  struct TTrack
+  {
+    std::vector<mrpt::math::TPoint3D> points;
+    double driftTSum = 0, driftRSum = 0;
+  };
   bool withinGate(
       const mrpt::obs::CObservationBearingRange::TMeasurement& m,
-      const mrpt::poses::CPose3D& cameraPose, const std::vector<mrpt::math::TPoint3D>& seen) const;
+      const mrpt::poses::CPose3D& cameraPose, const TTrack& track) const;
 
   double m_gateChi2;
   std::map<int32_t, double> m_lastMeasured;
-  /** Per landmark: the world points of its passed measurements. */
-  std::map<int32_t, std::vector<mrpt::math::TPoint3D>> m_worldPoints;
+  std::map<int32_t, TTrack> m_tracks;
+  /** Cumulative per-axis odometry variance: translation (m^2), rotation (rad^2). */
+  double m_driftT = 0, m_driftR = 0;
   std::size_t m_skipped = 0, m_gated = 0;
 };
 }  // namespace roislam::kfslam
