@@ -280,7 +280,11 @@ TEST(KfSlamOptions, BadValuesNameTheirKey)
            {"odometry_sigma_m", "-1"},
            {"odometry_sigma_deg", "x"},
            {"weak_sigma_m", "0"},
-           {"weak_sigma_deg", "-2"}})
+           {"weak_sigma_deg", "-2"},
+           {"landmark_rolling_shutter", "maybe"},
+           {"remeasure_interval_s", "-0.1"},
+           {"landmark_gate_probability", "1"},
+           {"landmark_gate_probability", "-0.5"}})
     EXPECT_NE(errorOf(key, value).find("[KfSlam] " + key), std::string::npos) << key;
   EXPECT_EQ(errorOf("odometry_covariance", "fixed"), "");
   TKfSlamOptions a;

@@ -98,7 +98,10 @@ CKfSlamSession::CKfSlamSession(const TSetup& setup)
       m_kfSlamIni(resolve(setup.options.kf_slam_ini, setup.iniDir)),
       m_filter(m_kfSlamIni),
       m_odometry(frontEndOptions(setup)),
-      m_increments(setup.options, setup.sensorPose)
+      m_increments(setup.options, setup.sensorPose),
+      m_conditioner(
+          setup.options.landmark_rolling_shutter, m_odometry.options().rolling_shutter_ms,
+          setup.options.remeasure_interval_s, setup.options.landmark_gate_probability)
 {
   std::error_code ec;
   fs::create_directories(setup.outputDir, ec);
@@ -111,15 +114,18 @@ std::string CKfSlamSession::rawlogFile() const
 }
 
 void CKfSlamSession::addFrame(
-    const io::TRGBDFrame& frame, const mrpt::obs::CObservationBearingRange& observation)
+    const io::TRGBDFrame& frame, const mrpt::obs::CObservationBearingRange& processed)
 {
-  if (!(observation.sensorLocationOnRobot == m_setup.sensorPose))
+  if (!(processed.sensorLocationOnRobot == m_setup.sensorPose))
     throw std::invalid_argument(
-        "kf-slam: observation sensor pose " + observation.sensorLocationOnRobot.asString() +
+        "kf-slam: observation sensor pose " + processed.sensorLocationOnRobot.asString() +
         " differs from the session's " + m_setup.sensorPose.asString());
   const auto result = m_odometry.process(frame);
   mrpt::obs::CActionRobotMovement3D move;
   move.poseChange = m_increments.next(result);
+  m_conditioner.addMotion(move.poseChange.cov);
+  const auto observation = m_conditioner.condition(
+      processed, frame.camera, mrpt::Clock::toDouble(processed.timestamp), result.pose);
   move.estimationMethod = mrpt::obs::CActionRobotMovement3D::emVisualOdometry;
   move.timestamp = mrpt::Clock::fromDouble(frame.timestamp);
   mrpt::obs::CActionCollection actions;
@@ -184,6 +190,8 @@ nlohmann::json CKfSlamSession::finish(const std::optional<io::TTrajectory>& gt)
   j["odometry_covariance"] = m_setup.options.odometry_covariance;
   j["frames"] = m_stamps.size();
   j["measurements"] = m_measurements;
+  j["measurements_skipped"] = m_conditioner.skipped();
+  j["measurements_gated"] = m_conditioner.gated();
   j["landmarks"] = run.landmarks.size();
   j["first_landmark_frame"] = orNull(run.firstLandmarkStep);
   j["filter_s"] = run.seconds;

@@ -15,6 +15,11 @@ void TKfSlamOptions::loadFromConfigFile(
   odometry_sigma_deg = common::readDouble(c, s, "odometry_sigma_deg", odometry_sigma_deg);
   weak_sigma_m = common::readDouble(c, s, "weak_sigma_m", weak_sigma_m);
   weak_sigma_deg = common::readDouble(c, s, "weak_sigma_deg", weak_sigma_deg);
+  landmark_rolling_shutter =
+      common::readBool(c, s, "landmark_rolling_shutter", landmark_rolling_shutter);
+  remeasure_interval_s = common::readDouble(c, s, "remeasure_interval_s", remeasure_interval_s);
+  landmark_gate_probability =
+      common::readDouble(c, s, "landmark_gate_probability", landmark_gate_probability);
   validate(s);
 }
 
@@ -27,6 +32,9 @@ void TKfSlamOptions::saveToConfigFile(mrpt::config::CConfigFileBase& c, const st
   c.write(s, "odometry_sigma_deg", odometry_sigma_deg);
   c.write(s, "weak_sigma_m", weak_sigma_m);
   c.write(s, "weak_sigma_deg", weak_sigma_deg);
+  c.write(s, "landmark_rolling_shutter", landmark_rolling_shutter);
+  c.write(s, "remeasure_interval_s", remeasure_interval_s);
+  c.write(s, "landmark_gate_probability", landmark_gate_probability);
 }
 
 void TKfSlamOptions::validate(const std::string& s) const
@@ -42,5 +50,10 @@ void TKfSlamOptions::validate(const std::string& s) const
     common::throwBadIniKey(s, "odometry_sigma_m", "odometry_covariance = fixed needs a sigma > 0");
   common::require(weak_sigma_m > 0, s, "weak_sigma_m", weak_sigma_m, "> 0");
   common::require(weak_sigma_deg > 0, s, "weak_sigma_deg", weak_sigma_deg, "> 0");
+  common::require(
+      remeasure_interval_s >= 0, s, "remeasure_interval_s", remeasure_interval_s, ">= 0");
+  common::require(
+      landmark_gate_probability >= 0 && landmark_gate_probability < 1, s,
+      "landmark_gate_probability", landmark_gate_probability, "in [0, 1)");
 }
 }  // namespace roislam::kfslam

@@ -15,6 +15,7 @@
  *  - measurements.txt every measurement of the rawlog: stamp, landmark ID,
  *                    range, yaw, pitch and their sigmas (the consistency
  *                    checks of the README read it with ground truth)
+ *                    (as the filter gets them: CMeasurementConditioner)
  *  - motions.txt     every action: stamp, robot motion (x y z yaw pitch
  *                    roll) and its 6x6 covariance
  * and, with ground truth, <outputDir>/kf-slam.landmarks_gt.txt, the
@@ -30,6 +31,7 @@
 #include <roislam/io/TRGBDFrame.h>
 #include <roislam/io/TumTrajectory.h>
 #include <roislam/kfslam/CKfSlamFilter.h>
+#include <roislam/kfslam/CMeasurementConditioner.h>
 #include <roislam/kfslam/COdometryIncrements.h>
 #include <roislam/kfslam/KfSlamPath.h>
 #include <roislam/kfslam/TKfSlamOptions.h>
@@ -99,6 +101,7 @@ class CKfSlamSession
   CKfSlamFilter m_filter;
   frontend::CRgbdOdometry m_odometry;
   COdometryIncrements m_increments;
+  CMeasurementConditioner m_conditioner;
   std::unique_ptr<io::CRawlogWriter> m_rawlog;
   /** Per frame: the odometry's robot pose and the stamp. */
   std::vector<mrpt::poses::CPose3D> m_odometryRobot;

@@ -27,6 +27,19 @@
  *                         frames the front end extrapolated (constant
  *                         velocity) or lost, and registrations whose
  *                         information is singular
+ *  What the filter is given of the landmark observations (CMeasurementConditioner.h):
+ *  - landmark_rolling_shutter  bool (default false): carry each landmark
+ *                         measurement to the middle row's time with the
+ *                         front end's readout and the frame's odometry
+ *                         velocity, as the front end does with its keypoints
+ *  - remeasure_interval_s [s] >= 0 (default 0: every frame): a landmark is
+ *                         measured again only this long after its last
+ *                         measurement (its errors decorrelate over about 10
+ *                         frames at 30 Hz)
+ *  - landmark_gate_probability  in [0, 1) (default 0: no gate): a
+ *                         measurement that disagrees with its landmark's
+ *                         earlier ones beyond this chi-square quantile
+ *                         (3 dof, its own covariance) is not passed
  * A bad value throws std::invalid_argument "[KfSlam] key: why".
  */
 #pragma once
@@ -46,6 +59,9 @@ struct TKfSlamOptions : public mrpt::config::CLoadableOptions
   double odometry_sigma_deg = 0.1;
   double weak_sigma_m = 0.05;
   double weak_sigma_deg = 5;
+  bool landmark_rolling_shutter = false;
+  double remeasure_interval_s = 0;
+  double landmark_gate_probability = 0;
 
   void loadFromConfigFile(
       const mrpt::config::CConfigFileBase& source, const std::string& section) override;
