@@ -1,5 +1,6 @@
 #include "RollingShutter.h"
 
+#include <roislam/geometry/RollingShutterMotion.h>
 #include <roislam/geometry/Rotation.h>
 
 #include <cmath>
@@ -27,7 +28,7 @@ Eigen::Vector3d rectifyPoint(
     const TPinhole& pinhole)
 {
   const Eigen::Vector3d X = pinhole.backProject(rawPixel, rawZ);
-  return geometry::expSO3(rate.omega * s) * X + rate.linear * s;
+  return geometry::carryToReferenceRow(X, rate.omega, rate.linear, s);
 }
 
 void rectifyRollingShutter(

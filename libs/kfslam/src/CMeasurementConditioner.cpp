@@ -2,6 +2,7 @@
 
 #include <mrpt/math/distributions.h>
 #include <mrpt/math/wrap2pi.h>
+#include <roislam/geometry/RollingShutterMotion.h>
 #include <roislam/geometry/Rotation.h>
 
 #include <algorithm>
@@ -93,7 +94,7 @@ void CMeasurementConditioner::rectify(
   const double row = camera.fy() * X.y() / X.z() + camera.cy();
   const double s = (row / camera.nrows - 0.5) * readoutS;
   const Eigen::Vector3d w(omega.x, omega.y, omega.z), lin(v.x, v.y, v.z);
-  const Eigen::Vector3d Y = geometry::expSO3(w * s) * X + lin * s;
+  const Eigen::Vector3d Y = geometry::carryToReferenceRow(X, w, lin, s);
   if (!(Y.z() > 0))
     return;
   // Back to range / yaw / pitch (CPose3D::sphericalCoordinates of (z, -x, -y)).
