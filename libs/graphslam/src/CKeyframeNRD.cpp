@@ -99,7 +99,8 @@ bool CKeyframeNRD::registerFrame(const frontend::TFrameResult& r)
   g.insertEdgeAtEnd(
       static_cast<mrpt::graphs::TNodeID>(c.fromKeyframe), id,
       mrpt::poses::CPose3DPDFGaussianInf(
-          c.relativePose, ctx->edgeInformation(c.information, c.method, c.inliers)));
+          c.relativePose,
+          ctx->edgeInformation(c.information, c.method, c.inliers, c.edgeInformation)));
   this->m_prev_registered_nodeID = id;
   return true;
 }

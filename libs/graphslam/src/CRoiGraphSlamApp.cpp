@@ -9,6 +9,7 @@
 #include <roislam/graphslam/CSlamOutputWriter.h>
 #include <roislam/graphslam/CSlamPipeline.h>
 #include <roislam/io/CFrameSource.h>
+#include <roislam/io/TSensorDescription.h>
 #include <roislam/io/TumTrajectory.h>
 #include <sys/resource.h>
 
@@ -65,6 +66,25 @@ std::string CRoiGraphSlamApp::TSummary::resultLine() const
     ss << ", FAILED (" << lostFrames << " frames lost)";
   return ss.str();
 }
+
+namespace
+{
+/** The depth-noise model of the sensor description beside the data (a TUM
+ *  folder's camera.ini with a [SensorDescription], as rgbd-simul writes),
+ *  else the Kinect v1's. The one place the front end learns it from. */
+io::TSensorDescription::TDepthNoise sensorDepthNoise(const std::string& input)
+{
+  const fs::path ini = fs::path(input) / "camera.ini";
+  if (!fs::is_directory(input) || !fs::is_regular_file(ini))
+    return {};
+  mrpt::config::CConfigFile cfg(ini.string());
+  if (!cfg.sectionExists(io::sensorSection()))
+    return {};
+  io::TSensorDescription d;
+  d.loadFromConfigFile(cfg, io::sensorSection());
+  return d.depth_noise;
+}
+}  // namespace
 
 std::string CRoiGraphSlamApp::listRegistrars(const std::string& type)
 {
@@ -141,6 +161,12 @@ CRoiGraphSlamApp::TEvaluation CRoiGraphSlamApp::evaluate(
         odometryOnly.push_back({r.result.timestamp, *r.result.pose});
     ev.odometryAte =
         evaluation::CTrajectoryEvaluator().evaluate(ev.groundTruth, odometryOnly).ate.rmse;
+    const auto& keyframes = pipeline.context().odometry().keyframes();
+    ev.edgeChi2 = evaluation::edgeChi2(
+        pipeline.graph(),
+        [&keyframes](mrpt::graphs::TNodeID id)
+        { return id < keyframes.size() ? keyframes[id].timestamp : -1.0; },
+        ev.groundTruth);
   }
   catch (const std::exception& e)
   {
@@ -243,6 +269,7 @@ nlohmann::json CRoiGraphSlamApp::summaryJson(
   j["rpe_trans_rmse"] = optionalJson(s.rpeTransRmse);
   j["rpe_rot_rmse_deg"] = optionalJson(s.rpeRotRmseDeg);
   j["frontend_ate_rmse"] = optionalJson(ev.odometryAte);
+  j["edge_chi2"] = ev.edgeChi2 ? evaluation::toJson(*ev.edgeChi2) : nlohmann::json(nullptr);
   j["evaluation"] = ev.result ? evaluation::toJson(*ev.result) : nlohmann::json(nullptr);
   if (!ev.error.empty())
     j["evaluation_error"] = ev.error;
@@ -258,6 +285,7 @@ CRoiGraphSlamApp::TSummary CRoiGraphSlamApp::run()
       " frames, mode " + frontend::toString(m_config.frontEnd.mode) + ", " +
       features::toString(m_config.frontEnd.extractor.feature_type));
 
+  m_config.frontEnd.depth_noise = sensorDepthNoise(m_args.input);
   mrpt::system::CTicTac wall;
   const std::size_t total = source->size();
   CSlamPipeline pipeline(m_config, std::move(source));

@@ -104,10 +104,11 @@ void CSlamContext::TOptions::validate() const
     badKey("optimize_every_keyframes", "must be >= 1");
   if (optimize_window_keyframes < 0)
     badKey("optimize_window_keyframes", "must be >= 0");
-  if (edge_information != "frontend" && edge_information != "diagonal")
+  if (edge_information != "frontend" && edge_information != "diagonal" &&
+      edge_information != "estimator")
     badKey(
         "edge_information",
-        "unknown value '" + edge_information + "' (expected frontend or diagonal)");
+        "unknown value '" + edge_information + "' (expected estimator, frontend or diagonal)");
   if (map_decimation < 1)
     badKey("map_decimation", "must be >= 1");
   if (!(map_max_depth_m > 0))
@@ -265,9 +266,11 @@ std::vector<std::pair<std::size_t, ELoopSource>> CSlamContext::loopCandidates(
 
 frontend::TInformation66 CSlamContext::edgeInformation(
     const frontend::TInformation66& frontEndInformation, frontend::ETrackingMethod method,
-    std::size_t inliers) const
+    std::size_t inliers, const frontend::TInformation66& estimatorInformation) const
 {
   const auto& o = m_config.backEnd;
+  if (o.edge_information == "estimator")
+    return estimatorInformation;
   if (o.edge_information == "frontend" || method == frontend::ETrackingMethod::ConstantVelocity)
     return frontEndInformation;
   // Isotropic blocks also sidestep the (yaw, pitch, roll) vs rotation-vector

@@ -28,6 +28,7 @@
  */
 #pragma once
 
+#include <roislam/evaluation/EdgeChi2.h>
 #include <roislam/evaluation/TEvaluationResult.h>
 #include <roislam/graphslam/CSlamContext.h>
 #include <roislam/graphslam/CSlamPipeline.h>
@@ -99,6 +100,8 @@ class CRoiGraphSlamApp
     std::optional<evaluation::TEvaluationResult> result;
     /** ATE of the causal front-end estimate (poses as tracked). */
     std::optional<double> odometryAte;
+    /** The graph edges' chi² against the ground truth's relative poses. */
+    std::optional<evaluation::TEdgeChi2> edgeChi2;
     /** Why the evaluation failed (empty when it did not). */
     std::string error;
   };
