@@ -69,20 +69,20 @@ std::string CRoiGraphSlamApp::TSummary::resultLine() const
 
 namespace
 {
-/** The depth-noise model of the sensor description beside the data (a TUM
- *  folder's camera.ini with a [SensorDescription], as rgbd-simul writes),
- *  else the Kinect v1's. The one place the front end learns it from. */
-io::TSensorDescription::TDepthNoise sensorDepthNoise(const std::string& input)
+/** The sensor description beside the data (a TUM folder's camera.ini with a
+ *  [SensorDescription], as rgbd-simul writes), if any: the one place the
+ *  front end learns the camera's facts from. */
+std::optional<io::TSensorDescription> sensorDescriptionOf(const std::string& input)
 {
   const fs::path ini = fs::path(input) / "camera.ini";
   if (!fs::is_directory(input) || !fs::is_regular_file(ini))
-    return {};
+    return std::nullopt;
   mrpt::config::CConfigFile cfg(ini.string());
   if (!cfg.sectionExists(io::sensorSection()))
-    return {};
+    return std::nullopt;
   io::TSensorDescription d;
   d.loadFromConfigFile(cfg, io::sensorSection());
-  return d.depth_noise;
+  return d;
 }
 }  // namespace
 
@@ -285,7 +285,19 @@ CRoiGraphSlamApp::TSummary CRoiGraphSlamApp::run()
       " frames, mode " + frontend::toString(m_config.frontEnd.mode) + ", " +
       features::toString(m_config.frontEnd.extractor.feature_type));
 
-  m_config.frontEnd.depth_noise = sensorDepthNoise(m_args.input);
+  // Camera facts come from the sensor: a global-shutter camera corrected for
+  // the mode config's 25 ms Kinect readout loses accuracy (ICL-like
+  // synthetic loop, traditional SIFT: 0.0016 m with its 0 ms, 0.0054 m with
+  // 25).
+  if (const auto sensor = sensorDescriptionOf(m_args.input))
+  {
+    m_config.frontEnd.depth_noise = sensor->depth_noise;
+    m_config.frontEnd.rolling_shutter_ms = sensor->signedReadoutMs();
+    progress(
+        "roi-graphslam: sensor description " + (fs::path(m_args.input) / "camera.ini").string() +
+        ": readout " + std::to_string(sensor->signedReadoutMs()) + " ms, depth noise " +
+        sensor->depth_noise.model);
+  }
   mrpt::system::CTicTac wall;
   const std::size_t total = source->size();
   CSlamPipeline pipeline(m_config, std::move(source));

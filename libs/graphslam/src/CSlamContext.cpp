@@ -3,6 +3,7 @@
 #include <mrpt/system/CTicTac.h>
 #include <roislam/common/IniErrors.h>
 #include <roislam/common/IniKeyCheck.h>
+#include <roislam/evaluation/EdgeChi2.h>
 #include <roislam/graphslam/CSlamContext.h>
 
 #include <algorithm>
@@ -329,7 +330,7 @@ TOptimizationReport CSlamContext::optimize(TGraph& graph, std::size_t window)
       const auto it = graph.edges.find(key);
       if (it == graph.edges.end())
         continue;
-      if (graph.getEdgeSquareError(it, false) > m_config.backEnd.loop_outlier_chi2)
+      if (edgeChi2(graph, it) > m_config.backEnd.loop_outlier_chi2)
         outliers.push_back(i);
     }
     if (outliers.empty())
@@ -349,6 +350,13 @@ TOptimizationReport CSlamContext::optimize(TGraph& graph, std::size_t window)
   r.chi2After = graph.chi2();
   r.seconds = timer.Tac();
   return r;
+}
+
+double CSlamContext::edgeChi2(const TGraph& graph, TGraph::edges_map_t::const_iterator it)
+{
+  const auto& [ids, edge] = *it;
+  return evaluation::edgeChi2(
+      edge.mean, edge.cov_inv, graph.nodes.at(ids.second) - graph.nodes.at(ids.first));
 }
 
 void CSlamContext::correctFrontEnd(const TGraph& graph)

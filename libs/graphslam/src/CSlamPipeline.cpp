@@ -70,7 +70,7 @@ double CSlamPipeline::worstClosureError(std::size_t firstLoop) const
         static_cast<mrpt::graphs::TNodeID>(loops[i].fromKeyframe),
         static_cast<mrpt::graphs::TNodeID>(loops[i].toKeyframe)));
     if (it != m_graph.edges.end())
-      worst = std::max(worst, m_graph.getEdgeSquareError(it, false));
+      worst = std::max(worst, CSlamContext::edgeChi2(m_graph, it));
   }
   return worst;
 }

@@ -211,6 +211,13 @@ class CSlamContext
       std::size_t inliers,
       const frontend::TInformation66& estimatorInformation = frontend::TInformation66()) const;
 
+  /** Squared Mahalanobis error of edge `it` against the graph's node poses
+   *  in the residual SPA minimises (pseudo-log of inv(edge) (+) inv(P1) (+)
+   *  P2). MRPT's getEdgeSquareError() measures (x y z yaw pitch roll) in the
+   *  world frame instead, which disagrees with it whenever the information
+   *  is not isotropic (and its SO(3) log is not used: NaN at zero error). */
+  static double edgeChi2(const TGraph& graph, TGraph::edges_map_t::const_iterator it);
+
   /** Records an accepted closure (counted in loopClosures()). */
   void addLoopClosure(const TLoopClosure& lc) { m_loops.push_back(lc); }
   /** Accepted closures still in the graph. */
