@@ -52,8 +52,8 @@ struct TRefineResult
   Matrix6d information = Matrix6d::Zero();
   /** The estimator's information of the same delta, for the pose graph:
    *  each residual weighted by its covariance from the pixel noise of both
-   *  keypoints and the depth noise of the point it reprojects, halved because
-   *  both directions use the same measurements, and scaled by the
+   *  keypoints (doubled: both directions use the same keypoints) and the
+   *  depth noise of the point it reprojects, and scaled by the
    *  a-posteriori variance factor of the fit (the residuals' own spread). */
   Matrix6d edgeInformation = Matrix6d::Zero();
   std::vector<std::size_t> inliers;
