@@ -1,12 +1,14 @@
 /* roi-graphslam-engine: MRPT's CGraphSlamEngine<CNetworkOfPoses3DInf> on an
  * RGB-D rawlog, with the command line of MRPT's graphslam-engine and our
  * deciders chosen by name (CKeyframeNRD, CKeyframeERD, CKeyframeGSO by
- * default), headless; writes the same outputs as roi-graphslam into
+ * default), headless unless --gui (the live view, as roi-graphslam's); writes the same outputs as
+ * roi-graphslam into
  * --output-dir. All the work is in roislam::graphslam::CRoiGraphSlamEngineApp.
  */
 #include <roislam/common/ProcessTuning.h>
 #include <roislam/graphslam/CRoiGraphSlamEngineApp.h>
 #include <roislam/graphslam/SlamMain.h>
+#include <roislam/gui/CLiveViewSession.h>
 
 #include <CLI/CLI.hpp>
 #include <iostream>
@@ -32,7 +34,9 @@ int main(int argc, char** argv)
       ->capture_default_str();
   cli.add_flag("--3d", args.threeD, "Construct a 3-D graph (CPose3DPDFGaussianInf): the default");
   cli.add_flag("--2d", args.twoD, "Construct a 2-D graph: not supported (RGB-D deciders)");
-  cli.add_flag("--disable-visuals", args.disableVisuals, "No visualisation: always the case");
+  cli.add_flag(
+      "--disable-visuals", args.disableVisuals,
+      "No MRPT engine window: always the case (the live view is --gui)");
   cli.add_flag("--list-node-regs", listNode, "List the node registration deciders and exit");
   cli.add_flag("--list-edge-regs", listEdge, "List the edge registration deciders and exit");
   cli.add_flag("--list-regs", listRegs, "List all registration deciders and exit");
@@ -43,6 +47,8 @@ int main(int argc, char** argv)
       ->capture_default_str();
   cli.add_option("--output-dir", args.outputDir, "Output folder")->capture_default_str();
   cli.add_flag("--no-snapshot", noSnapshot, "Do not render snapshot.png");
+  roislam::gui::CLiveViewSession liveView("roi-graphslam-engine");
+  liveView.addFlags(cli);
   CLI11_PARSE(cli, argc, argv);
 
   if (listNode || listEdge || listRegs || listOpt)
@@ -59,6 +65,17 @@ int main(int argc, char** argv)
     args.groundTruth = gt;
   args.snapshot = !noSnapshot;
   args.progress = [](const std::string& line) { std::cerr << line << std::endl; };
-  return roislam::graphslam::slamMain(
-      "roi-graphslam-engine", args.outputDir, [&] { return CRoiGraphSlamEngineApp(args).run(); });
+  const int rc = roislam::graphslam::slamMain(
+      "roi-graphslam-engine", args.outputDir,
+      [&]
+      {
+        CRoiGraphSlamEngineApp app(args);  // checks the arguments before a window opens
+        liveView.open(args.iniFile, args.outputDir);
+        app.setObserver(liveView.observer());
+        const auto summary = app.run();
+        liveView.finish(args.outputDir);
+        return summary;
+      });
+  // A window that was open ends the process here, whatever happened.
+  return liveView.end(rc);
 }

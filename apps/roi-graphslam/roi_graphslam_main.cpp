@@ -6,89 +6,12 @@
 #include <roislam/common/ProcessTuning.h>
 #include <roislam/graphslam/CRoiGraphSlamApp.h>
 #include <roislam/graphslam/SlamMain.h>
+#include <roislam/gui/CLiveViewSession.h>
 
 #include <CLI/CLI.hpp>
 #include <iostream>
-#include <memory>
 #include <stdexcept>
 #include <string>
-#if ROISLAM_HAVE_GUI
-#include <roislam/gui/CLiveView.h>
-#endif
-
-namespace
-{
-/** The --gui* flags. */
-struct TGuiArgs
-{
-  bool enabled = false, paused = false, keepOpen = false;
-  std::string screenshot;
-};
-
-#if ROISLAM_HAVE_GUI
-std::unique_ptr<roislam::gui::CLiveView> openLiveView(
-    const TGuiArgs& g, const roislam::graphslam::CRoiGraphSlamApp::TArguments& args)
-{
-  if (!g.enabled)
-    return nullptr;
-  roislam::gui::CLiveView::TSession session;
-  session.screenshotDir = args.outputDir;
-  session.startPaused = g.paused;
-  session.log = [](const std::string& line) { std::cerr << line << std::endl; };
-  return std::make_unique<roislam::gui::CLiveView>(
-      roislam::gui::CLiveView::loadOptions(args.iniFile), session);
-}
-
-/** Closes the window and ends the process (exitAfterLiveView) when one was open. */
-int endLiveView(std::unique_ptr<roislam::gui::CLiveView> view, int rc)
-{
-  if (!view)
-    return rc;
-  view.reset();
-  roislam::gui::exitAfterLiveView(rc);
-}
-
-/** After the outputs are written: the asked screenshot, then wait for the
- *  user when asked to. A window closed meanwhile only warns: the run's
- *  outputs are complete. */
-void finishLiveView(roislam::gui::CLiveView* view, const TGuiArgs& g, const std::string& outDir)
-{
-  if (!view)
-    return;
-  view->setMessage(
-      "finished: outputs in " + outDir + (g.keepOpen ? "   (q or closing the window ends)" : ""));
-  if (!g.screenshot.empty())
-  {
-    try
-    {
-      view->saveScreenshot(g.screenshot);
-    }
-    catch (const std::exception& e)
-    {
-      std::cerr << "roi-graphslam: warning: " << e.what() << std::endl;
-    }
-  }
-  if (g.keepOpen)
-    view->waitUntilClosed();
-}
-#else
-// Built without the live view: --gui fails with one line, before any output.
-using TNoView = roislam::graphslam::CSlamObserver;
-std::unique_ptr<TNoView> openLiveView(
-    const TGuiArgs& g, const roislam::graphslam::CRoiGraphSlamApp::TArguments&)
-{
-  if (g.enabled)
-    throw std::runtime_error(
-        "--gui: roi-graphslam was built without GUI (MRPT's wxWidgets windows were not found)");
-  return nullptr;
-}
-void finishLiveView(TNoView*, const TGuiArgs&, const std::string&) {}
-int endLiveView(std::unique_ptr<TNoView>, int rc)
-{
-  return rc;
-}
-#endif
-}  // namespace
 
 int main(int argc, char** argv)
 {
@@ -113,13 +36,9 @@ int main(int argc, char** argv)
   cli.add_flag("--no-snapshot", noSnapshot, "Do not render snapshot.png");
   cli.add_flag("--list-node-regs", listNode, "List the node registration deciders and exit");
   cli.add_flag("--list-edge-regs", listEdge, "List the edge registration deciders and exit");
-  TGuiArgs gui;
-  cli.add_flag("--gui", gui.enabled, "Live view while SLAM runs (needs an X display)");
-  cli.add_flag("--gui-paused", gui.paused, "--gui, starting paused (space starts the run)");
-  cli.add_option("--gui-screenshot", gui.screenshot, "--gui: save the window as PNG at the end");
-  cli.add_flag("--gui-keep-open", gui.keepOpen, "--gui: keep the window open after the run");
+  roislam::gui::CLiveViewSession liveView("roi-graphslam");
+  liveView.addFlags(cli);
   CLI11_PARSE(cli, argc, argv);
-  gui.enabled = gui.enabled || gui.paused || !gui.screenshot.empty() || gui.keepOpen;
 
   if (listNode || listEdge)
   {
@@ -142,9 +61,6 @@ int main(int argc, char** argv)
     args.strictRoi = true;
   args.snapshot = !noSnapshot;
   args.progress = [](const std::string& line) { std::cerr << line << std::endl; };
-  // The live view outlives the run: a window that was open ends the process
-  // through exitAfterLiveView() whatever happened (see there).
-  decltype(openLiveView(gui, args)) view;
   const int rc = roislam::graphslam::slamMain(
       "roi-graphslam", args.outputDir,
       [&]
@@ -152,11 +68,12 @@ int main(int argc, char** argv)
         if (args.input.empty() || args.outputDir.empty())
           throw std::invalid_argument("--input and --output-dir are required");
         roislam::graphslam::CRoiGraphSlamApp app(args);  // checks the ini before a window opens
-        view = openLiveView(gui, args);
-        app.setObserver(view.get());
+        liveView.open(args.iniFile, args.outputDir);
+        app.setObserver(liveView.observer());
         const auto summary = app.run();
-        finishLiveView(view.get(), gui, args.outputDir);
+        liveView.finish(args.outputDir);
         return summary;
       });
-  return endLiveView(std::move(view), rc);
+  // A window that was open ends the process here, whatever happened.
+  return liveView.end(rc);
 }

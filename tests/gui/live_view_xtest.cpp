@@ -1,12 +1,11 @@
-/* roi-graphslam --gui end to end, as a user runs it, on a private Xvfb
- * (share/scripts/with-xvfb.sh is this test's launcher): the synthetic loop
- * runs to the end with the window open and writes the same trajectory as
- * without it, byte for byte, and the window's screenshot shows the map and
- * the images; the keys (space, s, q, sent by xdotool as a user's keyboard
- * would) pause, save a screenshot and stop the run with every output
- * written; closing the window (the WM_DELETE_WINDOW a window manager sends)
- * stops it the same way; without a display --gui fails with one line and
- * writes nothing. Display tests skip when DISPLAY is not set (no Xvfb). */
+/* roi-graphslam --gui (and roi-graphslam-engine --gui) end to end, as a user runs it, on a private
+ * Xvfb (share/scripts/with-xvfb.sh is this test's launcher): the synthetic loop runs to the end
+ * with the window open and writes the same trajectory as without it, byte for byte, and the
+ * window's screenshot shows the map and the images; the keys (space, s, q, sent by xdotool as a
+ * user's keyboard would) pause, save a screenshot and stop the run with every output written;
+ * closing the window (the WM_DELETE_WINDOW a window manager sends) stops it the same way; without a
+ * display --gui fails with one line and writes nothing. Display tests skip when DISPLAY is not set
+ * (no Xvfb). */
 #include <gtest/gtest.h>
 #include <roislam/testing/TestData.h>
 #include <spawn.h>
@@ -35,9 +34,9 @@ using namespace std::chrono_literals;
 
 namespace
 {
-std::string exe()
+std::string exe(const std::string& app = "roi-graphslam")
 {
-  return roislam::testing::binaryDir() + "/apps/roi-graphslam/roi-graphslam";
+  return roislam::testing::binaryDir() + "/apps/" + app + "/" + app;
 }
 
 std::string config(const std::string& name)
@@ -58,10 +57,11 @@ std::string readText(const std::string& file)
 class CAppProcess
 {
  public:
+  /** `command`: the executable and its arguments. */
   CAppProcess(
-      const std::string& args, const std::string& errFile, const std::string& envPrefix = "")
+      const std::string& command, const std::string& errFile, const std::string& envPrefix = "")
   {
-    const std::string cmd = envPrefix + "exec " + exe() + " " + args + " > /dev/null 2> " + errFile;
+    const std::string cmd = envPrefix + "exec " + command + " > /dev/null 2> " + errFile;
     const char* argv[] = {"/bin/sh", "-c", cmd.c_str(), nullptr};
     if (posix_spawn(&m_pid, "/bin/sh", nullptr, nullptr, const_cast<char**>(argv), environ) != 0)
       m_pid = -1;
@@ -96,9 +96,10 @@ class CAppProcess
   std::optional<int> m_exit;
 };
 
+/** roi-graphslam with `args`, to its end. */
 int runApp(const std::string& args, const std::string& errFile, const std::string& envPrefix = "")
 {
-  CAppProcess p(args, errFile, envPrefix);
+  CAppProcess p(exe() + " " + args, errFile, envPrefix);
   return p.wait(300s).value_or(-2);
 }
 
@@ -238,6 +239,14 @@ nlohmann::json expectCompleteOutputs(const std::string& out)
   return s;
 }
 
+/** roi-graphslam on `seq` into `out` with the window open, paused after
+ *  its first frame (space starts it). */
+std::string pausedRunCommand(const std::string& seq, const std::string& out)
+{
+  return exe() + " --ini " + config("roi_small.ini") + " --input " + seq + " --output-dir " + out +
+         " --gui-paused";
+}
+
 #define ROISLAM_REQUIRE_DISPLAY()                                                       \
   if (!std::getenv("DISPLAY"))                                                          \
   GTEST_SKIP() << "no X display (install xvfb: the test runs under share/scripts/with-" \
@@ -288,6 +297,32 @@ TEST(LiveView, GuiRunEqualsHeadlessAndScreenshotShowsMapAndImages)
   fs::remove_all(dir);
 }
 
+TEST(LiveView, EngineAppGuiRunEqualsHeadless)
+{
+  ROISLAM_REQUIRE_DISPLAY();
+  ROISLAM_REQUIRE_SYNTHETIC(seq, "textured");
+  const std::string dir = roislam::testing::makeTempDir("gui_engine");
+  const std::string common =
+      exe("roi-graphslam-engine") + " -i " + config("graphslam-engine.ini") + " -r " + seq;
+  CAppProcess headless(common + " --output-dir " + dir + "/headless", dir + "/h.err");
+  ASSERT_EQ(headless.wait(300s), std::optional<int>(0)) << readText(dir + "/h.err");
+  const std::string shot = dir + "/window.png";
+  CAppProcess gui(
+      common + " --output-dir " + dir + "/gui --gui-screenshot " + shot, dir + "/g.err");
+  ASSERT_EQ(gui.wait(300s), std::optional<int>(0)) << readText(dir + "/g.err");
+
+  const auto s = expectCompleteOutputs(dir + "/gui");
+  EXPECT_EQ(s["frames"].get<int>(), 90);
+  const std::string traj = readText(dir + "/headless/trajectory.txt");
+  ASSERT_FALSE(traj.empty());
+  EXPECT_EQ(readText(dir + "/gui/trajectory.txt"), traj) << "--gui changed the trajectory";
+  const cv::Mat img = cv::imread(shot);
+  ASSERT_FALSE(img.empty()) << shot;
+  EXPECT_EQ(img.cols, 1024);
+  EXPECT_NE(readText(dir + "/g.err").find("live view: "), std::string::npos);
+  fs::remove_all(dir);
+}
+
 TEST(LiveView, NoDisplayGivesOneLineAndWritesNothing)
 {
   ROISLAM_REQUIRE_SYNTHETIC(seq, "textured");
@@ -315,10 +350,7 @@ TEST(LiveView, KeysPauseScreenshotAndQuitWithCompleteOutputs)
   CXClient x;
   ASSERT_TRUE(x.ok());
   // Paused from the start: the run waits after its first frame.
-  CAppProcess app(
-      "--ini " + config("roi_small.ini") + " --input " + seq + " --output-dir " + out +
-          " --gui-paused",
-      dir + "/err");
+  CAppProcess app(pausedRunCommand(seq, out), dir + "/err");
   const Window w = x.waitForWindow(app.pid(), 60s);
   ASSERT_NE(w, 0u) << readText(dir + "/err");
   // space: run a while; space: pause again (mid-run on any machine: the
@@ -356,10 +388,7 @@ TEST(LiveView, ClosingTheWindowEndsTheRunCleanly)
   const std::string out = dir + "/out";
   CXClient x;
   ASSERT_TRUE(x.ok());
-  CAppProcess app(
-      "--ini " + config("roi_small.ini") + " --input " + seq + " --output-dir " + out +
-          " --gui-paused",
-      dir + "/err");
+  CAppProcess app(pausedRunCommand(seq, out), dir + "/err");
   const Window w = x.waitForWindow(app.pid(), 60s);
   ASSERT_NE(w, 0u) << readText(dir + "/err");
   // Paused after the first frame: the close request arrives mid-run.

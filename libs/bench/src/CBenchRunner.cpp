@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <map>
 #include <mutex>
+#include <optional>
 #include <stdexcept>
 #include <thread>
 
@@ -149,6 +150,116 @@ TRunRecord CBenchRunner::runOne(const TBenchRun& run) const
   return rec;
 }
 
+namespace
+{
+/** The batch's shared state while worker threads run it: the queue of
+ *  runs to do, the records, and the progress with its ETA from the wall
+ *  times measured so far (per app, else over all apps). */
+class CBatch
+{
+ public:
+  using TProgress = CBenchRunner::TProgress;
+
+  CBatch(
+      const std::vector<TBenchRun>& runs, std::vector<TRunRecord>& records,
+      std::vector<std::size_t> todo, TProgress progress, int jobs,
+      const CBenchRunner::TProgressCallback& callback)
+      : m_runs(runs),
+        m_records(records),
+        m_todo(std::move(todo)),
+        m_prog(progress),
+        m_jobs(jobs),
+        m_callback(callback)
+  {
+    if (m_callback)
+    {
+      std::lock_guard<std::mutex> lock(m_mtx);
+      m_callback(m_prog);
+    }
+  }
+
+  std::size_t todo() const { return m_todo.size(); }
+
+  /** The next run's index into `runs`, or nullopt when none is left. */
+  std::optional<std::size_t> take()
+  {
+    const std::size_t k = m_next++;
+    if (k >= m_todo.size())
+      return std::nullopt;
+    return m_todo[k];
+  }
+
+  /** Stores run i's record and reports the progress. */
+  void finished(std::size_t i, const TRunRecord& rec)
+  {
+    std::lock_guard<std::mutex> lock(m_mtx);
+    m_records[i] = rec;
+    auto& t = m_timeByApp[m_runs[i].app];
+    t.first += rec.wallS;
+    t.second += 1;
+    ++m_prog.done;
+    if (!rec.ok)
+      ++m_prog.failed;
+    m_prog.lastId = m_runs[i].id;
+    m_prog.elapsedS =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - m_t0).count();
+    m_prog.etaS = eta(i);
+    if (m_callback)
+      m_callback(m_prog);
+  }
+
+ private:
+  /** Mean wall time of the app's runs, else of all runs; nullopt before any. */
+  std::optional<double> estimate(std::size_t idx) const
+  {
+    const auto it = m_timeByApp.find(m_runs[idx].app);
+    if (it != m_timeByApp.end())
+      return it->second.first / it->second.second;
+    double sum = 0;
+    int n = 0;
+    for (const auto& [app, v] : m_timeByApp)
+    {
+      sum += v.first;
+      n += v.second;
+    }
+    if (n == 0)
+      return std::nullopt;
+    return sum / n;
+  }
+
+  /** Remaining wall time over the jobs, after run `justDone` finished. */
+  std::optional<double> eta(std::size_t justDone) const
+  {
+    double remaining = 0;
+    bool known = true;
+    for (std::size_t q = m_next; q < m_todo.size(); ++q)
+    {
+      const auto e = estimate(m_todo[q]);
+      if (!e)
+        known = false;
+      remaining += e.value_or(0);
+    }
+    // Runs in flight are counted as half done.
+    const std::size_t inFlight =
+        std::min<std::size_t>(m_todo.size(), m_next) - (m_prog.done - m_prog.skipped);
+    for (std::size_t q = 0; q < inFlight; ++q)
+      remaining += 0.5 * estimate(justDone).value_or(0);
+    return known ? std::optional<double>(remaining / m_jobs) : std::nullopt;
+  }
+
+  const std::vector<TBenchRun>& m_runs;
+  std::vector<TRunRecord>& m_records;
+  const std::vector<std::size_t> m_todo;
+  TProgress m_prog;
+  const int m_jobs;
+  const CBenchRunner::TProgressCallback& m_callback;
+  const std::chrono::steady_clock::time_point m_t0 = std::chrono::steady_clock::now();
+  std::mutex m_mtx;
+  std::map<std::string, std::pair<double, int>> m_timeByApp;  // app -> (sum wall, count)
+  std::atomic<std::size_t> m_next{0};
+};
+}  // namespace
+
 std::vector<TRunRecord> CBenchRunner::run(
     const std::vector<TBenchRun>& runs, const TProgressCallback& progress) const
 {
@@ -171,84 +282,27 @@ std::vector<TRunRecord> CBenchRunner::run(
       todo.push_back(i);
   }
 
-  const auto t0 = std::chrono::steady_clock::now();
-  std::mutex mtx;
-  std::map<std::string, std::pair<double, int>> timeByApp;  // app -> (sum wall, count)
-  std::atomic<std::size_t> next{0};
-  std::vector<std::size_t> running;  // indices in flight, for the ETA
-  if (progress)
-  {
-    std::lock_guard<std::mutex> lock(mtx);
-    progress(prog);
-  }
-
-  const auto estimate = [&](std::size_t idx) -> std::optional<double>
-  {
-    const auto it = timeByApp.find(runs[idx].app);
-    if (it != timeByApp.end())
-      return it->second.first / it->second.second;
-    double sum = 0;
-    int n = 0;
-    for (const auto& [app, v] : timeByApp)
-    {
-      sum += v.first;
-      n += v.second;
-    }
-    if (n == 0)
-      return std::nullopt;
-    return sum / n;
-  };
-
+  CBatch batch(runs, records, std::move(todo), prog, m_options.jobs, progress);
   const auto worker = [&]()
   {
-    for (;;)
+    while (const auto i = batch.take())
     {
-      const std::size_t k = next++;
-      if (k >= todo.size())
-        return;
-      const std::size_t i = todo[k];
       TRunRecord rec;
       try
       {
-        rec = runOne(runs[i]);
+        rec = runOne(runs[*i]);
       }
       catch (const std::exception& e)
       {
-        rec.run = runs[i];
+        rec.run = runs[*i];
         rec.ok = false;
         rec.failureReason = e.what();
       }
-      std::lock_guard<std::mutex> lock(mtx);
-      records[i] = rec;
-      auto& t = timeByApp[runs[i].app];
-      t.first += rec.wallS;
-      t.second += 1;
-      ++prog.done;
-      if (!rec.ok)
-        ++prog.failed;
-      prog.lastId = runs[i].id;
-      prog.elapsedS = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-      double remaining = 0;
-      bool known = true;
-      for (std::size_t q = next; q < todo.size(); ++q)
-      {
-        const auto e = estimate(todo[q]);
-        if (!e)
-          known = false;
-        remaining += e.value_or(0);
-      }
-      // Runs in flight are counted as half done.
-      const std::size_t inFlight =
-          std::min<std::size_t>(todo.size(), next) - (prog.done - prog.skipped);
-      for (std::size_t q = 0; q < inFlight; ++q)
-        remaining += 0.5 * estimate(i).value_or(0);
-      prog.etaS = known ? std::optional<double>(remaining / m_options.jobs) : std::nullopt;
-      if (progress)
-        progress(prog);
+      batch.finished(*i, rec);
     }
   };
   std::vector<std::thread> threads;
-  const int n = std::min<int>(m_options.jobs, static_cast<int>(todo.size()));
+  const int n = std::min<int>(m_options.jobs, static_cast<int>(batch.todo()));
   for (int t = 0; t < n; ++t)
     threads.emplace_back(worker);
   for (auto& th : threads)

@@ -171,26 +171,23 @@ CTrajectoryEvaluator::CTrajectoryEvaluator(const TOptions& options) : m_options(
   m_options.validate();
 }
 
-TEvaluationResult CTrajectoryEvaluator::evaluate(
-    const io::TTrajectory& gtIn, const io::TTrajectory& estIn) const
+namespace
 {
-  if (gtIn.empty())
-    throw std::runtime_error("the ground-truth trajectory is empty");
-  if (estIn.empty())
-    throw std::runtime_error("the estimated trajectory is empty");
-  const io::TTrajectory gt = asStampDict(gtIn);
-  const io::TTrajectory est = asStampDict(estIn);
-  const std::vector<double> gtStamps = stampsOf(gt);
-  const std::vector<double> estStamps = stampsOf(est);
-  const double offset = m_options.offset;
+/** Both trajectories as stamp dictionaries (sorted, one pose per stamp), with their stamps. */
+struct TStampedPair
+{
+  io::TTrajectory gt, est;
+  std::vector<double> gtStamps, estStamps;
+};
 
-  TEvaluationResult result;
-
-  // ---- ATE (associate.py + evaluate_ate.py) ----
+/** associate.py + evaluate_ate.py: result.ate and result.aligned. */
+void evaluateAte(
+    const TStampedPair& p, const CTrajectoryEvaluator::TOptions& o, TEvaluationResult& result)
+{
   // associate.py semantics (exact |dt| < max_difference test, greedy).
-  const auto matches = io::associateStamps(gtStamps, estStamps, m_options.max_difference, offset);
+  const auto matches = io::associateStamps(p.gtStamps, p.estStamps, o.max_difference, o.offset);
   const std::string window =
-      "max_difference " + num(m_options.max_difference) + " s, offset " + num(offset) + " s";
+      "max_difference " + num(o.max_difference) + " s, offset " + num(o.offset) + " s";
   if (matches.empty())
     throw std::runtime_error("no estimated stamp has a ground-truth stamp within " + window);
   if (matches.size() < 3)
@@ -202,8 +199,8 @@ TEvaluationResult CTrajectoryEvaluator::evaluate(
   Eigen::Matrix3Xd model(3, n), data(3, n);  // model = estimate, data = ground truth
   for (std::size_t k = 0; k < n; ++k)
   {
-    const auto& g = gt[matches[k].first].pose;
-    const auto& e = est[matches[k].second].pose;
+    const auto& g = p.gt[matches[k].first].pose;
+    const auto& e = p.est[matches[k].second].pose;
     data.col(k) << g.x(), g.y(), g.z();
     model.col(k) << e.x(), e.y(), e.z();
   }
@@ -214,7 +211,7 @@ TEvaluationResult CTrajectoryEvaluator::evaluate(
   for (std::size_t k = 0; k < n; ++k)
   {
     ateErrors[k] = (T * model.col(k) - data.col(k)).norm();
-    result.ate.samples.push_back({estStamps[matches[k].second], ateErrors[k]});
+    result.ate.samples.push_back({p.estStamps[matches[k].second], ateErrors[k]});
   }
   std::sort(
       result.ate.samples.begin(), result.ate.samples.end(),
@@ -228,68 +225,33 @@ TEvaluationResult CTrajectoryEvaluator::evaluate(
   result.ate.max = ate.max;
   result.ate.pairs = n;
   result.ate.alignment = T.toPose();
-  result.aligned.reserve(est.size());
-  for (const auto& p : est)
-    result.aligned.push_back(io::TPoseStamped{p.timestamp, result.ate.alignment + p.pose});
+  result.aligned.reserve(p.est.size());
+  for (const auto& e : p.est)
+    result.aligned.push_back(io::TPoseStamped{e.timestamp, result.ate.alignment + e.pose});
+}
 
-  // ---- RPE (evaluate_rpe.py --fixed_delta) ----
+/** evaluate_rpe.py's check that the stamps overlap: throws when fewer than
+ *  two estimated stamps survive the round trip to the ground truth. */
+void checkRpeOverlap(const TStampedPair& p, double offset)
+{
+  std::set<std::size_t> roundTrip;
+  for (double te : p.estStamps)
   {
-    std::set<std::size_t> roundTrip;
-    for (double te : estStamps)
-    {
-      const double tg = gtStamps[findClosestIndex(gtStamps, te + offset)];
-      roundTrip.insert(findClosestIndex(estStamps, tg - offset));
-    }
-    if (roundTrip.size() < 2)
-      throw std::runtime_error(
-          "too few overlapping stamps between the estimate and the ground truth for RPE");
+    const double tg = p.gtStamps[findClosestIndex(p.gtStamps, te + offset)];
+    roundTrip.insert(findClosestIndex(p.estStamps, tg - offset));
   }
-  std::vector<double> index(estStamps.size());
-  if (m_options.delta_unit == TDeltaUnit::Seconds)
-    index = estStamps;
-  else
-    std::iota(index.begin(), index.end(), 0.0);
-
-  std::vector<double> gtIntervals;
-  for (std::size_t k = 1; k < gtStamps.size(); ++k)
-    gtIntervals.push_back(gtStamps[k] - gtStamps[k - 1]);
-  // A single ground-truth pose cannot get here (ATE needs 3 associations).
-  const double gtMaxTimeDifference = 2 * computeStats(gtIntervals).median;
-
-  std::vector<double> transErrors, rotErrors;
-  const std::size_t last = est.size() - 1;
-  for (std::size_t i = 0; i < est.size(); ++i)
-  {
-    const std::size_t j = findClosestIndex(index, index[i] + m_options.delta);
-    if (j == last)
-      continue;
-    const std::size_t g0 = findClosestIndex(gtStamps, estStamps[i] + offset);
-    const std::size_t g1 = findClosestIndex(gtStamps, estStamps[j] + offset);
-    if (std::abs(gtStamps[g0] - (estStamps[i] + offset)) > gtMaxTimeDifference ||
-        std::abs(gtStamps[g1] - (estStamps[j] + offset)) > gtMaxTimeDifference)
-      continue;
-    // (E_i^-1 E_j)(G_i^-1 G_j)^-1; in MRPT notation a - b = b^-1 (+) a.
-    const mrpt::poses::CPose3D relEst = est[j].pose - est[i].pose;
-    const mrpt::poses::CPose3D relGt = gt[g1].pose - gt[g0].pose;
-    mrpt::poses::CPose3D relGtInv = relGt;
-    relGtInv.inverse();
-    const mrpt::poses::CPose3D error = relEst + relGtInv;
-    transErrors.push_back(error.translation().norm());
-    const auto Rm = error.getRotationMatrix();
-    const double c = std::min(1.0, std::max(-1.0, (Rm(0, 0) + Rm(1, 1) + Rm(2, 2) - 1) / 2));
-    rotErrors.push_back(std::acos(c));
-    result.rpe.samples.push_back(
-        {estStamps[i], transErrors.back(), rotErrors.back() * 180.0 / M_PI});
-  }
-  if (transErrors.size() < 2)
+  if (roundTrip.size() < 2)
     throw std::runtime_error(
-        "only " + std::to_string(transErrors.size()) +
-        " RPE pose pairs (need 2): the estimate is shorter than delta = " + num(m_options.delta) +
-        " " + toString(m_options.delta_unit) + " or lacks nearby ground truth");
+        "too few overlapping stamps between the estimate and the ground truth for RPE");
+}
+
+/** The RPE statistics of translation [m] and rotation [rad] errors. */
+void fillRpeStats(
+    const std::vector<double>& transErrors, const std::vector<double>& rotErrors, TRpeResult& rpe)
+{
   const TStats tr = computeStats(transErrors);
   const TStats ro = computeStats(rotErrors);
   const double deg = 180.0 / M_PI;
-  auto& rpe = result.rpe;
   rpe.pairs = transErrors.size();
   rpe.trans_rmse = tr.rmse;
   rpe.trans_mean = tr.mean;
@@ -303,6 +265,74 @@ TEvaluationResult CTrajectoryEvaluator::evaluate(
   rpe.rot_std_deg = ro.std * deg;
   rpe.rot_min_deg = ro.min * deg;
   rpe.rot_max_deg = ro.max * deg;
+}
+
+/** evaluate_rpe.py --fixed_delta: rpe. */
+void evaluateRpe(const TStampedPair& p, const CTrajectoryEvaluator::TOptions& o, TRpeResult& rpe)
+{
+  checkRpeOverlap(p, o.offset);
+  const auto& gtStamps = p.gtStamps;
+  const auto& estStamps = p.estStamps;
+  std::vector<double> index(estStamps.size());
+  if (o.delta_unit == CTrajectoryEvaluator::TDeltaUnit::Seconds)
+    index = estStamps;
+  else
+    std::iota(index.begin(), index.end(), 0.0);
+
+  std::vector<double> gtIntervals;
+  for (std::size_t k = 1; k < gtStamps.size(); ++k)
+    gtIntervals.push_back(gtStamps[k] - gtStamps[k - 1]);
+  // A single ground-truth pose cannot get here (ATE needs 3 associations).
+  const double gtMaxTimeDifference = 2 * computeStats(gtIntervals).median;
+
+  std::vector<double> transErrors, rotErrors;
+  const std::size_t last = p.est.size() - 1;
+  for (std::size_t i = 0; i < p.est.size(); ++i)
+  {
+    const std::size_t j = findClosestIndex(index, index[i] + o.delta);
+    if (j == last)
+      continue;
+    const std::size_t g0 = findClosestIndex(gtStamps, estStamps[i] + o.offset);
+    const std::size_t g1 = findClosestIndex(gtStamps, estStamps[j] + o.offset);
+    if (std::abs(gtStamps[g0] - (estStamps[i] + o.offset)) > gtMaxTimeDifference ||
+        std::abs(gtStamps[g1] - (estStamps[j] + o.offset)) > gtMaxTimeDifference)
+      continue;
+    // (E_i^-1 E_j)(G_i^-1 G_j)^-1; in MRPT notation a - b = b^-1 (+) a.
+    const mrpt::poses::CPose3D relEst = p.est[j].pose - p.est[i].pose;
+    const mrpt::poses::CPose3D relGt = p.gt[g1].pose - p.gt[g0].pose;
+    mrpt::poses::CPose3D relGtInv = relGt;
+    relGtInv.inverse();
+    const mrpt::poses::CPose3D error = relEst + relGtInv;
+    transErrors.push_back(error.translation().norm());
+    const auto Rm = error.getRotationMatrix();
+    const double c = std::min(1.0, std::max(-1.0, (Rm(0, 0) + Rm(1, 1) + Rm(2, 2) - 1) / 2));
+    rotErrors.push_back(std::acos(c));
+    rpe.samples.push_back({estStamps[i], transErrors.back(), rotErrors.back() * 180.0 / M_PI});
+  }
+  if (transErrors.size() < 2)
+    throw std::runtime_error(
+        "only " + std::to_string(transErrors.size()) +
+        " RPE pose pairs (need 2): the estimate is shorter than delta = " + num(o.delta) + " " +
+        toString(o.delta_unit) + " or lacks nearby ground truth");
+  fillRpeStats(transErrors, rotErrors, rpe);
+}
+}  // namespace
+
+TEvaluationResult CTrajectoryEvaluator::evaluate(
+    const io::TTrajectory& gtIn, const io::TTrajectory& estIn) const
+{
+  if (gtIn.empty())
+    throw std::runtime_error("the ground-truth trajectory is empty");
+  if (estIn.empty())
+    throw std::runtime_error("the estimated trajectory is empty");
+  TStampedPair p;
+  p.gt = asStampDict(gtIn);
+  p.est = asStampDict(estIn);
+  p.gtStamps = stampsOf(p.gt);
+  p.estStamps = stampsOf(p.est);
+  TEvaluationResult result;
+  evaluateAte(p, m_options, result);
+  evaluateRpe(p, m_options, result.rpe);
   return result;
 }
 }  // namespace roislam::evaluation

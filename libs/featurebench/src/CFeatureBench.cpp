@@ -100,6 +100,113 @@ double nowMs()
              std::chrono::steady_clock::now().time_since_epoch())
       .count();
 }
+std::vector<cv::Mat> loadGreyImages(const std::vector<std::string>& files)
+{
+  std::vector<cv::Mat> images;
+  for (const auto& f : files)
+  {
+    cv::Mat img = cv::imread(f, cv::IMREAD_GRAYSCALE);
+    if (img.empty())
+      throw std::runtime_error("cannot read image " + f);
+    if (!images.empty() && img.size() != images.front().size())
+      throw std::runtime_error("image size differs from the first frame: " + f);
+    images.push_back(img);
+  }
+  return images;
+}
+
+/** The transforms in the table's order, "none" first, with their homographies. */
+using TTransforms = std::vector<std::pair<std::string, cv::Matx33d>>;
+
+/** The two correspondence criteria every pair is scored with. */
+struct TCriteria
+{
+  TCorrespondenceCriterion pixel, overlap;
+};
+
+/** Adds one (original, transformed) pair's figures to its row. */
+void addPair(
+    CFeatureBench::TRow& row, const TPairMetrics& m, const TPairMetrics& mo, std::size_t keypoints,
+    double ms)
+{
+  row.frames++;
+  row.keypointsPerFrame += static_cast<double>(keypoints);
+  row.msPerFrame += ms;
+  row.repeatability += m.repeatability;
+  row.matchingScore += m.matchingScore;
+  row.correspondencesPerFrame += static_cast<double>(m.correspondences);
+  row.repeatabilityOverlap += mo.repeatability;
+  row.matchingScoreOverlap += mo.matchingScore;
+  row.correspondencesOverlapPerFrame += static_cast<double>(mo.correspondences);
+  row.commonPerFrame += static_cast<double>(std::min(m.commonA, m.commonB));
+}
+
+/** The row's sums over its frames as means per frame. */
+CFeatureBench::TRow averaged(CFeatureBench::TRow r)
+{
+  const double n = static_cast<double>(std::max<std::size_t>(1, r.frames));
+  for (double* v :
+       {&r.keypointsPerFrame, &r.msPerFrame, &r.repeatability, &r.matchingScore,
+        &r.correspondencesPerFrame, &r.repeatabilityOverlap, &r.matchingScoreOverlap,
+        &r.correspondencesOverlapPerFrame, &r.commonPerFrame})
+    *v /= n;
+  return r;
+}
+
+/** One extractor over every image and transform: a row of sums per
+ *  transform (averaged() makes them means). The original image's features
+ *  are described once and reused for every transform. */
+std::vector<CFeatureBench::TRow> benchExtractor(
+    const TExtractor& ex, const std::vector<cv::Mat>& images, const TTransforms& transforms,
+    const TCriteria& crit, const CFeatureBench::TOptions& o)
+{
+  const int norm = ex.feature->defaultNorm();
+  std::vector<CFeatureBench::TRow> rows(transforms.size());
+  for (std::size_t k = 0; k < transforms.size(); ++k)
+  {
+    rows[k].extractor = ex.name;
+    rows[k].transform = transforms[k].first;
+  }
+  // One untimed warm-up: first-call allocations are not per-frame cost.
+  {
+    std::vector<cv::KeyPoint> k;
+    cv::Mat d;
+    ex.run(images.front(), k, d);
+  }
+  for (const auto& img : images)
+  {
+    std::vector<cv::KeyPoint> kpA;
+    cv::Mat descA;
+    double t0 = nowMs();
+    ex.run(img, kpA, descA);
+    const double msA = nowMs() - t0;
+    for (std::size_t k = 0; k < transforms.size(); ++k)
+    {
+      const auto& [t, H] = transforms[k];
+      std::vector<cv::KeyPoint> kpB;
+      cv::Mat descB;  // a new buffer: the extractor would write into descA's
+      double msB = msA;
+      if (t == "none")
+      {
+        kpB = kpA;
+        descB = descA;
+      }
+      else
+      {
+        const cv::Mat warped = applyTransform(img, t, H, o);
+        t0 = nowMs();
+        ex.run(warped, kpB, descB);
+        msB = nowMs() - t0;
+      }
+      const TPairMetrics m =
+          evaluatePair(kpA, descA, kpB, descB, H, img.size(), img.size(), norm, crit.pixel);
+      const TPairMetrics mo =
+          evaluatePair(kpA, descA, kpB, descB, H, img.size(), img.size(), norm, crit.overlap);
+      addPair(rows[k], m, mo, kpB.size(), msB);
+    }
+  }
+  return rows;
+}
 }  // namespace
 
 void CFeatureBench::TOptions::loadFromConfigFile(
@@ -247,111 +354,30 @@ CFeatureBench::TResult CFeatureBench::run() const
   TResult res;
   res.input = o.input;
   res.maxFeatures = o.max_features;
-  const auto files = selectFrames(o.input, o.frames);
-  std::vector<cv::Mat> images;
-  for (const auto& f : files)
-  {
-    cv::Mat img = cv::imread(f, cv::IMREAD_GRAYSCALE);
-    if (img.empty())
-      throw std::runtime_error("cannot read image " + f);
-    if (!images.empty() && img.size() != images.front().size())
-      throw std::runtime_error("image size differs from the first frame: " + f);
-    images.push_back(img);
-  }
+  const std::vector<cv::Mat> images = loadGreyImages(selectFrames(o.input, o.frames));
   res.frames = images.size();
   res.imageSize = images.front().size();
 
-  std::vector<std::string> transforms{"none"};
+  TTransforms transforms{{"none", homography("none", res.imageSize)}};
   for (const auto& t : o.transforms)
     if (t != "none")
-      transforms.push_back(t);
-  std::map<std::string, cv::Matx33d> H;
-  for (const auto& t : transforms)
-    H[t] = homography(t, res.imageSize);
-
-  TCorrespondenceCriterion crit;
-  crit.pixelTolerance = o.pixel_tolerance;
-  crit.borderMargin = o.border_margin;
+      transforms.emplace_back(t, homography(t, res.imageSize));
 
   for (const auto& name : o.extractors)
   {
     const TExtractor ex = makeExtractor(name, o.max_features);
-    const int norm = ex.feature->defaultNorm();
-    TCorrespondenceCriterion critOverlap = crit;
-    critOverlap.mode = TCorrespondenceCriterion::EMode::Overlap;
-    critOverlap.maxOverlapError = o.max_overlap_error;
+    TCriteria crit;
+    crit.pixel.pixelTolerance = o.pixel_tolerance;
+    crit.pixel.borderMargin = o.border_margin;
+    crit.overlap = crit.pixel;
+    crit.overlap.mode = TCorrespondenceCriterion::EMode::Overlap;
+    crit.overlap.maxOverlapError = o.max_overlap_error;
     const std::optional<double> perSigma = sizePerBlobSigma(*ex.feature);
-    critOverlap.regionRadiusPerSize = perSigma ? o.region_scale / *perSigma : 0.5;
-    res.regionRadiusPerSize[name] = critOverlap.regionRadiusPerSize;
+    crit.overlap.regionRadiusPerSize = perSigma ? o.region_scale / *perSigma : 0.5;
+    res.regionRadiusPerSize[name] = crit.overlap.regionRadiusPerSize;
     res.regionCalibrated[name] = perSigma.has_value();
-    std::map<std::string, TRow> acc;
-    for (const auto& t : transforms)
-    {
-      acc[t].extractor = name;
-      acc[t].transform = t;
-    }
-    // One untimed warm-up: first-call allocations are not per-frame cost.
-    {
-      std::vector<cv::KeyPoint> k;
-      cv::Mat d;
-      ex.run(images.front(), k, d);
-    }
-    for (const auto& img : images)
-    {
-      std::vector<cv::KeyPoint> kpA;
-      cv::Mat descA;
-      double t0 = nowMs();
-      ex.run(img, kpA, descA);
-      const double msA = nowMs() - t0;
-      for (const auto& t : transforms)
-      {
-        TRow& row = acc[t];
-        std::vector<cv::KeyPoint> kpB;
-        cv::Mat descB;
-        double msB = msA;
-        if (t == "none")
-        {
-          kpB = kpA;
-          descB = descA;
-        }
-        else
-        {
-          const cv::Mat warped = applyTransform(img, t, H[t], o);
-          t0 = nowMs();
-          ex.run(warped, kpB, descB);
-          msB = nowMs() - t0;
-        }
-        const TPairMetrics m =
-            evaluatePair(kpA, descA, kpB, descB, H[t], img.size(), img.size(), norm, crit);
-        row.frames++;
-        row.keypointsPerFrame += static_cast<double>(kpB.size());
-        row.msPerFrame += msB;
-        row.repeatability += m.repeatability;
-        row.matchingScore += m.matchingScore;
-        row.correspondencesPerFrame += static_cast<double>(m.correspondences);
-        const TPairMetrics mo =
-            evaluatePair(kpA, descA, kpB, descB, H[t], img.size(), img.size(), norm, critOverlap);
-        row.repeatabilityOverlap += mo.repeatability;
-        row.matchingScoreOverlap += mo.matchingScore;
-        row.correspondencesOverlapPerFrame += static_cast<double>(mo.correspondences);
-        row.commonPerFrame += static_cast<double>(std::min(m.commonA, m.commonB));
-      }
-    }
-    for (const auto& t : transforms)
-    {
-      TRow r = acc[t];
-      const double n = static_cast<double>(std::max<std::size_t>(1, r.frames));
-      r.keypointsPerFrame /= n;
-      r.msPerFrame /= n;
-      r.repeatability /= n;
-      r.matchingScore /= n;
-      r.correspondencesPerFrame /= n;
-      r.repeatabilityOverlap /= n;
-      r.matchingScoreOverlap /= n;
-      r.correspondencesOverlapPerFrame /= n;
-      r.commonPerFrame /= n;
-      res.rows.push_back(r);
-    }
+    for (auto& row : benchExtractor(ex, images, transforms, crit, o))
+      res.rows.push_back(averaged(std::move(row)));
   }
   return res;
 }

@@ -196,6 +196,165 @@ bool solve3(const float H[3][3], const float g[3], float x[3])
       (a * (e * r2 - r1 * h) - b * (d * r2 - r1 * gg) + r0 * (d * h - e * gg)) / det);
   return true;
 }
+
+/** One octave's search: its stored layers 1..n (computeLayers) and, on
+ *  demand, the outer layers 0 and n+1, which only serve as neighbours of
+ *  candidates (a few thousand 3x3 patches instead of every grid cell). */
+class COctaveSearch
+{
+ public:
+  COctaveSearch(const TIntegral& in, int octave, int nOctaveLayers, std::vector<TLayer>& layers)
+      : m_in(in),
+        m_o(octave),
+        m_n(nOctaveLayers),
+        m_step(1 << octave),
+        m_nx((in.cols - 1) / m_step + 1),
+        m_ny((in.rows - 1) / m_step + 1),
+        m_layers(layers),
+        m_below(filterSize(octave, 0, nOctaveLayers), in.stride),
+        m_above(filterSize(octave, nOctaveLayers + 1, nOctaveLayers), in.stride)
+  {
+    for (int l = 0; l < m_n; ++l)
+    {
+      m_layers[l].L = filterSize(m_o, l + 1, m_n);
+      m_layers[l].border = (m_layers[l].L - 1) / 2;
+      m_layers[l].det.resize(static_cast<size_t>(m_nx) * m_ny);
+      m_layers[l].sign.resize(static_cast<size_t>(m_nx) * m_ny);
+    }
+    computeLayers(m_in, m_step, m_nx, m_ny, m_layers);
+  }
+
+  /** Rows searched per stored layer (the outermost rows have no 3x3). */
+  int rowsPerLayer() const { return std::max(0, m_ny - 2); }
+
+  /** Keypoints on row 1 + t % rowsPerLayer() of stored layer t / rowsPerLayer(). */
+  void searchRow(int t, float threshold, std::vector<cv::KeyPoint>& out) const
+  {
+    const int l = t / rowsPerLayer(), i = 1 + t % rowsPerLayer();
+    // The 3x3 neighbourhood must be valid in the layer above too.
+    const int borderAbove = (filterSize(m_o, l + 2, m_n) - 1) / 2;
+    const auto [i0, i1] = validRange(borderAbove, m_in.rows, m_step);
+    if (i <= i0 || i >= i1)
+      return;
+    const auto [j0, j1] = validRange(borderAbove, m_in.cols, m_step);
+    const float* Dc = m_layers[l].det.data();
+    for (int j = j0 + 1; j <= j1 - 1; ++j)
+    {
+      const size_t c = static_cast<size_t>(i) * m_nx + j;
+      const float v = Dc[c];
+      if (v <= threshold || !maximumInLayer(Dc, c, v) || !maximumAcrossLayers(l, i, j, c, v))
+        continue;
+      if (auto kp = refine(l + 1, i, j))
+      {
+        kp->octave = m_o;
+        out.push_back(*kp);
+      }
+    }
+  }
+
+ private:
+  /** The cheap test first: v is the maximum of its 3x3 in its own layer. */
+  bool maximumInLayer(const float* Dc, size_t c, float v) const
+  {
+    const int nx = m_nx;
+    return !(
+        Dc[c - 1] >= v || Dc[c + 1] >= v || Dc[c - nx - 1] >= v || Dc[c - nx] >= v ||
+        Dc[c - nx + 1] >= v || Dc[c + nx - 1] >= v || Dc[c + nx] >= v || Dc[c + nx + 1] >= v);
+  }
+
+  /** v is above the 3x3 neighbourhoods of the layers below and above. */
+  bool maximumAcrossLayers(int l, int i, int j, size_t c, float v) const
+  {
+    const int32_t* row = m_in.data + i * m_step * m_in.stride;
+    for (int di = -1; di <= 1; ++di)
+      for (int dj = -1; dj <= 1; ++dj)
+      {
+        const ptrdiff_t q = static_cast<ptrdiff_t>(c) + di * m_nx + dj;
+        const int32_t* p = row + di * m_step * m_in.stride + (j + dj) * m_step;
+        const float b = l > 0 ? m_layers[l - 1].det[q] : m_below.det(p);
+        const float a = l < m_n - 1 ? m_layers[l + 1].det[q] : m_above.det(p);
+        if (b >= v || a >= v)
+          return false;
+      }
+    return true;
+  }
+
+  /** Determinant at grid cell (i, j) of octave layer ly (0 .. n+1). */
+  float detAt(int ly, int i, int j) const
+  {
+    if (ly >= 1 && ly <= m_n)
+      return m_layers[ly - 1].det[static_cast<size_t>(i) * m_nx + j];
+    return (ly == 0 ? m_below : m_above).det(m_in.data + i * m_step * m_in.stride + j * m_step);
+  }
+
+  /** Sub-pixel / sub-scale position by fitting a 3-D quadratic to the
+   *  determinant (Brown & Lowe, as the paper does). An offset of up to one
+   *  cell is accepted (measured on fr1/rpy: requiring half a cell and moving
+   *  to the neighbour lost keypoints without making the rest more
+   *  repeatable); a larger one is refitted around the neighbouring cell, at
+   *  most 5 times. */
+  std::optional<cv::KeyPoint> refine(int ly, int i, int j) const
+  {
+    for (int iter = 0; iter < 5; ++iter)
+    {
+      const int borderAbove = (filterSize(m_o, ly + 1, m_n) - 1) / 2;
+      const auto [i0, i1] = validRange(borderAbove, m_in.rows, m_step);
+      const auto [j0, j1] = validRange(borderAbove, m_in.cols, m_step);
+      if (ly < 1 || ly > m_n || i <= i0 || i >= i1 || j <= j0 || j >= j1)
+        return std::nullopt;
+      float g[3], H[3][3], x[3];
+      const float v = fitQuadratic(ly, i, j, g, H);
+      if (!solve3(H, g, x))
+        return std::nullopt;
+      if (std::abs(x[0]) <= 1.0f && std::abs(x[1]) <= 1.0f && std::abs(x[2]) <= 1.0f)
+      {
+        cv::KeyPoint kp;
+        kp.pt = cv::Point2f((j + x[0]) * m_step, (i + x[1]) * m_step);
+        const float dL = static_cast<float>(6 << m_o);  // filter size step in this octave
+        kp.size = static_cast<float>(filterSize(m_o, ly, m_n)) + x[2] * dL;
+        kp.response = v + 0.5f * (g[0] * x[0] + g[1] * x[1] + g[2] * x[2]);
+        kp.angle = -1;
+        kp.class_id = m_layers[ly - 1].sign[static_cast<size_t>(i) * m_nx + j];
+        return kp;
+      }
+      // Offsets of several cells mean the quadratic model does not hold.
+      if (std::abs(x[0]) > 2.0f || std::abs(x[1]) > 2.0f || std::abs(x[2]) > 2.0f)
+        return std::nullopt;
+      j += static_cast<int>(std::lround(x[0]));
+      i += static_cast<int>(std::lround(x[1]));
+      ly += static_cast<int>(std::lround(x[2]));
+    }
+    return std::nullopt;
+  }
+
+  /** Gradient g and Hessian H of the determinant at (ly, i, j) by central
+   *  differences over (x, y, scale); returns the determinant there. */
+  float fitQuadratic(int ly, int i, int j, float g[3], float H[3][3]) const
+  {
+    const float v = detAt(ly, i, j);
+    const float xp = detAt(ly, i, j + 1), xm = detAt(ly, i, j - 1);
+    const float yp = detAt(ly, i + 1, j), ym = detAt(ly, i - 1, j);
+    const float sp = detAt(ly + 1, i, j), sm = detAt(ly - 1, i, j);
+    g[0] = 0.5f * (xp - xm);
+    g[1] = 0.5f * (yp - ym);
+    g[2] = 0.5f * (sp - sm);
+    H[0][0] = xp + xm - 2 * v;
+    H[1][1] = yp + ym - 2 * v;
+    H[2][2] = sp + sm - 2 * v;
+    H[0][1] = H[1][0] = 0.25f * (detAt(ly, i + 1, j + 1) - detAt(ly, i + 1, j - 1) -
+                                 detAt(ly, i - 1, j + 1) + detAt(ly, i - 1, j - 1));
+    H[0][2] = H[2][0] = 0.25f * (detAt(ly + 1, i, j + 1) - detAt(ly + 1, i, j - 1) -
+                                 detAt(ly - 1, i, j + 1) + detAt(ly - 1, i, j - 1));
+    H[1][2] = H[2][1] = 0.25f * (detAt(ly + 1, i + 1, j) - detAt(ly + 1, i - 1, j) -
+                                 detAt(ly - 1, i + 1, j) + detAt(ly - 1, i - 1, j));
+    return v;
+  }
+
+  const TIntegral& m_in;
+  const int m_o, m_n, m_step, m_nx, m_ny;
+  std::vector<TLayer>& m_layers;
+  const TFilter m_below, m_above;
+};
 }  // namespace
 
 std::vector<cv::KeyPoint> detectFastHessian(const TIntegral& in, const TFastHessianParams& prm)
@@ -203,146 +362,23 @@ std::vector<cv::KeyPoint> detectFastHessian(const TIntegral& in, const TFastHess
   std::vector<cv::KeyPoint> out;
   const int n = prm.nOctaveLayers;
   const float thr = static_cast<float>(prm.threshold);
-  // Layers 1..n are searched for maxima and stored; the outermost layers 0
-  // and n+1 only serve as neighbours of candidates, so they are evaluated on
-  // demand (a few thousand 3x3 patches instead of every grid cell).
   std::vector<TLayer> layers(n);
   for (int o = 0; o < prm.nOctaves; ++o)
   {
-    const int step = 1 << o;
     const int largest = filterSize(o, n + 1, n);
     if (largest > in.rows || largest > in.cols)
       break;  // octave does not fit
-    const int nx = (in.cols - 1) / step + 1, ny = (in.rows - 1) / step + 1;
-    for (int l = 0; l < n; ++l)
-    {
-      layers[l].L = filterSize(o, l + 1, n);
-      layers[l].border = (layers[l].L - 1) / 2;
-      layers[l].det.resize(static_cast<size_t>(nx) * ny);
-      layers[l].sign.resize(static_cast<size_t>(nx) * ny);
-    }
-    computeLayers(in, step, nx, ny, layers);
-    const TFilter below(filterSize(o, 0, n), in.stride), above(filterSize(o, n + 1, n), in.stride);
-    const float dL = static_cast<float>(6 << o);  // filter size step in this octave
-
-    // Determinant at grid cell (i, j) of octave layer ly (0 .. n+1).
-    const auto detAt = [&](int ly, int i, int j) -> float
-    {
-      if (ly >= 1 && ly <= n)
-        return layers[ly - 1].det[static_cast<size_t>(i) * nx + j];
-      return (ly == 0 ? below : above).det(in.data + i * step * in.stride + j * step);
-    };
-    // Sub-pixel / sub-scale position by fitting a 3-D quadratic to the
-    // determinant (Brown & Lowe, as the paper does). An offset of up to one
-    // cell is accepted (measured on fr1/rpy: requiring half a cell and moving
-    // to the neighbour lost keypoints without making the rest more
-    // repeatable); a larger one is refitted around the neighbouring cell, at
-    // most 5 times.
-    const auto refine = [&](int ly, int i, int j) -> std::optional<cv::KeyPoint>
-    {
-      for (int iter = 0; iter < 5; ++iter)
-      {
-        const int borderAbove = (filterSize(o, ly + 1, n) - 1) / 2;
-        const auto [i0, i1] = validRange(borderAbove, in.rows, step);
-        const auto [j0, j1] = validRange(borderAbove, in.cols, step);
-        if (ly < 1 || ly > n || i <= i0 || i >= i1 || j <= j0 || j >= j1)
-          return std::nullopt;
-        const float v = detAt(ly, i, j);
-        const float xp = detAt(ly, i, j + 1), xm = detAt(ly, i, j - 1);
-        const float yp = detAt(ly, i + 1, j), ym = detAt(ly, i - 1, j);
-        const float sp = detAt(ly + 1, i, j), sm = detAt(ly - 1, i, j);
-        const float g[3] = {0.5f * (xp - xm), 0.5f * (yp - ym), 0.5f * (sp - sm)};
-        float H[3][3];
-        H[0][0] = xp + xm - 2 * v;
-        H[1][1] = yp + ym - 2 * v;
-        H[2][2] = sp + sm - 2 * v;
-        H[0][1] = H[1][0] = 0.25f * (detAt(ly, i + 1, j + 1) - detAt(ly, i + 1, j - 1) -
-                                     detAt(ly, i - 1, j + 1) + detAt(ly, i - 1, j - 1));
-        H[0][2] = H[2][0] = 0.25f * (detAt(ly + 1, i, j + 1) - detAt(ly + 1, i, j - 1) -
-                                     detAt(ly - 1, i, j + 1) + detAt(ly - 1, i, j - 1));
-        H[1][2] = H[2][1] = 0.25f * (detAt(ly + 1, i + 1, j) - detAt(ly + 1, i - 1, j) -
-                                     detAt(ly - 1, i + 1, j) + detAt(ly - 1, i - 1, j));
-        float x[3];
-        if (!solve3(H, g, x))
-          return std::nullopt;
-        if (std::abs(x[0]) <= 1.0f && std::abs(x[1]) <= 1.0f && std::abs(x[2]) <= 1.0f)
-        {
-          cv::KeyPoint kp;
-          kp.pt = cv::Point2f((j + x[0]) * step, (i + x[1]) * step);
-          kp.size = static_cast<float>(filterSize(o, ly, n)) + x[2] * dL;
-          kp.response = v + 0.5f * (g[0] * x[0] + g[1] * x[1] + g[2] * x[2]);
-          kp.angle = -1;
-          kp.class_id = layers[ly - 1].sign[static_cast<size_t>(i) * nx + j];
-          return kp;
-        }
-        // Offsets of several cells mean the quadratic model does not hold.
-        if (std::abs(x[0]) > 2.0f || std::abs(x[1]) > 2.0f || std::abs(x[2]) > 2.0f)
-          return std::nullopt;
-        j += static_cast<int>(std::lround(x[0]));
-        i += static_cast<int>(std::lround(x[1]));
-        ly += static_cast<int>(std::lround(x[2]));
-      }
-      return std::nullopt;
-    };
-
+    const COctaveSearch octave(in, o, n, layers);
     // One task per (searched layer, row); results per task keep the order
     // deterministic whatever the scheduling.
-    const int rowsPerLayer = std::max(0, ny - 2);
-    std::vector<std::vector<cv::KeyPoint>> found(static_cast<size_t>(n) * rowsPerLayer);
+    const int tasks = n * octave.rowsPerLayer();
+    std::vector<std::vector<cv::KeyPoint>> found(static_cast<size_t>(tasks));
     cv::parallel_for_(
-        cv::Range(0, n * rowsPerLayer),
+        cv::Range(0, tasks),
         [&](const cv::Range& r)
         {
           for (int t = r.start; t < r.end; ++t)
-          {
-            const int l = t / rowsPerLayer, i = 1 + t % rowsPerLayer;
-            // The 3x3 neighbourhood must be valid in the layer above too.
-            const int borderAbove = (filterSize(o, l + 2, n) - 1) / 2;
-            const auto [i0, i1] = validRange(borderAbove, in.rows, step);
-            if (i <= i0 || i >= i1)
-              continue;
-            const auto [j0, j1] = validRange(borderAbove, in.cols, step);
-            const float* Dc = layers[l].det.data();
-            const int32_t* row = in.data + i * step * in.stride;
-            for (int j = j0 + 1; j <= j1 - 1; ++j)
-            {
-              const size_t c = static_cast<size_t>(i) * nx + j;
-              const float v = Dc[c];
-              if (v <= thr)
-                continue;
-              // Cheap test first: maximum within its own layer.
-              if (Dc[c - 1] >= v || Dc[c + 1] >= v || Dc[c - nx - 1] >= v || Dc[c - nx] >= v ||
-                  Dc[c - nx + 1] >= v || Dc[c + nx - 1] >= v || Dc[c + nx] >= v ||
-                  Dc[c + nx + 1] >= v)
-                continue;
-              // 3x3 neighbourhoods in the layers below (b) and above (a).
-              float b[3][3], a[3][3];
-              for (int di = -1; di <= 1; ++di)
-                for (int dj = -1; dj <= 1; ++dj)
-                {
-                  const ptrdiff_t q = static_cast<ptrdiff_t>(c) + di * nx + dj;
-                  const int32_t* p = row + di * step * in.stride + (j + dj) * step;
-                  b[di + 1][dj + 1] = l > 0 ? layers[l - 1].det[q] : below.det(p);
-                  a[di + 1][dj + 1] = l < n - 1 ? layers[l + 1].det[q] : above.det(p);
-                }
-              bool isMax = true;
-              for (int di = 0; di < 3 && isMax; ++di)
-                for (int dj = 0; dj < 3; ++dj)
-                  if (b[di][dj] >= v || a[di][dj] >= v)
-                  {
-                    isMax = false;
-                    break;
-                  }
-              if (!isMax)
-                continue;
-
-              if (auto kp = refine(l + 1, i, j))
-              {
-                kp->octave = o;
-                found[t].push_back(*kp);
-              }
-            }
-          }
+            octave.searchRow(t, thr, found[t]);
         });
     for (const auto& f : found)
       out.insert(out.end(), f.begin(), f.end());

@@ -67,6 +67,7 @@ TSlamSummary CRoiGraphSlamEngineApp::run()
   settings.snapshot = m_args.snapshot;
   settings.progress = m_args.progress;
   settings.readoutFrom = readoutOrigin(m_iniReadout);
+  settings.observer = m_args.observer;
   // As graphslam-engine does: the parameters in use, before the run.
   settings.started = [gt = m_args.groundTruth](const CSlamPipeline& p)
   {

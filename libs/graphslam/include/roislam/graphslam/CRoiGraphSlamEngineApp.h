@@ -19,6 +19,7 @@
  */
 #pragma once
 
+#include <roislam/graphslam/CSlamObserver.h>
 #include <roislam/graphslam/TSlamDeciders.h>
 #include <roislam/graphslam/TSlamSummary.h>
 #include <roislam/io/CFrameSource.h>
@@ -49,6 +50,9 @@ class CRoiGraphSlamEngineApp
     std::string camera = "auto";
     /** Progress lines (e.g. to stderr); may be empty. */
     std::function<void(const std::string&)> progress;
+    /** Told every frame and optimisation (e.g. the live view); not owned,
+     *  may be null; its stopRequested() ends the run early, outputs written. */
+    CSlamObserver* observer = nullptr;
   };
 
   /** Checks the arguments before any work: --2d (with a note on what to
@@ -63,6 +67,9 @@ class CRoiGraphSlamEngineApp
    *  the engine's and the deciders' parameters (printParams()) to stdout
    *  first. Call once. */
   TSlamSummary run();
+
+  /** TArguments::observer, set after construction (not owned, may be null). */
+  void setObserver(CSlamObserver* observer) { m_args.observer = observer; }
 
   /** --list-node-regs / --list-edge-regs / --list-regs / --list-optimizers:
    *  "node", "edge", "all" or "optimizer". */
