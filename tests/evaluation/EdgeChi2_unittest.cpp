@@ -76,6 +76,19 @@ TEST(EdgeChi2, EdgesDrawnFromTheirInformationReadChi2Of6)
   EXPECT_EQ(s->skipped, 0u);
   EXPECT_NEAR(s->mean, 6.0, 0.3);
   EXPECT_NEAR(s->median, 5.35, 0.3);
+  // Each direction's e_i^2 / Sigma_ii has mean 1.
+  for (int k = 0; k < 6; ++k)
+    EXPECT_NEAR(s->direction[k], 1.0, 0.1) << "direction " << k;
+  // Labelled edges: the same statistics per kind.
+  const auto byParity = evaluation::edgeChi2(
+      g.graph, stampOf, g.gt, 0.02,
+      [](mrpt::graphs::TNodeID from, mrpt::graphs::TNodeID) -> std::string
+      { return from % 2 ? "odd" : "even"; });
+  ASSERT_TRUE(byParity);
+  ASSERT_EQ(byParity->byKind.size(), 2u);
+  EXPECT_EQ(byParity->byKind.at("odd").edges, 2000u);
+  EXPECT_NEAR(byParity->byKind.at("even").mean, 6.0, 0.45);
+  EXPECT_NEAR(byParity->byKind.at("odd").direction[3], 1.0, 0.15);
   // Overconfident edges read as such.
   const auto over = evaluation::edgeChi2(noisyChain(4000, 10.0).graph, stampOf, g.gt);
   ASSERT_TRUE(over);
@@ -100,4 +113,6 @@ TEST(EdgeChi2, ExactEdgesAndMissingGroundTruth)
   const auto j = evaluation::toJson(*s);
   EXPECT_EQ(j.at("edges").get<std::size_t>(), 10u);
   EXPECT_DOUBLE_EQ(j.at("expected").get<double>(), 6.0);
+  EXPECT_EQ(j.at("direction").size(), 6u);
+  EXPECT_TRUE(j.at("by_kind").empty());
 }
