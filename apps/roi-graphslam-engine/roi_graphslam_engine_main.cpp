@@ -41,6 +41,10 @@ int main(int argc, char** argv)
   cli.add_flag("--list-edge-regs", listEdge, "List the edge registration deciders and exit");
   cli.add_flag("--list-regs", listRegs, "List all registration deciders and exit");
   cli.add_flag("--list-optimizers", listOpt, "List the optimizers and exit");
+  cli.add_option(
+         "--camera", args.camera,
+         "Sensor description: auto|fr1|fr2|fr3|ros|<file> (camera facts: readout, depth noise)")
+      ->capture_default_str();
   cli.add_option("--output-dir", args.outputDir, "Output folder")->capture_default_str();
   cli.add_flag("--no-snapshot", noSnapshot, "Do not render snapshot.png");
   roislam::gui::CLiveViewSession liveView("roi-graphslam-engine");

@@ -84,6 +84,11 @@ TEST(RoiGraphSlamEngineApp, EqualsRoiGraphSlamOnTheSyntheticLoop)
   for (const char* k : {"graph_nodes", "graph_edges", "keyframes", "loop_closures"})
     EXPECT_EQ(se[k], sg[k]) << k;
   EXPECT_EQ(se["ate_rmse"], sg["ate_rmse"]);
+  // The same sensor description, and its camera facts used by both: neither
+  // ini sets them.
+  EXPECT_EQ(se["sensor"], sg["sensor"]);
+  EXPECT_EQ(se["sensor"]["rolling_shutter_from"], "sensor description");
+  EXPECT_NE(e.err.find("roi-graphslam-engine: "), std::string::npos);
   // One code path: the same trajectory to the last digit.
   EXPECT_EQ(trajectoryBody(out + "/engine"), trajectoryBody(out + "/roi-graphslam"));
   fs::remove_all(out);
@@ -116,6 +121,9 @@ TEST(RoiGraphSlamEngineApp, PrintsTheParametersItsDecidersLoaded)
     EXPECT_NE(r.out.find(line), std::string::npos) << line << "\n" << r.out;
   auto s = readSummary(out + "/run");
   EXPECT_EQ(s["mode"], "roi_small");
+  // A readout the ini still sets overrides the sensor description's.
+  EXPECT_EQ(s["sensor"]["rolling_shutter_from"], "ini");
+  EXPECT_EQ(s["sensor"]["rolling_shutter_ms_used"], 25.0);
   // Without ground truth: no ATE, no RPE.
   EXPECT_TRUE(s["ate_rmse"].is_null());
   EXPECT_TRUE(s["rpe_trans_rmse"].is_null());

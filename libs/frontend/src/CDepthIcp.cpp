@@ -181,6 +181,7 @@ std::optional<CDepthIcp::TResult> CDepthIcp::align(
   // independent measurements so the graph does not over-trust ICP edges.
   const double sigma = std::max(out.rmse, 0.003);
   out.information = H / (sigma * sigma) * 0.01;
+  out.edgeInformation = H / (out.rmse * out.rmse + 1e-12) * 0.01;
   return out;
 }
 }  // namespace roislam::frontend::detail

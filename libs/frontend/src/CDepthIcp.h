@@ -44,6 +44,9 @@ class CDepthIcp
   {
     TRigid T;                                 //!< maps current-frame points to the reference frame
     Matrix6d information = Matrix6d::Zero();  //!< of the left-perturbation delta
+    /** For the pose graph: the point-to-plane Hessian itself (no floor),
+     *  nearly zero along directions the surfaces leave free. */
+    Matrix6d edgeInformation = Matrix6d::Zero();
     std::size_t pairs = 0;
     double rmse = 0;
   };

@@ -149,6 +149,7 @@ std::optional<TRelativePoseEstimate> CRgbdOdometry::registerKeyframes(
     return std::nullopt;
   TRelativePoseEstimate e;
   std::tie(e.pose, e.information) = detail::toMrptEstimate(*r);
+  e.edgeInformation = detail::toSpaEstimate(*r);
   e.matches = r->matches;
   e.inliers = r->inliers;
   e.rmse_m = r->rmse3d;

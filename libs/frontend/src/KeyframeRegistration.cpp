@@ -60,6 +60,7 @@ TRefineParams refineParams(const CRgbdOdometry::TOptions& o)
   rp.inlierThresholdPx = o.reprojection_threshold_px;
   rp.inlierThreshold3d = 2 * o.ransac_threshold_m;
   rp.pixelSigma = o.pixel_sigma_px;
+  rp.depthSigma = [noise = o.depth_noise](double z) { return noise.sigma(z); };
   return rp;
 }
 
@@ -72,6 +73,7 @@ std::optional<TRegistration> finishRegistration(
   TRegistration out;
   out.T = rr.T;
   out.information = rr.information;
+  out.edgeInformation = rr.edgeInformation;
   out.matches = pairs.size();
   out.inliers = rr.inliers.size();
   out.rmse3d = rr.rmse3d;

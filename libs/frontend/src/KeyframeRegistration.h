@@ -25,6 +25,8 @@ struct TRegistration
 {
   TRigid T;
   Matrix6d information;
+  /** TRefineResult::edgeInformation: what the pose graph weighs it by. */
+  Matrix6d edgeInformation = Matrix6d::Zero();
   std::size_t matches = 0, inliers = 0;
   double rmse3d = 0, rmsePx = 0;
   /** Every match as (reference feature, current feature) indices, and which
@@ -60,6 +62,15 @@ std::pair<mrpt::poses::CPose3D, TInformation66> toMrptEstimate(const TResult& r)
 {
   const mrpt::poses::CPose3D pose = toPose(r.T);
   return {pose, toMrpt(tangentInfoToYpr(r.information, pose))};
+}
+
+/** A registration's estimator information (features or ICP) in the
+ *  parametrisation MRPT's SPA weighs edges by (SE(3) pseudo-log of the
+ *  right perturbation, [x y z rx ry rz]). */
+template <class TResult>
+TInformation66 toSpaEstimate(const TResult& r)
+{
+  return toMrpt(tangentInfoToPseudoLog(r.edgeInformation, r.T));
 }
 
 /** A ROI registration to replace by a whole-image one when that registers:

@@ -9,6 +9,7 @@
 #include <roislam/geometry/TPinhole.h>
 
 #include <cstddef>
+#include <functional>
 #include <vector>
 
 #include "RigidMath.h"
@@ -39,6 +40,9 @@ struct TRefineParams
   double pixelSigma = 1.0;
   /** Huber threshold, in units of each pair's sigma. */
   double huber = 2.0;
+  /** Axial depth noise (1 sigma, m) at depth z (m) for the estimator's
+   *  information; empty = exact depth. */
+  std::function<double(double)> depthSigma;
 };
 
 struct TRefineResult
@@ -46,6 +50,12 @@ struct TRefineResult
   TRigid T;
   /** Information of the left-perturbation delta of T (see applyLeft). */
   Matrix6d information = Matrix6d::Zero();
+  /** The estimator's information of the same delta, for the pose graph:
+   *  each residual weighted by its covariance from the pixel noise of both
+   *  keypoints (doubled: both directions use the same keypoints) and the
+   *  depth noise of the point it reprojects, and scaled by the
+   *  a-posteriori variance factor of the fit (the residuals' own spread). */
+  Matrix6d edgeInformation = Matrix6d::Zero();
   std::vector<std::size_t> inliers;
   double rmsePx = 0;
   double rmse3d = 0;

@@ -1,5 +1,6 @@
 #include "RigidMath.h"
 
+#include <mrpt/math/geometry.h>
 #include <roislam/geometry/Rotation.h>
 
 namespace roislam::frontend::detail
@@ -61,6 +62,16 @@ Matrix6d tangentInfoToYpr(const Matrix6d& H, const mrpt::poses::CPose3D& T)
   Matrix6d I = A.transpose() * H * A;
   return 0.5 * (I + I.transpose());
 }
+Matrix6d tangentInfoToPseudoLog(const Matrix6d& H, const TRigid& T)
+{
+  Matrix6d B = Matrix6d::Zero();
+  B.topLeftCorner<3, 3>() = T.R;
+  B.topRightCorner<3, 3>() = mrpt::math::skew_symmetric3(T.t).asEigen() * T.R;
+  B.bottomRightCorner<3, 3>() = T.R;
+  const Matrix6d I = B.transpose() * H * B;
+  return 0.5 * (I + I.transpose());
+}
+
 TRigid fuseLeft(const TRigid& a, const Matrix6d& Ha, const TRigid& b, const Matrix6d& Hb)
 {
   // b = exp(d) a with d = (v, w): Exp(w) = Rb Ra^T, v = tb - Exp(w) ta.

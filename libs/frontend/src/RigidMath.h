@@ -38,4 +38,9 @@ TRigid fuseLeft(const TRigid& a, const Matrix6d& Ha, const TRigid& b, const Matr
 /** Information H of delta (left perturbation of T, as in applyLeft) ->
  *  information of (x, y, z, yaw, pitch, roll) of T (CPose3DPDFGaussianInf). */
 Matrix6d tangentInfoToYpr(const Matrix6d& H, const mrpt::poses::CPose3D& T);
+
+/** Information H of delta (left perturbation of T) -> information of the
+ *  SE(3) pseudo-log e = [x y z rx ry rz] of the right perturbation T exp(e),
+ *  the residual MRPT's SPA weighs (d = [R, [t]x R; 0, R] e). */
+Matrix6d tangentInfoToPseudoLog(const Matrix6d& H, const TRigid& T);
 }  // namespace roislam::frontend::detail

@@ -45,6 +45,7 @@ void CRgbdOdometry::startMap(TFrameWork& w)
   w.res.method = ETrackingMethod::Initial;
   w.res.pose = m_initialPose;
   w.res.relativeInformation = scaledIdentity(1e6);
+  w.res.relativeEdgeInformation = w.res.relativeInformation;
   insertKeyframe(w, m_initialPose);
 }
 
@@ -87,6 +88,7 @@ void CRgbdOdometry::makeKeyframeConstraints(TFrameWork& w)
     if (const auto r = I.registerSets(m_keyframes[w.ref], w.full, o))
     {
       std::tie(res.relativePose, res.relativeInformation) = detail::toMrptEstimate(*r);
+      res.relativeEdgeInformation = detail::toSpaEstimate(*r);
       res.inliers = r->inliers;
       res.pose = m_keyframes[w.ref].pose + res.relativePose;
       I.setVelocity(*res.pose - w.lastWorld, w.in.frame.timestamp);
@@ -97,6 +99,7 @@ void CRgbdOdometry::makeKeyframeConstraints(TFrameWork& w)
   first.toKeyframe = m_keyframes.size();
   first.relativePose = res.relativePose;
   first.information = res.relativeInformation;
+  first.edgeInformation = res.relativeEdgeInformation;
   first.method = res.method;
   first.inliers = res.inliers;
   res.constraints.push_back(first);
@@ -114,6 +117,7 @@ void CRgbdOdometry::makeKeyframeConstraints(TFrameWork& w)
     c.fromKeyframe = id;
     c.toKeyframe = first.toKeyframe;
     std::tie(c.relativePose, c.information) = detail::toMrptEstimate(*r);
+    c.edgeInformation = detail::toSpaEstimate(*r);
     c.method = featureMethod(o.mode, w.fallback);
     c.inliers = r->inliers;
     res.constraints.push_back(c);

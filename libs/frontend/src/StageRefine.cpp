@@ -70,6 +70,7 @@ void CRgbdOdometry::refineWithDepth(TFrameWork& w) const
   {
     w.reg->T = detail::fuseLeft(w.reg->T, w.reg->information, ir->T, ir->information);
     w.reg->information += ir->information;
+    w.reg->edgeInformation += ir->edgeInformation;
     w.res.icpRefined = true;
   }
   w.res.times.icp_ms += msSince(t0);
@@ -84,6 +85,7 @@ bool CRgbdOdometry::resolvePose(TFrameWork& w)
   {
     res.method = featureMethod(o.mode, w.fallback);
     std::tie(res.relativePose, res.relativeInformation) = detail::toMrptEstimate(*w.reg);
+    res.relativeEdgeInformation = detail::toSpaEstimate(*w.reg);
     res.inliers = w.reg->inliers;
   }
   else if (o.strict_roi && isRoiMode(o.mode))
@@ -99,6 +101,7 @@ bool CRgbdOdometry::resolvePose(TFrameWork& w)
     res.method = ETrackingMethod::ConstantVelocity;
     res.relativePose = w.predictedRel;
     res.relativeInformation = scaledIdentity(o.constant_velocity_information_scale);
+    res.relativeEdgeInformation = res.relativeInformation;
     res.inliers = 0;
     if (o.icp_fallback && I.icpMaps.count(w.lastKf))
     {
@@ -110,6 +113,7 @@ bool CRgbdOdometry::resolvePose(TFrameWork& w)
       {
         res.method = ETrackingMethod::DepthIcp;
         std::tie(res.relativePose, res.relativeInformation) = detail::toMrptEstimate(*ir);
+        res.relativeEdgeInformation = detail::toSpaEstimate(*ir);
         res.inliers = ir->pairs;
       }
     }

@@ -60,7 +60,8 @@ CKeyframeERD::TEdgeReport CKeyframeERD::registerKeyframe(const frontend::TFrameR
         static_cast<mrpt::graphs::TNodeID>(k.fromKeyframe),
         static_cast<mrpt::graphs::TNodeID>(k.toKeyframe),
         mrpt::poses::CPose3DPDFGaussianInf(
-            k.relativePose, c.edgeInformation(k.information, k.method, k.inliers)));
+            k.relativePose,
+            c.edgeInformation(k.information, k.method, k.inliers, k.edgeInformation)));
     ++rep.recentEdges;
     ++m_stats["recent"];
   }
@@ -94,7 +95,8 @@ void CKeyframeERD::addLoopClosures(std::size_t id, TEdgeReport& rep)
         static_cast<mrpt::graphs::TNodeID>(cand), static_cast<mrpt::graphs::TNodeID>(id),
         mrpt::poses::CPose3DPDFGaussianInf(
             est->pose, c.edgeInformation(
-                           est->information, frontend::ETrackingMethod::Features, est->inliers)));
+                           est->information, frontend::ETrackingMethod::Features, est->inliers,
+                           est->edgeInformation)));
     TLoopClosure lc;
     lc.fromKeyframe = cand;
     lc.toKeyframe = id;

@@ -1,7 +1,6 @@
 #include <roislam/graphslam/CKeyframeGSO.h>
 #include <roislam/graphslam/SlamIni.h>
 
-// getEdgeSquareError() needs Eigen complete; MRPT's headers do not include it.
 #include <Eigen/Dense>
 #include <algorithm>
 #include <iostream>
@@ -58,7 +57,7 @@ double CKeyframeGSO::worstClosureError(std::size_t firstLoop) const
         static_cast<mrpt::graphs::TNodeID>(loops[i].fromKeyframe),
         static_cast<mrpt::graphs::TNodeID>(loops[i].toKeyframe)));
     if (it != g.edges.end())
-      worst = std::max(worst, g.getEdgeSquareError(it, false));
+      worst = std::max(worst, CSlamContext::edgeChi2(g, it));
   }
   return worst;
 }

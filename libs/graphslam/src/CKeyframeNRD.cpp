@@ -98,7 +98,8 @@ bool CKeyframeNRD::registerFrame(const frontend::TFrameResult& r)
   g.insertEdgeAtEnd(
       static_cast<mrpt::graphs::TNodeID>(k.fromKeyframe), id,
       mrpt::poses::CPose3DPDFGaussianInf(
-          k.relativePose, c.edgeInformation(k.information, k.method, k.inliers)));
+          k.relativePose,
+          c.edgeInformation(k.information, k.method, k.inliers, k.edgeInformation)));
   this->m_prev_registered_nodeID = id;
   return true;
 }

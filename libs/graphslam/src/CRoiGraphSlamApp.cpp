@@ -1,8 +1,8 @@
 #include <mrpt/config/CConfigFile.h>
-#include <mrpt/core/format.h>
 #include <roislam/graphslam/CRoiGraphSlamApp.h>
 #include <roislam/graphslam/CRoislamOptionsChecker.h>
 #include <roislam/graphslam/CSlamRunner.h>
+#include <roislam/graphslam/SensorFacts.h>
 #include <roislam/io/CFrameSource.h>
 
 #include <filesystem>
@@ -25,7 +25,7 @@ CRoiGraphSlamApp::CRoiGraphSlamApp(TArguments arguments) : m_args(std::move(argu
       throw std::runtime_error("ini " + m_args.iniFile + ": cannot open");
     mrpt::config::CConfigFile cfg(m_args.iniFile);
     m_config = CSlamContext::loadConfig(cfg, m_args.iniFile);
-    m_iniReadout = cfg.keyExists("FrontEnd", "rolling_shutter_ms");
+    m_iniReadout = iniSetsReadout(cfg, m_args.iniFile);
   }
   auto& fe = m_config.frontEnd;
   if (m_args.mode)
@@ -52,19 +52,9 @@ CRoiGraphSlamApp::CRoiGraphSlamApp(TArguments arguments) : m_args(std::move(argu
 
 void CRoiGraphSlamApp::applySensor(const io::CFrameSource& source)
 {
-  const io::TSensorChoice& choice = source.sensor();
-  if (m_args.progress)
-    m_args.progress("roi-graphslam: " + choice.summary());
-  auto& fe = m_config.frontEnd;
-  const double sensorMs = choice.sensor.signedReadoutMs();
-  if (!m_iniReadout)
-    fe.rolling_shutter_ms = sensorMs;
-  else if (fe.rolling_shutter_ms != sensorMs && m_args.progress)
-    m_args.progress(mrpt::format(
-        "roi-graphslam: note: %s sets [FrontEnd] rolling_shutter_ms = %g, which overrides "
-        "the sensor's %g ms (the readout is a camera fact: it moved to the sensor "
-        "description)",
-        m_args.iniFile.c_str(), fe.rolling_shutter_ms, sensorMs));
+  applySensorFacts(
+      m_config.frontEnd, source.sensor(), m_iniReadout, "roi-graphslam", m_args.iniFile,
+      m_args.progress);
 }
 
 CRoiGraphSlamApp::TSummary CRoiGraphSlamApp::run()
@@ -81,7 +71,7 @@ CRoiGraphSlamApp::TSummary CRoiGraphSlamApp::run()
   settings.maxFrames = m_args.maxFrames;
   settings.progress = m_args.progress;
   settings.observer = m_args.observer;
-  settings.readoutFrom = m_iniReadout ? "ini [FrontEnd]" : "sensor description";
+  settings.readoutFrom = readoutOrigin(m_iniReadout);
   // The engine's own keys ([GeneralConfiguration] ...) come from the same
   // ini; our deciders take m_config as it is.
   return CSlamRunner(std::move(settings))

@@ -2,6 +2,7 @@
 #include <roislam/graphslam/CRoiGraphSlamEngineApp.h>
 #include <roislam/graphslam/CRoislamOptionsChecker.h>
 #include <roislam/graphslam/CSlamRunner.h>
+#include <roislam/graphslam/SensorFacts.h>
 #include <roislam/io/TumTrajectory.h>
 
 #include <filesystem>
@@ -46,8 +47,10 @@ CRoiGraphSlamEngineApp::CRoiGraphSlamEngineApp(TArguments arguments) : m_args(st
         "(MRPT 2.5.8 aborts on its first optimisation)");
   if (m_args.rawlog.empty())
     throw std::invalid_argument("-r/--rawlog is required");
-  // Intrinsics from the observations.
-  m_source = io::CFrameSource::open(m_args.rawlog);
+  // Camera facts (rolling-shutter readout, depth noise) come from the sensor
+  // description, as in roi-graphslam; a readout still set in the ini wins.
+  m_iniReadout = iniSetsReadout(cfg, m_args.iniFile);
+  m_source = io::CFrameSource::open(m_args.rawlog, m_args.camera);
   if (m_args.groundTruth)
     io::loadTumTrajectory(*m_args.groundTruth);  // a bad file fails now, not after the run
 }
@@ -63,6 +66,7 @@ TSlamSummary CRoiGraphSlamEngineApp::run()
   settings.groundTruthFile = m_args.groundTruth;
   settings.snapshot = m_args.snapshot;
   settings.progress = m_args.progress;
+  settings.readoutFrom = readoutOrigin(m_iniReadout);
   settings.observer = m_args.observer;
   // As graphslam-engine does: the parameters in use, before the run.
   settings.started = [gt = m_args.groundTruth](const CSlamPipeline& p)
@@ -75,8 +79,17 @@ TSlamSummary CRoiGraphSlamEngineApp::run()
   return CSlamRunner(std::move(settings))
       .run(
           std::move(m_source),
-          [this](std::unique_ptr<io::CFrameSource> s) {
-            return std::make_unique<CSlamPipeline>(m_args.deciders, m_args.iniFile, std::move(s));
+          [this](std::unique_ptr<io::CFrameSource> s)
+          {
+            const io::TSensorChoice sensor = s->sensor();
+            return std::make_unique<CSlamPipeline>(
+                m_args.deciders, m_args.iniFile, std::move(s),
+                [this, &sensor](CSlamContext::TConfig& config)
+                {
+                  applySensorFacts(
+                      config.frontEnd, sensor, m_iniReadout, "roi-graphslam-engine", m_args.iniFile,
+                      m_args.progress);
+                });
           });
 }
 

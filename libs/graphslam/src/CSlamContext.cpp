@@ -2,6 +2,7 @@
 #include <mrpt/graphslam/levmarq.h>
 #include <mrpt/system/CTicTac.h>
 #include <roislam/common/IniErrors.h>
+#include <roislam/evaluation/EdgeChi2.h>
 #include <roislam/graphslam/CSlamContext.h>
 #include <roislam/graphslam/SlamIni.h>
 
@@ -96,10 +97,11 @@ void CSlamContext::TOptions::validate(const std::string& section) const
     badKey("optimize_every_keyframes", "must be >= 1");
   if (optimize_window_keyframes < 0)
     badKey("optimize_window_keyframes", "must be >= 0");
-  if (edge_information != "frontend" && edge_information != "diagonal")
+  if (edge_information != "frontend" && edge_information != "diagonal" &&
+      edge_information != "estimator")
     badKey(
         "edge_information",
-        "unknown value '" + edge_information + "' (expected frontend or diagonal)");
+        "unknown value '" + edge_information + "' (expected estimator, frontend or diagonal)");
   if (map_decimation < 1)
     badKey("map_decimation", "must be >= 1");
   if (!(map_max_depth_m > 0))
@@ -269,9 +271,11 @@ std::vector<std::pair<std::size_t, ELoopSource>> CSlamContext::loopCandidates(
 
 frontend::TInformation66 CSlamContext::edgeInformation(
     const frontend::TInformation66& frontEndInformation, frontend::ETrackingMethod method,
-    std::size_t inliers) const
+    std::size_t inliers, const frontend::TInformation66& estimatorInformation) const
 {
   const auto& o = m_config.backEnd;
+  if (o.edge_information == "estimator")
+    return estimatorInformation;
   if (o.edge_information == "frontend" || method == frontend::ETrackingMethod::ConstantVelocity)
     return frontEndInformation;
   // Isotropic blocks also sidestep the (yaw, pitch, roll) vs rotation-vector
@@ -330,7 +334,7 @@ TOptimizationReport CSlamContext::optimize(TGraph& graph, std::size_t window)
       const auto it = graph.edges.find(key);
       if (it == graph.edges.end())
         continue;
-      if (graph.getEdgeSquareError(it, false) > m_config.backEnd.loop_outlier_chi2)
+      if (edgeChi2(graph, it) > m_config.backEnd.loop_outlier_chi2)
         outliers.push_back(i);
     }
     if (outliers.empty())
@@ -350,6 +354,13 @@ TOptimizationReport CSlamContext::optimize(TGraph& graph, std::size_t window)
   r.chi2After = graph.chi2();
   r.seconds = timer.Tac();
   return r;
+}
+
+double CSlamContext::edgeChi2(const TGraph& graph, TGraph::edges_map_t::const_iterator it)
+{
+  const auto& [ids, edge] = *it;
+  return evaluation::edgeChi2(
+      edge.mean, edge.cov_inv, graph.nodes.at(ids.second) - graph.nodes.at(ids.first));
 }
 
 void CSlamContext::correctFrontEnd(const TGraph& graph)

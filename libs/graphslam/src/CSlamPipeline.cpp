@@ -14,19 +14,22 @@ CSlamPipeline::CSlamPipeline(
     const std::string& engineIni)
     : CSlamPipeline(
           CRoislamOptionsChecker().createDeciders(TSlamDeciders::TNames(), &config), engineIni,
-          std::move(source))
+          std::move(source), {})
 {
 }
 
 CSlamPipeline::CSlamPipeline(
     const TSlamDeciders::TNames& names, const std::string& iniFile,
-    std::unique_ptr<io::CFrameSource> source)
-    : CSlamPipeline(CRoislamOptionsChecker().createDeciders(names), iniFile, std::move(source))
+    std::unique_ptr<io::CFrameSource> source,
+    const std::function<void(CSlamContext::TConfig&)>& adjust)
+    : CSlamPipeline(
+          CRoislamOptionsChecker().createDeciders(names), iniFile, std::move(source), adjust)
 {
 }
 
 CSlamPipeline::CSlamPipeline(
-    TSlamDeciders deciders, const std::string& engineIni, std::unique_ptr<io::CFrameSource> source)
+    TSlamDeciders deciders, const std::string& engineIni, std::unique_ptr<io::CFrameSource> source,
+    const std::function<void(CSlamContext::TConfig&)>& adjust)
     : m_source(std::move(source)), m_deciders(std::move(deciders))
 {
   if (!m_source)
@@ -37,6 +40,13 @@ CSlamPipeline::CSlamPipeline(
   // The engine calls the deciders' loadParams(): our context is configured
   // when it returns.
   m_engine = CRgbdGraphSlamEngine::create(engineIni, m_deciders);
+  if (adjust)
+  {
+    // Before the prefetch thread holds on to the front end configure() replaces.
+    CSlamContext::TConfig config = m_deciders.context->config();
+    adjust(config);
+    m_deciders.context->configure(config);
+  }
   m_records.reserve(m_source->size());
   // Only const members of the odometry are used on the prefetch thread
   // (prepare(): checks, grey image, stage 1), while step() runs process() on

@@ -6,6 +6,7 @@
 
 #include <filesystem>
 #include <iomanip>
+#include <set>
 #include <sstream>
 #include <stdexcept>
 
@@ -107,6 +108,7 @@ CSlamRunner::TEvaluation CSlamRunner::evaluate(
         odometryOnly.push_back({r.result.timestamp, *r.result.pose});
     ev.odometryAte =
         evaluation::CTrajectoryEvaluator().evaluate(ev.groundTruth, odometryOnly).ate.rmse;
+    ev.edgeChi2 = edgeChi2(pipeline, ev.groundTruth);
   }
   catch (const std::exception& e)
   {
@@ -115,6 +117,26 @@ CSlamRunner::TEvaluation CSlamRunner::evaluate(
     progress(m_settings.app + ": warning: evaluation failed: " + ev.error);
   }
   return ev;
+}
+
+std::optional<evaluation::TEdgeChi2> CSlamRunner::edgeChi2(
+    const CSlamPipeline& pipeline, const io::TTrajectory& groundTruth)
+{
+  const auto& keyframes = pipeline.context().odometry().keyframes();
+  std::set<std::pair<std::size_t, std::size_t>> loops;
+  for (const auto& lc : pipeline.context().loopClosures())
+    loops.insert({lc.fromKeyframe, lc.toKeyframe});
+  return evaluation::edgeChi2(
+      pipeline.graph(),
+      [&keyframes](mrpt::graphs::TNodeID id)
+      { return id < keyframes.size() ? keyframes[id].timestamp : -1.0; },
+      groundTruth, 0.02,
+      [&loops](mrpt::graphs::TNodeID from, mrpt::graphs::TNodeID to) -> std::string
+      {
+        if (loops.count({from, to}))
+          return "loop";
+        return to == from + 1 ? "odometry" : "keyframe";
+      });
 }
 
 TSlamSummary CSlamRunner::summarize(
@@ -226,6 +248,7 @@ nlohmann::json CSlamRunner::summaryJson(
   j["rpe_trans_rmse"] = optionalJson(s.rpeTransRmse);
   j["rpe_rot_rmse_deg"] = optionalJson(s.rpeRotRmseDeg);
   j["frontend_ate_rmse"] = optionalJson(ev.odometryAte);
+  j["edge_chi2"] = ev.edgeChi2 ? evaluation::toJson(*ev.edgeChi2) : nlohmann::json(nullptr);
   j["evaluation"] = ev.result ? evaluation::toJson(*ev.result) : nlohmann::json(nullptr);
   if (!ev.error.empty())
     j["evaluation_error"] = ev.error;

@@ -199,6 +199,7 @@
 #include <roislam/frontend/TKeyframe.h>
 #include <roislam/frontend/TPreparedFrame.h>
 #include <roislam/io/TRGBDFrame.h>
+#include <roislam/io/TSensorDescription.h>
 #include <roislam/matching/CFeatureMatcher.h>
 #include <roislam/roi/CRoiDetector.h>
 
@@ -276,6 +277,11 @@ class CRgbdOdometry : public mrpt::system::COutputLogger
     double constant_velocity_information_scale = 1e-2;
     bool keyframe_full_features = true;
     bool keyframe_full_registration = true;
+
+    /** The sensor's depth-noise model (not an ini key: a camera fact, set
+     *  from the sensor description by whoever opens the source; default the
+     *  Kinect v1's). Weighs the estimator's edge information. */
+    io::TSensorDescription::TDepthNoise depth_noise;
 
     roi::CRoiDetector::TOptions roi;
     features::CFeatureExtractor::TOptions extractor;

@@ -63,6 +63,8 @@ struct TKeyframeConstraint
   /** Pose of `to` relative to `from`: pose(to) = pose(from) (+) relativePose. */
   mrpt::poses::CPose3D relativePose;
   TInformation66 information;
+  /** TFrameResult::relativeEdgeInformation of this constraint. */
+  TInformation66 edgeInformation;
   /** How it was measured (Features/RoiFeatures/FullImageFallback/DepthIcp/
    *  ConstantVelocity). A ConstantVelocity constraint carries a weak
    *  information (see TOptions::constant_velocity_information_scale). */
@@ -77,6 +79,8 @@ struct TRelativePoseEstimate
   /** Pose of B relative to A: pose(B) = pose(A) (+) pose. */
   mrpt::poses::CPose3D pose;
   TInformation66 information;
+  /** TFrameResult::relativeEdgeInformation of this estimate. */
+  TInformation66 edgeInformation;
   /** Putative descriptor matches and RANSAC/refinement inliers. */
   std::size_t matches = 0;
   std::size_t inliers = 0;
@@ -165,6 +169,10 @@ struct TFrameResult
   mrpt::poses::CPose3D relativePose;
   /** Information of relativePose (CPose3DPDFGaussianInf convention). */
   TInformation66 relativeInformation;
+  /** The estimator's information of relativePose in the parametrisation of
+   *  MRPT's SPA (pseudo-log [x y z rx ry rz] of the right perturbation): the
+   *  graph edge's with [GraphSlam] edge_information = estimator. */
+  TInformation66 relativeEdgeInformation;
 
   /** This frame became a keyframe (id newKeyframeId). */
   bool isNewKeyframe = false;

@@ -73,8 +73,9 @@ class CRoiGraphSlamApp
   static std::string listRegistrars(const std::string& type);
 
  private:
-  /** Prints the source's sensor description and takes its readout into the
-   *  front end (unless the ini set [FrontEnd] rolling_shutter_ms). */
+  /** Prints the source's sensor description and takes its camera facts into
+   *  the front end (applySensorFacts: the readout unless the ini set
+   *  rolling_shutter_ms, the depth-noise model). */
   void applySensor(const io::CFrameSource& source);
 
   TArguments m_args;

@@ -8,6 +8,13 @@
  * with printParams() before the run; ground truth from -g (TUM format, as
  * tum2rawlog writes NAME.groundtruth.txt) for ATE / RPE. Same outputs as
  * roi-graphslam (CSlamRunner.h), through the same pipeline (CSlamPipeline).
+ * The camera facts (rolling-shutter readout, depth-noise model) come from
+ * the sensor description as in roi-graphslam (--camera, default auto: the
+ * rawlog's or folder's camera.ini, else the observations' intrinsics and a
+ * preset; SensorFacts.h), not from the ini: the run prints which description
+ * it picked and summary.json records it ("sensor"). An ini that still sets
+ * rolling_shutter_ms overrides the description's readout, and the run says
+ * so.
  * Called by apps/roi-graphslam-engine and tests.
  */
 #pragma once
@@ -39,6 +46,8 @@ class CRoiGraphSlamEngineApp
     bool disableVisuals = false;             //!< --disable-visuals: always headless
     std::string outputDir = "graphslam_results";  //!< --output-dir
     bool snapshot = true;                         //!< no --no-snapshot
+    /** --camera: camera spec as io::resolveCamera (default auto). */
+    std::string camera = "auto";
     /** Progress lines (e.g. to stderr); may be empty. */
     std::function<void(const std::string&)> progress;
     /** Told every frame and optimisation (e.g. the live view); not owned,
@@ -69,5 +78,7 @@ class CRoiGraphSlamEngineApp
  private:
   TArguments m_args;
   std::unique_ptr<io::CFrameSource> m_source;
+  /** The ini sets rolling_shutter_ms (it then overrides the sensor's). */
+  bool m_iniReadout = false;
 };
 }  // namespace roislam::graphslam

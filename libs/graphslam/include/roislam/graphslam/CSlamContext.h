@@ -62,10 +62,14 @@
  *  - map_decimation            int >= 1 (8): every n-th pixel/row of a
  *                              keyframe's depth goes into the map cloud
  *  - map_max_depth_m           [m] > 0 (4.0): farther readings are not mapped
- *  - edge_information          frontend|diagonal (diagonal): edge weights as
- *                              the front end computes them (reprojection
- *                              Hessian, very confident: sigma ~0.3 mm), or
- *                              diagonal from the two sigmas below, scaled by
+ *  - edge_information          estimator|frontend|diagonal (diagonal): edge
+ *                              weights as the estimator's information in
+ *                              SPA's parametrisation (reprojection with pixel
+ *                              and depth noise, variance factor of the fit;
+ *                              ICP's point-to-plane Hessian), as the front
+ *                              end's tracking gates see it (pixel noise only,
+ *                              very confident: sigma ~0.3 mm), or diagonal
+ *                              from the two sigmas below, scaled by
  *                              sqrt(100 / inliers) (10..1000 inliers)
  *  - edge_sigma_m              [m] > 0 (0.01): translation sigma at 100 inliers
  *  - edge_sigma_deg            [deg] > 0 (0.5): rotation sigma at 100 inliers
@@ -233,7 +237,15 @@ class CSlamContext
    *  front end's (deliberately weak) information. */
   frontend::TInformation66 edgeInformation(
       const frontend::TInformation66& frontEndInformation, frontend::ETrackingMethod method,
-      std::size_t inliers) const;
+      std::size_t inliers,
+      const frontend::TInformation66& estimatorInformation = frontend::TInformation66()) const;
+
+  /** Squared Mahalanobis error of edge `it` against the graph's node poses
+   *  in the residual SPA minimises (pseudo-log of inv(edge) (+) inv(P1) (+)
+   *  P2). MRPT's getEdgeSquareError() measures (x y z yaw pitch roll) in the
+   *  world frame instead, which disagrees with it whenever the information
+   *  is not isotropic (and its SO(3) log is not used: NaN at zero error). */
+  static double edgeChi2(const TGraph& graph, TGraph::edges_map_t::const_iterator it);
 
   /** Records an accepted closure (counted in loopClosures()). */
   void addLoopClosure(const TLoopClosure& lc) { m_loops.push_back(lc); }

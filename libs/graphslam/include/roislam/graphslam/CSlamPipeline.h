@@ -31,6 +31,7 @@
 #include <roislam/io/CFrameSource.h>
 #include <roislam/io/TumTrajectory.h>
 
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -60,10 +61,13 @@ class CSlamPipeline
   /** roi-graphslam-engine: the deciders and optimiser named `names`
    *  (CRoislamOptionsChecker::createDeciders), their parameters read by
    *  their loadParams() from `iniFile`, which also configures the engine.
-   *  Throws on refused names and the ini's errors. */
+   *  `adjust` (may be empty) then changes what they loaded, before the first
+   *  frame: the sensor's camera facts (SensorFacts.h). Throws on refused
+   *  names and the ini's errors. */
   CSlamPipeline(
       const TSlamDeciders::TNames& names, const std::string& iniFile,
-      std::unique_ptr<io::CFrameSource> source);
+      std::unique_ptr<io::CFrameSource> source,
+      const std::function<void(CSlamContext::TConfig&)>& adjust = {});
   /** Waits for a pending decode. */
   ~CSlamPipeline();
   CSlamPipeline(const CSlamPipeline&) = delete;
@@ -121,7 +125,8 @@ class CSlamPipeline
 
   CSlamPipeline(
       TSlamDeciders deciders, const std::string& engineIni,
-      std::unique_ptr<io::CFrameSource> source);
+      std::unique_ptr<io::CFrameSource> source,
+      const std::function<void(CSlamContext::TConfig&)>& adjust);
 
   std::unique_ptr<io::CFrameSource> m_source;
   TSlamDeciders m_deciders;

@@ -18,6 +18,9 @@
  *                    decider's and the optimiser's getDescriptiveReport()
  *                    (description, parameters in use, counters)
  *  - summary.json    counts, speed, memory, ATE/RPE when ground truth is known,
+ *                    edge_chi2 (the graph edges' chi² against the ground
+ *                    truth's relative poses, per direction and per edge
+ *                    kind, evaluation::edgeChi2),
  *                    display_frame (CGravityFrame::TResult::toJson()), the
  *                    deciders' names ("engine")
  * trajectory.txt and graph.graph are in the estimate's own frame (the first
@@ -29,6 +32,7 @@
  */
 #pragma once
 
+#include <roislam/evaluation/EdgeChi2.h>
 #include <roislam/evaluation/TEvaluationResult.h>
 #include <roislam/graphslam/CSlamObserver.h>
 #include <roislam/graphslam/CSlamPipeline.h>
@@ -89,6 +93,8 @@ class CSlamRunner
     std::optional<evaluation::TEvaluationResult> result;
     /** ATE of the causal front-end estimate (poses as tracked). */
     std::optional<double> odometryAte;
+    /** The graph edges' chi² against the ground truth's relative poses. */
+    std::optional<evaluation::TEdgeChi2> edgeChi2;
     /** Why the evaluation failed (empty when it did not). */
     std::string error;
   };
@@ -98,6 +104,11 @@ class CSlamRunner
    *  asks to stop: returns true then), with progress lines. */
   bool runFrames(CSlamPipeline& pipeline, std::size_t total) const;
   TEvaluation evaluate(const CSlamPipeline& pipeline, const io::TTrajectory& estimate) const;
+  /** The graph edges' chi² against the ground truth, by kind: "loop"
+   *  (accepted closures), "odometry" (consecutive keyframes), "keyframe"
+   *  (the other edges to recent keyframes). */
+  static std::optional<evaluation::TEdgeChi2> edgeChi2(
+      const CSlamPipeline& pipeline, const io::TTrajectory& groundTruth);
   TSlamSummary summarize(
       const CSlamPipeline& pipeline, const io::TTrajectory& estimate, double wallS,
       const TEvaluation& ev) const;

@@ -1,0 +1,118 @@
+/* evaluation::edgeChi2: edges drawn from their own information, as SPA
+ * parametrises it (pseudo-log of the right perturbation), give chi² with mean
+ * 6 and median 5.35; the same edges claiming 10x the information read 10x as
+ * high; exact edges read 0 (MRPT's own SO(3) log gives NaN there); nodes
+ * without ground truth are skipped. */
+#include <gtest/gtest.h>
+#include <roislam/evaluation/EdgeChi2.h>
+#include <roislam/geometry/Rotation.h>
+
+#include <Eigen/Dense>
+#include <cmath>
+#include <random>
+
+namespace evaluation = roislam::evaluation;
+using mrpt::poses::CPose3D;
+
+namespace
+{
+/** truth exp(e): the right perturbation SPA's residual is the log of. */
+CPose3D perturbRight(const CPose3D& truth, const Eigen::Matrix<double, 6, 1>& e)
+{
+  mrpt::math::CMatrixDouble33 R;
+  R.asEigen() = roislam::geometry::expSO3(e.tail<3>());
+  const CPose3D E(R, mrpt::math::CVectorFixedDouble<3>(Eigen::Vector3d(e.head<3>())));
+  return truth + E;
+}
+
+struct TGraphWithTruth
+{
+  mrpt::graphs::CNetworkOfPoses3DInf graph;
+  roislam::io::TTrajectory gt;
+};
+
+TGraphWithTruth noisyChain(std::size_t n, double informationScale)
+{
+  std::mt19937 rng(7);
+  std::normal_distribution<double> N(0, 1);
+  // A covariance with correlations between translation and rotation.
+  Eigen::Matrix<double, 6, 6> L = Eigen::Matrix<double, 6, 6>::Zero();
+  for (int r = 0; r < 6; ++r)
+    for (int c = 0; c <= r; ++c)
+      L(r, c) = r == c ? (r < 3 ? 0.004 : 0.002) : 0.0005 * (r + c);
+  const Eigen::Matrix<double, 6, 6> info = (L * L.transpose()).inverse();
+  TGraphWithTruth g;
+  for (std::size_t i = 0; i <= n; ++i)
+  {
+    const double a = 0.05 * static_cast<double>(i);
+    g.gt.push_back({static_cast<double>(i), CPose3D(std::cos(a), std::sin(a), 0.1 * a, a, 0.1, 0)});
+  }
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    const CPose3D truth = g.gt[i + 1].pose - g.gt[i].pose;
+    Eigen::Matrix<double, 6, 1> z;
+    for (int k = 0; k < 6; ++k)
+      z[k] = N(rng);
+    mrpt::math::CMatrixDouble66 I;
+    I.asEigen() = informationScale * info;
+    g.graph.insertEdgeAtEnd(
+        i, i + 1, mrpt::poses::CPose3DPDFGaussianInf(perturbRight(truth, -(L * z)), I));
+  }
+  return g;
+}
+
+double stampOf(mrpt::graphs::TNodeID id)
+{
+  return static_cast<double>(id);
+}
+}  // namespace
+
+TEST(EdgeChi2, EdgesDrawnFromTheirInformationReadChi2Of6)
+{
+  const auto g = noisyChain(4000, 1.0);
+  const auto s = evaluation::edgeChi2(g.graph, stampOf, g.gt);
+  ASSERT_TRUE(s);
+  EXPECT_EQ(s->edges, 4000u);
+  EXPECT_EQ(s->skipped, 0u);
+  EXPECT_NEAR(s->mean, 6.0, 0.3);
+  EXPECT_NEAR(s->median, 5.35, 0.3);
+  // Each direction's e_i^2 / Sigma_ii has mean 1.
+  for (int k = 0; k < 6; ++k)
+    EXPECT_NEAR(s->direction[k], 1.0, 0.1) << "direction " << k;
+  // Labelled edges: the same statistics per kind.
+  const auto byParity = evaluation::edgeChi2(
+      g.graph, stampOf, g.gt, 0.02,
+      [](mrpt::graphs::TNodeID from, mrpt::graphs::TNodeID) -> std::string
+      { return from % 2 ? "odd" : "even"; });
+  ASSERT_TRUE(byParity);
+  ASSERT_EQ(byParity->byKind.size(), 2u);
+  EXPECT_EQ(byParity->byKind.at("odd").edges, 2000u);
+  EXPECT_NEAR(byParity->byKind.at("even").mean, 6.0, 0.45);
+  EXPECT_NEAR(byParity->byKind.at("odd").direction[3], 1.0, 0.15);
+  // Overconfident edges read as such.
+  const auto over = evaluation::edgeChi2(noisyChain(4000, 10.0).graph, stampOf, g.gt);
+  ASSERT_TRUE(over);
+  EXPECT_NEAR(over->mean, 60.0, 3.0);
+}
+
+TEST(EdgeChi2, ExactEdgesAndMissingGroundTruth)
+{
+  auto g = noisyChain(10, 1.0);
+  for (auto& [ids, e] : g.graph.edges)
+    e.mean = g.gt[ids.second].pose - g.gt[ids.first].pose;
+  const auto s = evaluation::edgeChi2(g.graph, stampOf, g.gt);
+  ASSERT_TRUE(s);
+  EXPECT_LT(s->mean, 1e-12);
+  // Node 0 has no ground truth within 0.02 s: its edge is skipped.
+  const auto shifted = evaluation::edgeChi2(
+      g.graph, [](mrpt::graphs::TNodeID id) { return id == 0 ? -5.0 : stampOf(id); }, g.gt);
+  ASSERT_TRUE(shifted);
+  EXPECT_EQ(shifted->skipped, 1u);
+  EXPECT_EQ(shifted->edges, 9u);
+  EXPECT_FALSE(evaluation::edgeChi2(g.graph, stampOf, roislam::io::TTrajectory{}));
+  const auto j = evaluation::toJson(*s);
+  EXPECT_EQ(j.at("edges").get<std::size_t>(), 10u);
+  EXPECT_DOUBLE_EQ(j.at("expected").get<double>(), 6.0);
+  EXPECT_EQ(j.at("direction").size(), 6u);
+  EXPECT_TRUE(j.at("by_kind").empty());
+}
