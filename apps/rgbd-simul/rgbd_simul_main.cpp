@@ -7,7 +7,7 @@
  * --config reads section [RgbdSimulator] of an ini file; command-line options
  * given explicitly override it.
  */
-#include <mrpt/config/CConfigFile.h>
+#include <roislam/common/CStrictIniFile.h>
 #include <roislam/sim/CRgbdSimulator.h>
 
 #include <CLI/CLI.hpp>
@@ -44,9 +44,7 @@ int main(int argc, char** argv)
     roislam::sim::CRgbdSimulator::TOptions opts;
     if (!config.empty())
     {
-      if (!std::filesystem::is_regular_file(config))
-        throw std::runtime_error("cannot read config file " + config);
-      opts.loadFromConfigFile(mrpt::config::CConfigFile(config), "RgbdSimulator");
+      opts.loadFromConfigFile(roislam::common::CStrictIniFile(config), "RgbdSimulator");
     }
     if (optScene->count() || config.empty())
       opts.scene = scene;

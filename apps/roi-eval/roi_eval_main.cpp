@@ -33,6 +33,9 @@ int main(int argc, char** argv)
   cli.add_flag("--json", p.json, "print one JSON object instead of a table");
   cli.add_option("--plot", p.plotFile, "write a PNG: ground truth and aligned estimate");
   cli.add_option("--save-aligned", p.alignedFile, "write the aligned estimate (TUM format)");
+  cli.add_flag(
+      "--skip-invalid", p.skipInvalid,
+      "skip lines with a NaN or a zero quaternion, as the benchmark scripts do (default: error)");
   CLI11_PARSE(cli, argc, argv);
 
   try

@@ -1,6 +1,7 @@
 #include "roislam/common/IniKeyCheck.h"
 
 #include <mrpt/config/CConfigFileMemory.h>
+#include <roislam/common/CStrictIniFile.h>
 
 #include <algorithm>
 #include <cctype>
@@ -40,9 +41,14 @@ void checkIniKeys(
     const std::string k = lower(key);
     const bool known = std::any_of(
         knownKeys.begin(), knownKeys.end(), [&](const std::string& s) { return lower(s) == k; });
-    if (!known)
-      throw std::runtime_error(
-          "ini " + fileLabel + ": [" + section + "] unknown key '" + key + "'");
+    if (known)
+      continue;
+    // Read through CStrictIniFile, the key's line is known.
+    const auto* strict = dynamic_cast<const CStrictIniFile*>(&cfg);
+    const auto line = strict ? strict->lineOf(section, key) : std::nullopt;
+    throw std::runtime_error(
+        "ini " + fileLabel + ": [" + section + "] unknown key '" + key + "'" +
+        (line ? " (line " + std::to_string(*line) + ")" : std::string()));
   }
 }
 }  // namespace roislam::common

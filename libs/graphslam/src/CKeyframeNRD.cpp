@@ -1,6 +1,5 @@
-#include <mrpt/config/CConfigFile.h>
 #include <mrpt/obs/CObservation3DRangeScan.h>
-#include <mrpt/system/filesystem.h>
+#include <roislam/common/CStrictIniFile.h>
 #include <roislam/graphslam/CKeyframeNRD.h>
 #include <roislam/io/ObservationConversion.h>
 
@@ -38,9 +37,7 @@ void CKeyframeNRD::loadParams(const std::string& iniFile)
 {
   if (m_explicitContext || iniFile.empty())
     return;
-  if (!mrpt::system::fileExists(iniFile))
-    throw std::runtime_error("ini " + iniFile + ": cannot open");
-  mrpt::config::CConfigFile cfg(iniFile);
+  const common::CStrictIniFile cfg(iniFile);
   auto ctx = std::make_shared<CSlamContext>(CSlamContext::loadConfig(cfg, iniFile));
   if (this->m_graph)
     CSlamContext::setForGraph(this->m_graph, ctx);

@@ -1,5 +1,5 @@
-#include <mrpt/config/CConfigFile.h>
 #include <mrpt/system/CTicTac.h>
+#include <roislam/common/CStrictIniFile.h>
 #include <roislam/evaluation/CTrajectoryEvaluator.h>
 #include <roislam/frontend/PoseUncertainty.h>
 #include <roislam/graphslam/CKeyframeERD.h>
@@ -75,9 +75,7 @@ CRoiGraphSlamApp::CRoiGraphSlamApp(TArguments arguments) : m_args(std::move(argu
 {
   if (!m_args.iniFile.empty())
   {
-    if (!fs::is_regular_file(m_args.iniFile))
-      throw std::runtime_error("ini " + m_args.iniFile + ": cannot open");
-    mrpt::config::CConfigFile cfg(m_args.iniFile);
+    const common::CStrictIniFile cfg(m_args.iniFile);
     m_config = CSlamContext::loadConfig(cfg, m_args.iniFile);
   }
   auto& fe = m_config.frontEnd;

@@ -11,6 +11,7 @@
 #include <opencv2/imgcodecs.hpp>
 #include <sstream>
 #include <stdexcept>
+#include <vector>
 
 namespace fs = std::filesystem;
 
@@ -80,14 +81,32 @@ void checkSize(const cv::Mat& img, const std::string& file, const mrpt::img::TCa
         std::to_string(camera.nrows));
 }
 
+/** A PNG ends with its IEND chunk; a truncated one does not. Checked here
+ *  because libpng would print its own error on stderr before OpenCV fails. */
+bool isTruncatedPng(const std::vector<unsigned char>& bytes)
+{
+  static const unsigned char signature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+  static const unsigned char iend[12] = {0, 0, 0, 0, 'I', 'E', 'N', 'D', 0xae, 0x42, 0x60, 0x82};
+  if (bytes.size() < 8 || !std::equal(signature, signature + 8, bytes.begin()))
+    return false;  // not a PNG: left to the decoder
+  return bytes.size() < 8 + 12 || !std::equal(iend, iend + 12, bytes.end() - 12);
+}
+
 cv::Mat readImage(const std::string& file, int flags)
 {
   if (!fs::is_regular_file(file))
     throw std::runtime_error(file + ": image file not found");
+  std::ifstream in(file, std::ios::binary | std::ios::ate);
+  std::vector<unsigned char> bytes(in ? static_cast<std::size_t>(in.tellg()) : 0);
+  in.seekg(0);
+  if (!in || !in.read(reinterpret_cast<char*>(bytes.data()), bytes.size()))
+    throw std::runtime_error(file + ": read error");
+  if (isTruncatedPng(bytes))
+    throw std::runtime_error(file + ": cannot decode image (truncated PNG: no IEND chunk)");
   cv::Mat img;
   try
   {
-    img = cv::imread(file, flags);
+    img = cv::imdecode(bytes, flags);
   }
   catch (const cv::Exception&)
   {

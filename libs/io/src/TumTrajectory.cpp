@@ -37,9 +37,12 @@ bool parseNumber(const std::string& token, double& value)
 /** Pose from a (not necessarily unit) quaternion, built as the benchmark's
  *  evaluate_rpe.py transform44() does: q scaled by sqrt(2/|q|^2), then the
  *  outer-product form of the rotation matrix; a near-zero |q|^2 gives identity. */
+/** Below this |q|^2 the scripts' transform44() returns the identity. */
+constexpr double kMinQuaternionNorm2 = std::numeric_limits<double>::epsilon() * 4.0;
+
 mrpt::poses::CPose3D poseFromTum(const std::array<double, 8>& v)
 {
-  const double eps = std::numeric_limits<double>::epsilon() * 4.0;
+  const double eps = kMinQuaternionNorm2;
   std::array<double, 4> q = {v[4], v[5], v[6], v[7]};  // x y z w
   const double nq = q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3];
   mrpt::math::CMatrixDouble33 R = mrpt::math::CMatrixDouble33::Identity();
@@ -80,7 +83,7 @@ std::string formatDouble(double x)
 }
 }  // namespace
 
-TTrajectory loadTumTrajectory(const std::string& file)
+TTrajectory loadTumTrajectory(const std::string& file, EInvalidPose invalid)
 {
   std::ifstream in(file, std::ios::binary);
   if (!in)
@@ -120,10 +123,15 @@ TTrajectory loadTumTrajectory(const std::string& file)
         throw std::runtime_error(
             file + ":" + std::to_string(lineNo) + ": infinite value '" + tokens[k] + "'");
     }
-    // Same skips as evaluate_rpe.py's read_trajectory().
-    if (hasNan)
-      continue;
-    if (v[4] == 0 && v[5] == 0 && v[6] == 0 && v[7] == 0)
+    // The skips of evaluate_rpe.py's read_trajectory(), or an error.
+    const double nq = v[4] * v[4] + v[5] * v[5] + v[6] * v[6] + v[7] * v[7];
+    const bool zeroQuaternion = !hasNan && nq < kMinQuaternionNorm2;
+    if ((hasNan || zeroQuaternion) && invalid == EInvalidPose::Reject)
+      throw std::runtime_error(
+          file + ":" + std::to_string(lineNo) +
+          (hasNan ? ": NaN value" : ": zero quaternion (no rotation)") +
+          " (roi-eval --skip-invalid skips such lines as the benchmark scripts do)");
+    if (hasNan || (v[4] == 0 && v[5] == 0 && v[6] == 0 && v[7] == 0))
       continue;
 
     TPoseStamped p;
