@@ -3,6 +3,7 @@
  * snapshot, frames.csv and summary.json into the output folder. All the work
  * is in roislam::graphslam::CRoiGraphSlamApp.
  */
+#include <roislam/common/ExitStatus.h>
 #include <roislam/common/ProcessTuning.h>
 #include <roislam/graphslam/CRoiGraphSlamApp.h>
 
@@ -18,6 +19,7 @@ int main(int argc, char** argv)
   std::string mode, feature;
   int maxFeatures = -1;
   bool noSnapshot = false, listNode = false, listEdge = false, strict = false;
+  bool allowPartial = false;
   cli.add_option("--ini", args.iniFile, "Configuration (MRPT ini), e.g. config/traditional.ini");
   cli.add_option("--input", args.input, "TUM RGB-D folder or .rawlog");
   cli.add_option("--output-dir", args.outputDir, "Output folder");
@@ -31,6 +33,10 @@ int main(int argc, char** argv)
   cli.add_option("--camera", args.camera, "Camera: auto|fr1|fr2|fr3|ros|<calibration file>");
   cli.add_option("--max-frames", args.maxFrames, "Process at most N frames (0 = all)");
   cli.add_flag("--no-snapshot", noSnapshot, "Do not render snapshot.png");
+  cli.add_flag("--overwrite", args.overwrite, "Replace an earlier output in --output-dir");
+  cli.add_flag(
+      "--allow-partial", allowPartial,
+      "Exit 0 when the evaluation or snapshot failed (else 3; summary.json says what)");
   cli.add_flag("--list-node-regs", listNode, "List the node registration deciders and exit");
   cli.add_flag("--list-edge-regs", listEdge, "List the edge registration deciders and exit");
   CLI11_PARSE(cli, argc, argv);
@@ -69,9 +75,18 @@ int main(int argc, char** argv)
       std::cerr << "roi-graphslam: error: tracking failed: " << summary.lostFrames << " of "
                 << summary.frames << " frames lost (outputs in " << args.outputDir << ")"
                 << std::endl;
-      return 1;
+      return roislam::common::kExitError;
     }
-    return 0;
+    if (!summary.incomplete.empty())
+    {
+      std::cerr << "roi-graphslam: " << (allowPartial ? "warning" : "error")
+                << ": incomplete outputs in " << args.outputDir << ": "
+                << summary.incomplete.front()
+                << (summary.incomplete.size() > 1 ? " (and more, see summary.json)" : "")
+                << std::endl;
+      return allowPartial ? roislam::common::kExitOk : roislam::common::kExitPartial;
+    }
+    return roislam::common::kExitOk;
   }
   catch (const std::exception& e)
   {

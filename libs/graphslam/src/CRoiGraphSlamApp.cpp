@@ -240,7 +240,8 @@ nlohmann::json CRoiGraphSlamApp::summaryJson(
 CRoiGraphSlamApp::TSummary CRoiGraphSlamApp::run()
 {
   auto source = io::CFrameSource::open(m_args.input, m_args.camera);
-  CSlamOutputWriter::checkWritableDir(m_args.outputDir);
+  // Before the run: a folder we may not write fails now, not after the work.
+  CSlamOutputWriter writer(m_args.outputDir, m_args.overwrite);
   progress(
       "roi-graphslam: " + source->name() + ", " + std::to_string(source->size()) +
       " frames, mode " + frontend::toString(m_config.frontEnd.mode) + ", " +
@@ -256,8 +257,9 @@ CRoiGraphSlamApp::TSummary CRoiGraphSlamApp::run()
 
   const TEvaluation ev = evaluate(pipeline, estimate);
   TSummary s = summarize(pipeline, estimate, wallS, ev);
+  if (!ev.error.empty())
+    s.incomplete.push_back("evaluation failed: " + ev.error);
 
-  const CSlamOutputWriter writer(m_args.outputDir);
   writer.writeTrajectory(
       estimate, "roi-graphslam " + pipeline.source().name() + " mode " +
                     frontend::toString(m_config.frontEnd.mode));
@@ -283,13 +285,18 @@ CRoiGraphSlamApp::TSummary CRoiGraphSlamApp::run()
   }
   const std::string snapshotError = writer.writeScene(content, m_args.snapshot);
   if (!snapshotError.empty())
+  {
     progress("roi-graphslam: warning: no snapshot: " + snapshotError);
+    s.incomplete.push_back("no snapshot: " + snapshotError);
+  }
   s.snapshotS = snapTimer.Tac();
   s.peakRssMb = peakRssMb();
 
   nlohmann::json j = summaryJson(pipeline, s, finalReport, ev);
   if (!snapshotError.empty())
     j["snapshot_error"] = snapshotError;
+  j["partial"] = !s.incomplete.empty();
+  j["incomplete"] = s.incomplete;
   writer.writeSummary(j);
   return s;
 }

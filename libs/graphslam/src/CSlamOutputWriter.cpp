@@ -65,20 +65,34 @@ void writeFramesCsvRow(std::ostream& csv, const CSlamPipeline::TFrameRecord& r)
 }
 }  // namespace
 
-CSlamOutputWriter::CSlamOutputWriter(std::string outputDir) : m_dir(std::move(outputDir) + "/") {}
-
-void CSlamOutputWriter::checkWritableDir(const std::string& dir)
+namespace
 {
-  std::error_code ec;
-  fs::create_directories(dir, ec);
-  if (ec || !fs::is_directory(dir))
-    throw std::runtime_error("output dir " + dir + ": cannot create");
-  const std::string probe = dir + "/.roi-graphslam-write-test";
-  std::ofstream out(probe);
-  if (!out)
-    throw std::runtime_error("output dir " + dir + ": not writable");
-  out.close();
-  std::remove(probe.c_str());
+common::COutputFolder::TOptions folderOptions(bool overwrite)
+{
+  common::COutputFolder::TOptions o;
+  o.overwrite = overwrite;
+  o.known = CSlamOutputWriter::files();
+  return o;
+}
+}  // namespace
+
+const std::vector<std::string>& CSlamOutputWriter::files()
+{
+  static const std::vector<std::string> names{"trajectory.txt", "graph.graph",  "map.bt",
+                                              "scene.3Dscene",  "snapshot.png", "frames.csv",
+                                              "summary.json"};
+  return names;
+}
+
+CSlamOutputWriter::CSlamOutputWriter(const std::string& outputDir, bool overwrite)
+    : m_folder(outputDir, folderOptions(overwrite)), m_dir(m_folder.path() + "/")
+{
+}
+
+void CSlamOutputWriter::checkWritableDir(const std::string& dir, bool overwrite)
+{
+  // A staging folder created and removed again: the target is untouched.
+  const common::COutputFolder probe(dir, folderOptions(overwrite));
 }
 
 void CSlamOutputWriter::writeTextFile(const std::string& file, const std::string& text)
@@ -180,8 +194,10 @@ std::string CSlamOutputWriter::writeScene(const viz::TSceneContent& content, boo
   return {};
 }
 
-void CSlamOutputWriter::writeSummary(const nlohmann::json& summary) const
+void CSlamOutputWriter::writeSummary(const nlohmann::json& summary)
 {
   writeTextFile(m_dir + "summary.json", summary.dump(2) + "\n");
+  m_folder.commit();
+  m_dir = m_folder.path() + "/";
 }
 }  // namespace roislam::graphslam

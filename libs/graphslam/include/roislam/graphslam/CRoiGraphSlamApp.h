@@ -5,8 +5,9 @@
  * SPA Levenberg-Marquardt on each loop closure and at the end.
  * While frame i is processed, frame i+1 is decoded on a second thread.
  *
- * Writes into the output folder, each file under a temporary name renamed
- * when complete:
+ * Writes into the output folder, which is complete or absent
+ * (CSlamOutputWriter: staged beside it, renamed into place at the end; a
+ * non-empty folder is refused unless `overwrite`):
  *  - trajectory.txt  TUM format, colour stamps; every tracked frame: its
  *                    keyframe's optimised pose (+) its pose relative to it
  *  - graph.graph     the optimised keyframe graph (MRPT text format, graph-slam)
@@ -29,6 +30,7 @@
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
+#include <vector>
 
 namespace roislam::graphslam
 {
@@ -48,6 +50,8 @@ class CRoiGraphSlamApp
     std::optional<int> maxFeatures;      //!< [FeatureExtractor] max_features
     std::optional<bool> strictRoi;       //!< [FrontEnd] strict_roi
     bool snapshot = true;
+    /** Replace an earlier output in outputDir (only our own files). */
+    bool overwrite = false;
     /** Camera spec as io::resolveCamera (default auto). */
     std::string camera = "auto";
     /** Process at most this many frames (0 = all). */
@@ -65,6 +69,11 @@ class CRoiGraphSlamApp
     std::optional<double> ateRmse, rpeTransRmse, rpeRotRmseDeg;
     /** strict_roi lost frames (the dissertation's "no trajectory"). */
     bool failed = false;
+    /** What the outputs lack although the run worked (a failed evaluation
+     *  against ground truth, a failed snapshot); summary.json "incomplete",
+     *  and "partial": true when not empty. The app then exits with
+     *  common::kExitPartial unless --allow-partial. */
+    std::vector<std::string> incomplete;
     /** "ATE RMSE 0.0042 m, RPE 0.0031 m / 0.21 deg, 90 frames, 31.2 fps". */
     std::string resultLine() const;
   };

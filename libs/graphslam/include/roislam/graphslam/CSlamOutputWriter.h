@@ -1,11 +1,19 @@
-/* Writes the files of one finished SLAM run into its output folder, each
- * under a temporary name renamed when complete (see CRoiGraphSlamApp.h for
- * the list and their content). One writer per output folder; the run's data
- * comes in through a TRun view, so any driver of our deciders (roi-graphslam's
- * own loop, MRPT's engine) writes the same files. Called by CRoiGraphSlamApp.
+/* Writes the files of one finished SLAM run into its output folder (see
+ * CRoiGraphSlamApp.h for the list and their content). One writer per output
+ * folder; the run's data comes in through a TRun view, so any driver of our
+ * deciders (roi-graphslam's own loop, MRPT's engine) writes the same files.
+ * Called by CRoiGraphSlamApp.
+ *
+ * The folder is complete or absent (common::COutputFolder): the files go to a
+ * staging folder beside it, and writeSummary(), the last call, writes
+ * summary.json and renames the folder into place. A writer destroyed before
+ * that (an exception while writing the map, say) leaves the output folder
+ * absent or as it was. An existing non-empty folder is refused unless
+ * `overwrite`, which replaces an earlier output of ours (files()).
  */
 #pragma once
 
+#include <roislam/common/COutputFolder.h>
 #include <roislam/evaluation/TEvaluationResult.h>
 #include <roislam/graphslam/CSlamPipeline.h>
 #include <roislam/io/TumTrajectory.h>
@@ -33,12 +41,17 @@ class CSlamOutputWriter
     std::function<mrpt::poses::CPose3D(std::size_t)> keyframePose;
   };
 
-  /** The folder must exist and be writable (checkWritableDir). */
-  explicit CSlamOutputWriter(std::string outputDir);
+  /** Prepares the staging folder; throws "output dir <dir>: ..." when `dir`
+   *  cannot be written, is not a folder or is not empty (unless overwrite
+   *  and it holds only our files). Construct it before the run, so a bad
+   *  folder fails before the work. */
+  explicit CSlamOutputWriter(const std::string& outputDir, bool overwrite = false);
 
-  /** Creates `dir` if needed and checks that a file can be written there;
-   *  throws "output dir <dir>: ..." otherwise. */
-  static void checkWritableDir(const std::string& dir);
+  /** Throws as the constructor would for `dir`; creates nothing. */
+  static void checkWritableDir(const std::string& dir, bool overwrite = false);
+
+  /** The names this writer may put into an output folder. */
+  static const std::vector<std::string>& files();
 
   void writeTrajectory(const io::TTrajectory& estimate, const std::string& header) const;
   void writeGraph(const TGraph& graph) const;
@@ -50,12 +63,14 @@ class CSlamOutputWriter
   /** scene.3Dscene, and snapshot.png when `snapshot`; returns the snapshot's
    *  error (empty on success or when not asked). Throws on scene errors. */
   std::string writeScene(const viz::TSceneContent& content, bool snapshot) const;
-  void writeSummary(const nlohmann::json& summary) const;
+  /** Writes summary.json and moves the folder into place: the last call. */
+  void writeSummary(const nlohmann::json& summary);
 
   /** Writes text through `file`.tmp renamed on success; throws "<file>: ...". */
   static void writeTextFile(const std::string& file, const std::string& text);
 
  private:
-  std::string m_dir;  //!< with a trailing '/'
+  common::COutputFolder m_folder;
+  std::string m_dir;  //!< the staging folder, with a trailing '/'
 };
 }  // namespace roislam::graphslam
