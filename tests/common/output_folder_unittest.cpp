@@ -144,6 +144,31 @@ TEST(OutputFolder, NonEmptyFolderRefusedUnlessOverwrite)
   fs::remove_all(dir);
 }
 
+TEST(OutputFolder, ManifestNamesWhatAnEarlierRunWrote)
+{
+  const fs::path dir = roislam::testing::makeTempDir("outfolder_manifest");
+  const fs::path target = dir / "out";
+  {
+    // An earlier run wrote an optional entry this run does not know.
+    auto o = known(false);
+    o.known.push_back("annotated.rawlog");
+    COutputFolder f(target.string(), o);
+    writeFile(fs::path(f.path()) / "annotated.rawlog", "old");
+    writeFile(fs::path(f.path()) / "a.txt", "old a");
+    f.commit();
+  }
+  const std::string manifest = readFile(target / COutputFolder::kManifest);
+  EXPECT_EQ(manifest.substr(manifest.find("\na.txt") + 1), "a.txt\nannotated.rawlog\n");
+  {
+    COutputFolder f(target.string(), known(true));
+    writeFile(fs::path(f.path()) / "a.txt", "new a");
+    f.commit();
+  }
+  EXPECT_FALSE(fs::exists(target / "annotated.rawlog"));
+  EXPECT_EQ(readFile(target / "a.txt"), "new a");
+  fs::remove_all(dir);
+}
+
 TEST(OutputFolder, ForeignFilesAreNeverReplaced)
 {
   const fs::path dir = roislam::testing::makeTempDir("outfolder_foreign");

@@ -65,7 +65,8 @@ std::vector<std::string> listing(const fs::path& dir)
 {
   std::vector<std::string> names;
   for (const auto& e : fs::directory_iterator(dir))
-    names.push_back(e.path().filename().string());
+    if (e.path().filename().string() != ".roislam-output")  // COutputFolder's manifest
+      names.push_back(e.path().filename().string());
   std::sort(names.begin(), names.end());
   return names;
 }

@@ -23,9 +23,21 @@ fs::path normalTarget(const std::string& target)
   return p;
 }
 
+/** The entries an earlier commit() listed in the folder's manifest. */
+std::vector<std::string> manifestEntries(const fs::path& dir)
+{
+  std::vector<std::string> names;
+  std::ifstream in(dir / COutputFolder::kManifest);
+  for (std::string line; std::getline(in, line);)
+    if (!line.empty() && line[0] != '#')
+      names.push_back(line);
+  return names;
+}
+
 bool isKnown(const std::string& name, const COutputFolder::TOptions& o)
 {
-  if (std::find(o.known.begin(), o.known.end(), name) != o.known.end())
+  if (name == COutputFolder::kManifest ||
+      std::find(o.known.begin(), o.known.end(), name) != o.known.end())
     return true;
   return std::any_of(
       o.knownPrefixes.begin(), o.knownPrefixes.end(),
@@ -54,8 +66,12 @@ void COutputFolder::checkReplaceable(const std::string& dir, const TOptions& opt
     throw std::runtime_error(
         "output dir " + dir + ": not empty (holds " + names.front() +
         "); use --overwrite to replace an earlier output");
+  // What an earlier run of ours wrote (its manifest) is ours to replace too.
+  TOptions withEarlier = options;
+  for (const auto& n : manifestEntries(dir))
+    withEarlier.known.push_back(n);
   for (const auto& n : names)
-    if (!isKnown(n, options))
+    if (!isKnown(n, withEarlier))
       throw std::runtime_error(
           "output dir " + dir + ": holds " + n +
           ", which this app does not write; not replaced (choose another folder)");
@@ -91,6 +107,22 @@ COutputFolder::COutputFolder(const std::string& target, const TOptions& options)
   }
 }
 
+void COutputFolder::writeManifest() const
+{
+  std::vector<std::string> names;
+  for (const auto& e : fs::directory_iterator(m_staging))
+    names.push_back(e.path().filename().string());
+  std::sort(names.begin(), names.end());
+  std::ofstream out(fs::path(m_staging) / kManifest);
+  out << "# written by roislam (common::COutputFolder): the entries of this output;\n"
+         "# --overwrite replaces a folder holding only these\n";
+  for (const auto& n : names)
+    out << n << "\n";
+  out.close();
+  if (!out)
+    throw std::runtime_error("output dir " + m_given + ": cannot write " + kManifest);
+}
+
 COutputFolder::~COutputFolder()
 {
   if (m_committed)
@@ -106,6 +138,7 @@ void COutputFolder::commit()
   // The earlier output may have changed while we wrote: check it again.
   checkReplaceable(m_given, m_options);
   std::error_code ec;
+  writeManifest();
   const fs::path target(m_target);
   fs::path old;
   if (fs::exists(target))

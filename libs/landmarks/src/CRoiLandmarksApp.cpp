@@ -19,6 +19,7 @@
 #include <sstream>
 #include <thread>
 
+#include "roislam/common/COutputFolder.h"
 #include "roislam/io/CFrameSource.h"
 #include "roislam/io/TumTrajectory.h"
 #include "roislam/landmarks/CLandmarkScorer.h"
@@ -173,6 +174,16 @@ mrpt::obs::CObservation3DRangeScan makeScan(
   return obs;
 }
 
+/** `file` relative to `dir` when it lies inside it. */
+std::optional<fs::path> pathInside(const std::string& file, const std::string& dir)
+{
+  const fs::path rel = fs::absolute(file).lexically_normal().lexically_relative(
+      fs::absolute(dir).lexically_normal());
+  if (rel.empty() || *rel.begin() == "..")
+    return std::nullopt;
+  return rel;
+}
+
 std::string fmt(double v, int precision = 4)
 {
   if (!std::isfinite(v))
@@ -188,6 +199,30 @@ nlohmann::json orNull(const std::optional<T>& v)
   return v ? nlohmann::json(*v) : nlohmann::json(nullptr);
 }
 }  // namespace
+
+const std::vector<std::string>& CRoiLandmarksApp::outputFiles()
+{
+  static const std::vector<std::string> names{
+      "frames.csv", "landmarks", "landmarks.db", "summary.json"};
+  return names;
+}
+
+common::COutputFolder::TOptions CRoiLandmarksApp::outputFolderOptions(
+    const std::optional<fs::path>& rawlogInFolder) const
+{
+  common::COutputFolder::TOptions o;
+  o.overwrite = m_args.overwrite;
+  o.known = outputFiles();
+  if (rawlogInFolder)
+  {
+    // The annotated rawlog and its images folder, wherever they are inside.
+    const fs::path& r = *rawlogInFolder;
+    o.known.push_back(r.begin()->string());
+    const fs::path images = r.parent_path() / (r.stem().string() + "_Images");
+    o.known.push_back(images.begin()->string());
+  }
+  return o;
+}
 
 CRoiLandmarksApp::CRoiLandmarksApp(TArguments arguments) : m_args(std::move(arguments))
 {
@@ -219,16 +254,17 @@ CRoiLandmarksApp::TSummary CRoiLandmarksApp::run()
       m_args.progress(s);
   };
 
-  const fs::path outDir(m_args.outputDir);
+  // Complete or absent: everything goes to a staging folder renamed at the end.
+  const auto rawlogInFolder = m_args.outputRawlog
+                                  ? pathInside(*m_args.outputRawlog, m_args.outputDir)
+                                  : std::optional<fs::path>();
+  common::COutputFolder folder(m_args.outputDir, outputFolderOptions(rawlogInFolder));
+  const fs::path outDir(folder.path());
   std::error_code ec;
-  fs::create_directories(outDir, ec);
-  if (ec || !fs::is_directory(outDir))
-    throw std::runtime_error(m_args.outputDir + ": cannot create output folder");
-  const fs::path patchesTmp = outDir / "landmarks.partial";
-  fs::remove_all(patchesTmp, ec);
-  fs::create_directories(patchesTmp, ec);
+  const fs::path patchesDir = outDir / "landmarks";
+  fs::create_directories(patchesDir, ec);
   if (ec)
-    throw std::runtime_error(patchesTmp.string() + ": cannot create folder");
+    throw std::runtime_error(patchesDir.string() + ": cannot create folder");
 
   auto source = io::CFrameSource::open(m_args.input, m_args.camera);
   std::optional<CLandmarkScorer> scorer;
@@ -245,14 +281,14 @@ CRoiLandmarksApp::TSummary CRoiLandmarksApp::run()
   std::string rawlogTmp, imagesDir;
   if (m_args.outputRawlog)
   {
-    const fs::path rl(*m_args.outputRawlog);
+    const fs::path rl = rawlogInFolder ? outDir / *rawlogInFolder : fs::path(*m_args.outputRawlog);
     imagesDir = (rl.parent_path() / (rl.stem().string() + "_Images")).string();
     if (rl.has_parent_path())
       fs::create_directories(rl.parent_path(), ec);
     fs::create_directories(imagesDir, ec);
     if (ec)
       throw std::runtime_error(imagesDir + ": cannot create folder");
-    rawlogTmp = *m_args.outputRawlog + ".tmp";
+    rawlogTmp = rl.string() + ".tmp";
     rawlog = std::make_unique<mrpt::io::CFileGZOutputStream>();
     if (!rawlog->open(rawlogTmp))
       throw std::runtime_error(*m_args.outputRawlog + ": cannot write");
@@ -273,7 +309,7 @@ CRoiLandmarksApp::TSummary CRoiLandmarksApp::run()
       sum.cpuS += r.cpuSeconds;
       if (r.newLandmark)
       {
-        const std::string png = (patchesTmp / (frameName(r.frame) + ".png")).string();
+        const std::string png = (patchesDir / (frameName(r.frame) + ".png")).string();
         if (!cv::imwrite(png, processor.tracker().database().landmark(r.landmarkId).patch))
           throw std::runtime_error(png + ": cannot write");
       }
@@ -398,17 +434,11 @@ CRoiLandmarksApp::TSummary CRoiLandmarksApp::run()
 
   processor.tracker().database().save((outDir / "landmarks.db").string());
 
-  const fs::path patches = outDir / "landmarks";
-  fs::remove_all(patches, ec);
-  fs::rename(patchesTmp, patches, ec);
-  if (ec)
-    throw std::runtime_error(patches.string() + ": cannot write: " + ec.message());
-
   if (rawlog)
   {
     rawlog->close();
     rawlog.reset();
-    fs::rename(rawlogTmp, *m_args.outputRawlog, ec);
+    fs::rename(rawlogTmp, rawlogTmp.substr(0, rawlogTmp.size() - 4), ec);
     if (ec)
       throw std::runtime_error(*m_args.outputRawlog + ": cannot write: " + ec.message());
   }
@@ -454,6 +484,7 @@ CRoiLandmarksApp::TSummary CRoiLandmarksApp::run()
   j["wall_s"] = sum.wallS;
   j["fps_wall"] = sum.wallS > 0 ? sum.frames / sum.wallS : 0;
   writeTextAtomically((outDir / "summary.json").string(), j.dump(2) + "\n");
+  folder.commit();
 
   std::ostringstream done;
   done << "done: " << sum.frames << " frames, " << sum.landmarks << " landmarks, " << sum.recalls

@@ -9,7 +9,10 @@
  *
  * A target that exists must be an empty folder, unless `overwrite`: then it
  * may hold only the entries the app itself writes (`known`, e.g.
- * "trajectory.txt", "landmarks"), and commit() swaps it for the new folder
+ * "trajectory.txt", "landmarks") or that an earlier commit listed in the
+ * folder's manifest (kManifest, written by commit(): one entry per line, so
+ * an optional output of an earlier run, such as roi-landmarks' annotated
+ * rawlog, is recognised as ours), and commit() swaps it for the new folder
  * and deletes the old one, so files of an earlier run (an old snapshot.png
  * after --no-snapshot) never mix with new ones. A folder holding anything
  * else is never replaced. Used by every app that writes a folder
@@ -60,7 +63,11 @@ class COutputFolder
    *  holding only known entries; names the first foreign entry. */
   static void checkReplaceable(const std::string& dir, const TOptions& options);
 
+  /** The manifest commit() writes into the folder. */
+  static constexpr const char* kManifest = ".roislam-output";
+
  private:
+  void writeManifest() const;
   std::string m_given;  //!< the target as given, for messages
   std::string m_target, m_staging;
   TOptions m_options;

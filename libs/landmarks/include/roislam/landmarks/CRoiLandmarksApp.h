@@ -20,16 +20,23 @@
  *                   wall_s/fps_wall: whole run)
  *  - optionally an annotated rawlog: per frame the CObservation3DRangeScan
  *    followed by its CObservationBearingRange (observation-only format).
- * Every file is written under a temporary name and renamed when complete.
+ * The output folder is complete or absent (common::COutputFolder: written
+ * into a staging folder beside it, renamed into place at the end); a
+ * non-empty folder is refused unless `overwrite` (only our files, with the
+ * annotated rawlog when it is inside). An annotated rawlog outside the folder
+ * is written under a temporary name renamed when complete.
  * Called by apps/roi-landmarks (thin main) and the tests.
  */
 #pragma once
 
+#include <roislam/common/COutputFolder.h>
 #include <roislam/landmarks/TPipelineOptions.h>
 
+#include <filesystem>
 #include <functional>
 #include <optional>
 #include <string>
+#include <vector>
 
 namespace roislam::landmarks
 {
@@ -48,6 +55,8 @@ class CRoiLandmarksApp
     std::optional<int> maxFeatures;
     std::optional<std::string> roiPreset;
     std::optional<std::string> outputRawlog;
+    /** Replace an earlier output in outputDir (only our own files). */
+    bool overwrite = false;
     /** Camera spec as io::resolveCamera (default auto). */
     std::string camera = "auto";
     /** Process at most this many frames (0 = all). */
@@ -97,7 +106,13 @@ class CRoiLandmarksApp
   /** Runs the whole sequence and writes the outputs. */
   TSummary run();
 
+  /** The names run() may put into the output folder (besides an annotated
+   *  rawlog inside it): what --overwrite may replace. */
+  static const std::vector<std::string>& outputFiles();
+
  private:
+  common::COutputFolder::TOptions outputFolderOptions(
+      const std::optional<std::filesystem::path>& rawlogInFolder) const;
   TArguments m_args;
   TPipelineOptions m_options;
 };
