@@ -36,7 +36,7 @@ std::vector<std::string> manifestEntries(const fs::path& dir)
 
 bool isKnown(const std::string& name, const COutputFolder::TOptions& o)
 {
-  if (name == COutputFolder::kManifest ||
+  if (o.ownsEverything || name == COutputFolder::kManifest ||
       std::find(o.known.begin(), o.known.end(), name) != o.known.end())
     return true;
   return std::any_of(

@@ -37,6 +37,9 @@ class COutputFolder
     std::vector<std::string> known;
     /** Also accepted in an earlier output: names starting with one of these. */
     std::vector<std::string> knownPrefixes;
+    /** Everything in the target is ours (a sub-folder of our own output, such
+     *  as roi-bench's charts/): overwrite replaces it whatever it holds. */
+    bool ownsEverything = false;
   };
 
   /** Checks the target and creates the staging folder. Throws

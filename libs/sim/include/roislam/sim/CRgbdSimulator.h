@@ -11,8 +11,9 @@
  *   rgb.txt, depth.txt  "timestamp filename" lists (TUM headers)
  *   groundtruth.txt     "timestamp tx ty tz qx qy qz qw", colour optical centre in the world
  *   camera.ini          [CAMERA_PARAMS] intrinsics (mrpt::img::TCamera), read by roislam::io
- *   simulator.ini       [RgbdSimulator] options used (also marks the folder as ours)
- * Everything goes to a temporary folder next to the output, renamed at the end.
+ *   simulator.ini       [RgbdSimulator] options used
+ * The folder is complete or absent (common::COutputFolder: a staging folder
+ * beside it, renamed at the end).
  *
  * Ini section [RgbdSimulator] (every key optional; defaults in brackets):
  *   scene              textured | featureless                         [textured]
@@ -147,9 +148,10 @@ class CRgbdSimulator : public mrpt::system::COutputLogger
   TFrame renderFrame(std::size_t i);
 
   /** Renders every frame and writes the TUM layout to outDir (see above).
-   *  An existing outDir is replaced only if it is empty or an earlier output
-   *  of this class; throws std::runtime_error naming the path otherwise. */
-  TWriteStats writeSequence(const std::string& outDir);
+   *  An existing outDir must be empty, or with `overwrite` an earlier output
+   *  of this class (which it replaces); throws std::runtime_error naming the
+   *  path otherwise. */
+  TWriteStats writeSequence(const std::string& outDir, bool overwrite = false);
 
  private:
   struct Impl;
