@@ -154,3 +154,20 @@ TEST(StrictIni, MissingFileAndFolderAreNamed)
   }
   fs::remove_all(dir);
 }
+
+TEST(StrictIni, UnknownVariableNamesFileAndLine)
+{
+  // Found by fuzz_ini: MRPT's own message ("Line 20: Unknown variable") named no file.
+  EXPECT_EQ(errorOf("[A]\nk = ${N}\n"), "t.ini:2: unknown variable ${N} (no @define above)");
+  EXPECT_EQ(errorOf("[A]\nk = ${N\n"), "t.ini:2: unterminated '${'");
+  EXPECT_EQ(errorOf("@define N 3\n[A]\nk = ${N}\n"), "");
+  // Whatever MRPT's preprocessing still rejects is named with the file.
+  try
+  {
+    CStrictIniFile::fromText("[A]\nk = $eval{1+}\n", "t.ini");
+  }
+  catch (const std::runtime_error& e)
+  {
+    EXPECT_EQ(std::string(e.what()).rfind("t.ini: ", 0), 0u) << e.what();
+  }
+}

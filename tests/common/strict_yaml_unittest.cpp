@@ -56,7 +56,6 @@ TEST(StrictYaml, AcceptsWhatMrptWritesAndRosLayouts)
               "distortion_model: plumb_bob\n"
               "tagged: !!opencv-matrix\n"
               "  rows: 1\n"
-              "empty:\n"
               "url: http://x/y#frag\n"
               "...\n"),
       "");
@@ -102,4 +101,37 @@ TEST(StrictYaml, TruncatedCalibrationIsCaught)
   const auto cut = full.find("data: [") + 10;
   const std::string e = errorOf(full.substr(0, cut));
   EXPECT_NE(e.find("'[' never closed"), std::string::npos) << e;
+}
+
+TEST(StrictYaml, SequenceLeftOpenIntoTheNextKeys)
+{
+  // Found by fuzz_camera: libfyaml printed "wrongly indented flow sequence"
+  // on stderr (and leaked its parser) for this shape.
+  EXPECT_EQ(
+      errorOf("d:\n  data: [0.26oeff:\n  cols: 8\n"),
+      "c.yaml:2: ':' inside a sequence (a ']' missing?)");
+  EXPECT_EQ(
+      errorOf("d:\n  data: [0.26\n  cols 8]\n"),
+      "c.yaml:3: sequence continued without indentation (a ']' missing?)");
+  EXPECT_EQ(errorOf("d: [1, [2]]\n"), "c.yaml:1: nested sequences are not supported");
+  EXPECT_EQ(errorOf("d:\n  data: [1,\n     2]\n"), "");
+}
+
+TEST(StrictYaml, KeyWithoutValue)
+{
+  // Found by fuzz_camera: a null camera_matrix made libfyaml leak its parser.
+  EXPECT_EQ(
+      errorOf("%YAML 1.2\n---\ncamera_matrix:\n  "), "c.yaml:3: key 'camera_matrix' has no value");
+  EXPECT_EQ(errorOf("a:\nb: 1\n"), "c.yaml:1: key 'a' has no value");
+}
+
+TEST(StrictYaml, ControlCharactersAndBrokenUtf8)
+{
+  // Found by fuzz_camera: libfyaml rejects invalid UTF-8 (printing on stderr).
+  EXPECT_EQ(
+      errorOf("image_height: 48\xff\xff\x0c"
+              "0\n"),
+      "c.yaml:1: control character or invalid UTF-8");
+  EXPECT_EQ(errorOf("a: \x01\n"), "c.yaml:1: control character or invalid UTF-8");
+  EXPECT_EQ(errorOf("camera_name: Kamera \xc3\xbc\n"), "");  // UTF-8 is fine
 }

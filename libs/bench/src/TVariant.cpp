@@ -22,8 +22,13 @@ TVariant TVariant::parse(const std::string& spec)
 {
   const auto bad = [&](const std::string& why)
   {
+    // One line whatever the spec holds (it may come from a file).
+    std::string shown;
+    for (unsigned char c : spec.substr(0, 80))
+      shown += std::isprint(c) ? static_cast<char>(c) : '?';
     return std::invalid_argument(
-        "variant '" + spec + "': " + why + " (expected name:Section.key=value[,...])");
+        "variant '" + shown + (spec.size() > 80 ? "...'" : "'") + ": " + why +
+        " (expected name:Section.key=value[,...])");
   };
   const auto colon = spec.find(':');
   if (colon == std::string::npos || colon == 0)

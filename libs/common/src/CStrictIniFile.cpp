@@ -1,9 +1,12 @@
 #include "roislam/common/CStrictIniFile.h"
 
+#include <roislam/common/ErrorText.h>
+
 #include <algorithm>
 #include <cctype>
 #include <filesystem>
 #include <fstream>
+#include <set>
 #include <sstream>
 #include <stdexcept>
 #include <vector>
@@ -53,6 +56,22 @@ struct TLogicalLine
   std::string text;
 };
 
+/** Every ${NAME} in `text` must name an @define above (MRPT throws without
+ *  the file otherwise). */
+void checkVariables(
+    const std::string& text, const std::set<std::string>& defined, const std::string& where)
+{
+  for (auto open = text.find("${"); open != std::string::npos; open = text.find("${", open + 2))
+  {
+    const auto close = text.find('}', open);
+    if (close == std::string::npos)
+      throw std::runtime_error(where + "unterminated '${'");
+    const std::string name = text.substr(open + 2, close - open - 2);
+    if (!defined.count(name))
+      throw std::runtime_error(where + "unknown variable ${" + name + "} (no @define above)");
+  }
+}
+
 std::vector<TLogicalLine> logicalLines(const std::string& text, const std::string& label)
 {
   std::vector<TLogicalLine> out;
@@ -83,6 +102,7 @@ std::map<std::pair<std::string, std::string>, std::size_t> CStrictIniFile::check
   std::map<std::pair<std::string, std::string>, std::size_t> keys;
   std::string section;
   bool inSection = false;
+  std::set<std::string> defined;
   for (const auto& [number, raw] : logicalLines(text, label))
   {
     const std::string where = label + ":" + std::to_string(number) + ": ";
@@ -106,7 +126,11 @@ std::map<std::pair<std::string, std::string>, std::size_t> CStrictIniFile::check
       std::istringstream ss(t.substr(7));
       std::string name;
       if (t.size() > 7 && (t[7] == ' ' || t[7] == '\t') && (ss >> name))
+      {
+        checkVariables(t, defined, where);
+        defined.insert(name);
         continue;
+      }
       throw std::runtime_error(where + "malformed @define (expected '@define NAME value')");
     }
     const auto eq = t.find('=');
@@ -119,6 +143,7 @@ std::map<std::pair<std::string, std::string>, std::size_t> CStrictIniFile::check
           where + "expected a comment, [section] or key = value, got " + quoted(t));
     if (!inSection)
       throw std::runtime_error(where + "key '" + key + "' outside any [section]");
+    checkVariables(t, defined, where);
     const auto [it, inserted] = keys.emplace(std::make_pair(section, lower(key)), number);
     if (!inserted)
       throw std::runtime_error(
@@ -131,7 +156,14 @@ std::map<std::pair<std::string, std::string>, std::size_t> CStrictIniFile::check
 CStrictIniFile::CStrictIniFile(const std::string& text, const std::string& label, int)
     : mrpt::config::CConfigFileMemory(), m_label(label), m_keyLines(check(text, label))
 {
-  setContent(text);
+  try
+  {
+    setContent(text);  // MRPT's preprocessing ($eval{}, $env{}) may still object
+  }
+  catch (const std::exception& e)
+  {
+    throw std::runtime_error(label + ": " + oneLineError(e.what()));
+  }
 }
 
 CStrictIniFile CStrictIniFile::fromText(const std::string& text, const std::string& label)

@@ -62,8 +62,12 @@ int flowDepth(const std::string& text, int depth, const std::string& where)
     }
     if (c == '"' || c == '\'')
       quote = c;
+    else if (c == '[' && depth > 0)
+      throw std::runtime_error(where + "nested sequences are not supported");
     else if (c == '[')
       ++depth;
+    else if (c == ':' && (i + 1 == text.size() || text[i + 1] == ' '))
+      throw std::runtime_error(where + "':' inside a sequence (a ']' missing?)");
     else if (c == '{' || c == '}')
       throw std::runtime_error(where + "flow mappings are not supported");
     else if (c == ']')
@@ -97,6 +101,31 @@ void checkScalar(const std::string& value, const std::string& where)
     throw std::runtime_error(where + "unexpected ':' in value " + quoted(value));
 }
 
+/** Printable text: no control characters but tabs, UTF-8 well formed
+ *  (libfyaml rejects the rest, printing to stderr). */
+bool validText(const std::string& line)
+{
+  for (std::size_t i = 0; i < line.size(); ++i)
+  {
+    const auto c = static_cast<unsigned char>(line[i]);
+    if (c < 0x80)
+    {
+      if ((c < 0x20 && c != '\t') || c == 0x7f)
+        return false;
+      continue;
+    }
+    const int extra = (c & 0xe0) == 0xc0 ? 1 : (c & 0xf0) == 0xe0 ? 2 : (c & 0xf8) == 0xf0 ? 3 : -1;
+    if (extra < 0 || c == 0xc0 || c == 0xc1 || c > 0xf4 ||
+        i + static_cast<std::size_t>(extra) >= line.size())
+      return false;
+    for (int k = 1; k <= extra; ++k)
+      if ((static_cast<unsigned char>(line[i + k]) & 0xc0) != 0x80)
+        return false;
+    i += static_cast<std::size_t>(extra);
+  }
+  return true;
+}
+
 struct TMapping
 {
   std::size_t indent = 0;
@@ -127,10 +156,17 @@ void checkStrictYaml(const std::string& text, const std::string& label)
 {
   std::istringstream in(text);
   std::string line;
-  std::size_t n = 0, openLine = 0;
+  std::size_t n = 0, openLine = 0, openIndent = 0;
   int depth = 0;
   bool content = false, ended = false, nestedExpected = false;
-  std::size_t nestedParentIndent = 0;
+  std::size_t nestedParentIndent = 0, nestedLine = 0;
+  std::string nestedKey;
+  // "key:" with nothing after must open a mapping on the next lines.
+  const auto noValue = [&]
+  {
+    return std::runtime_error(
+        label + ":" + std::to_string(nestedLine) + ": key '" + nestedKey + "' has no value");
+  };
   std::vector<TMapping> stack;
   while (std::getline(in, line))
   {
@@ -140,9 +176,15 @@ void checkStrictYaml(const std::string& text, const std::string& label)
       line.pop_back();
     if (line.find('\0') != std::string::npos)
       throw std::runtime_error(where + "NUL byte (not a text file)");
+    if (!validText(line))
+      throw std::runtime_error(where + "control character or invalid UTF-8");
     const std::string body = stripComment(line);
     if (depth > 0)
     {
+      // A sequence's continuation lines are indented deeper than its key.
+      const auto first = body.find_first_not_of(' ');
+      if (first != std::string::npos && first <= openIndent)
+        throw std::runtime_error(where + "sequence continued without indentation (a ']' missing?)");
       depth = flowDepth(body, depth, where);
       continue;
     }
@@ -173,7 +215,9 @@ void checkStrictYaml(const std::string& text, const std::string& label)
     const std::string key = colon == std::string::npos ? "" : trim(s.substr(0, colon));
     if (!plainKey(key))
       throw std::runtime_error(where + "expected 'key: value', got " + quoted(s));
-    if (nestedExpected && indent > nestedParentIndent)
+    if (nestedExpected && indent <= nestedParentIndent)
+      throw noValue();
+    if (nestedExpected)
       stack.push_back({indent, {}});
     nestedExpected = false;
     while (!stack.empty() && indent < stack.back().indent)
@@ -199,17 +243,22 @@ void checkStrictYaml(const std::string& text, const std::string& label)
     {
       nestedExpected = true;
       nestedParentIndent = indent;
+      nestedLine = n;
+      nestedKey = key;
     }
     else if (value[0] == '[')
     {
       depth = flowDepth(value, 0, where);
       openLine = n;
+      openIndent = indent;
     }
     else
       checkScalar(value, where);
   }
   if (depth > 0)
     throw std::runtime_error(label + ":" + std::to_string(openLine) + ": '[' never closed");
+  if (nestedExpected)
+    throw noValue();
   if (stack.empty())
     throw std::runtime_error(label + ": no YAML content");
 }

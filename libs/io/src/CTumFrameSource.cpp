@@ -23,6 +23,8 @@ struct TListItem
 {
   double stamp = 0;
   std::string file;
+  /** "<list>:<line>" where it is listed, for errors. */
+  std::string where;
 };
 
 // rgb.txt / depth.txt: "timestamp filename" per line, '#' comments; like the
@@ -65,7 +67,7 @@ std::vector<TListItem> readList(const fs::path& file)
       throw std::runtime_error(where + "invalid timestamp '" + stampText + "'");
     if (ss >> extra)
       throw std::runtime_error(where + "expected 'timestamp filename', got '" + line + "'");
-    items.push_back({stamp, name});
+    items.push_back({stamp, name, file.string() + ":" + std::to_string(lineNo)});
   }
   if (in.bad())
     throw std::runtime_error(file.string() + ": read error");
@@ -173,9 +175,10 @@ CTumFrameSource::CTumFrameSource(
     e.depthStamp = depth[j].stamp;
     e.rgbFile = (root / rgb[i].file).lexically_normal().string();
     e.depthFile = (root / depth[j].file).lexically_normal().string();
-    for (const auto* f : {&e.rgbFile, &e.depthFile})
-      if (!fs::is_regular_file(*f))
-        throw std::runtime_error(*f + ": image file listed in the sequence not found");
+    for (const auto& [f, where] :
+         {std::pair(e.rgbFile, rgb[i].where), {e.depthFile, depth[j].where}})
+      if (!fs::is_regular_file(f))
+        throw std::runtime_error(where + ": image file not found: " + f);
     m_entries.push_back(std::move(e));
   }
   std::stable_sort(

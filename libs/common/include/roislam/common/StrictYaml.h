@@ -8,7 +8,8 @@
  * end, comments and blank lines; block mappings "key: value" / "key:" with
  * space indentation (a nested mapping indented deeper than its key, siblings
  * at the same column); values that are plain or quoted scalars, an optional
- * "!!tag", or flow sequences "[a, b, ...]" (which may span lines).
+ * "!!tag", or flow sequences "[a, b, ...]" (which may span lines); a key
+ * without a value must open a nested mapping.
  * Anything else, a key repeated in one mapping, or a sequence left open
  * throws std::runtime_error "<label>:<line>: <why>".
  */
