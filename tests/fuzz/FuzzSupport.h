@@ -16,15 +16,14 @@
 #include <fstream>
 #include <string>
 
-/** ASan settings of every fuzz and replay binary (one target per binary):
- *  MRPT's deserialiser allocates whatever size a corrupt rawlog claims (a
- *  point count of 10^9 is 3 x 4 GB); beyond 512 MB an allocation fails with
- *  std::bad_alloc, which the reader reports as a corrupt file. Leak checks
- *  are off: MRPT / libfyaml leak on their error paths (the unit tests under
- *  ASan check our own code for leaks). */
+/** ASan settings of every fuzz and replay binary (one target per binary).
+ *  An impossible malloc (MRPT sizing a matrix from a corrupt rawlog) returns
+ *  null, as without ASan, so Eigen / MRPT throw std::bad_alloc and the reader
+ *  reports a corrupt file. Leak checks are off: MRPT / libfyaml leak on their
+ *  error paths (the unit tests under ASan check our own code for leaks). */
 extern "C" const char* __asan_default_options()
 {
-  return "allocator_may_return_null=1:max_allocation_size_mb=512:detect_leaks=0";
+  return "allocator_may_return_null=1:detect_leaks=0";
 }
 
 namespace roislam::fuzz

@@ -5,6 +5,7 @@
  * crash and never a shorter sequence. */
 #include <gtest/gtest.h>
 #include <mrpt/containers/yaml.h>
+#include <mrpt/core/aligned_allocator.h>
 #include <mrpt/obs/CObservation2DRangeScan.h>
 #include <roislam/io/CFrameSource.h>
 #include <roislam/io/CRawlogFrameSource.h>
@@ -236,4 +237,25 @@ TEST(MalformedInput, CameraYamlDuplicatesAndGarbageNameTheLine)
   EXPECT_EQ(e.rfind(yaml + ":", 0), 0u) << e;
   EXPECT_NE(e.find("expected 'key: value', got 'this is garbage'"), std::string::npos) << e;
   fs::remove_all(tmp);
+}
+
+TEST(MalformedInput, AbsurdSizesInARawlogAreAnErrorNotACrash)
+{
+  // MRPT 2.5.8's aligned allocator returned null for an impossible matrix
+  // size and the vector wrote through it (MrptAlignedMalloc.cpp); now the
+  // allocation throws and the reader names the file. Input found by
+  // fuzz_rawlog (its oom-* inputs need a memory limit: fuzz_replay_rawlog).
+  for (const char* name : {"absurd-matrix-size"})
+  {
+    const std::string file =
+        roislam::testing::sourceDir() + "/tests/fuzz/regressions/rawlog/" + name;
+    const std::string copy = roislam::testing::makeTempDir("io_absurd") + "/x.rawlog";
+    fs::copy_file(file, copy);
+    const std::string e = errorOf([&] { CRawlogFrameSource s(copy); });
+    EXPECT_NE(e.find(copy + ": object "), std::string::npos) << e;
+    EXPECT_NE(e.find("corrupt or truncated rawlog"), std::string::npos) << e;
+    fs::remove_all(fs::path(copy).parent_path());
+  }
+  mrpt::aligned_allocator_cpp11<uint16_t> alloc;
+  EXPECT_THROW(alloc.allocate(std::size_t(1) << 62), std::bad_alloc);
 }

@@ -8,6 +8,15 @@ namespace roislam::bench
 {
 namespace
 {
+/** One line whatever the text holds (a spec may come from a file). */
+std::string printable(const std::string& s)
+{
+  std::string out;
+  for (unsigned char c : s.substr(0, 80))
+    out += std::isprint(c) ? static_cast<char>(c) : '?';
+  return s.size() > 80 ? out + "..." : out;
+}
+
 std::string trim(const std::string& s)
 {
   const auto b = s.find_first_not_of(" \t\r");
@@ -22,12 +31,8 @@ TVariant TVariant::parse(const std::string& spec)
 {
   const auto bad = [&](const std::string& why)
   {
-    // One line whatever the spec holds (it may come from a file).
-    std::string shown;
-    for (unsigned char c : spec.substr(0, 80))
-      shown += std::isprint(c) ? static_cast<char>(c) : '?';
     return std::invalid_argument(
-        "variant '" + shown + (spec.size() > 80 ? "...'" : "'") + ": " + why +
+        "variant '" + printable(spec) + "': " + printable(why) +
         " (expected name:Section.key=value[,...])");
   };
   const auto colon = spec.find(':');

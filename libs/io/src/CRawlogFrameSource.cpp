@@ -18,6 +18,11 @@ using mrpt::obs::CObservation3DRangeScan;
 
 namespace roislam::io
 {
+namespace detail
+{
+void linkThrowingAlignedMalloc();  // MrptAlignedMalloc.cpp
+}
+
 namespace
 {
 bool isRgbd(const CObservation3DRangeScan& o)
@@ -48,6 +53,7 @@ CRawlogFrameSource::CRawlogFrameSource(
     const std::optional<mrpt::img::TCamera>& cameraOverride)
     : m_options(options), m_cameraOverride(cameraOverride)
 {
+  detail::linkThrowingAlignedMalloc();
   if (!fs::is_regular_file(file))
     throw std::runtime_error(file + ": rawlog file not found");
   const fs::path abs = fs::absolute(file).lexically_normal();
