@@ -109,6 +109,15 @@ void CRawlogFrameSource::rewind()
   m_delivered = 0;
 }
 
+void CRawlogFrameSource::seek(std::size_t index)
+{
+  if (index >= m_count)
+    throw std::out_of_range(m_file + ": no frame " + std::to_string(index));
+  rewind();
+  for (; m_delivered < index; ++m_delivered)
+    nextObservation();
+}
+
 bool CRawlogFrameSource::accepts(const CObservation3DRangeScan& obs) const
 {
   return isRgbd(obs) && (m_options.sensorLabel.empty() || obs.sensorLabel == m_options.sensorLabel);

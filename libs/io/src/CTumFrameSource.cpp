@@ -215,6 +215,13 @@ cv::Mat CTumFrameSource::readDepthImage(const std::string& file, const mrpt::img
   return img;
 }
 
+void CTumFrameSource::seek(std::size_t index)
+{
+  if (index >= m_entries.size())
+    throw std::out_of_range(m_dir + ": no frame " + std::to_string(index));
+  m_next = index;
+}
+
 std::optional<TRGBDFrame> CTumFrameSource::next()
 {
   if (m_next >= m_entries.size())
