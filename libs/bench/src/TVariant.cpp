@@ -1,5 +1,7 @@
 #include "roislam/bench/TVariant.h"
 
+#include <roislam/common/ErrorText.h>
+
 #include <cctype>
 #include <sstream>
 #include <stdexcept>
@@ -8,15 +10,6 @@ namespace roislam::bench
 {
 namespace
 {
-/** One line whatever the text holds (a spec may come from a file). */
-std::string printable(const std::string& s)
-{
-  std::string out;
-  for (unsigned char c : s.substr(0, 80))
-    out += std::isprint(c) ? static_cast<char>(c) : '?';
-  return s.size() > 80 ? out + "..." : out;
-}
-
 std::string trim(const std::string& s)
 {
   const auto b = s.find_first_not_of(" \t\r");
@@ -32,8 +25,8 @@ TVariant TVariant::parse(const std::string& spec)
   const auto bad = [&](const std::string& why)
   {
     return std::invalid_argument(
-        "variant '" + printable(spec) + "': " + printable(why) +
-        " (expected name:Section.key=value[,...])");
+        "variant '" + common::printableExcerpt(spec, 80) +
+        "': " + common::printableExcerpt(why, 200) + " (expected name:Section.key=value[,...])");
   };
   const auto colon = spec.find(':');
   if (colon == std::string::npos || colon == 0)

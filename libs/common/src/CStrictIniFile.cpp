@@ -42,10 +42,7 @@ bool isKeyChar(unsigned char c)
 /** The line as the error shows it: printable, at most 60 characters. */
 std::string quoted(const std::string& t)
 {
-  std::string out;
-  for (unsigned char c : t.substr(0, 60))
-    out += std::isprint(c) ? static_cast<char>(c) : '?';
-  return "'" + out + (t.size() > 60 ? "...'" : "'");
+  return "'" + printableExcerpt(t) + "'";
 }
 
 /** One logical line: physical lines joined by a trailing '\', with the

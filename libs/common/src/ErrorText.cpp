@@ -1,5 +1,7 @@
 #include "roislam/common/ErrorText.h"
 
+#include <cctype>
+
 namespace roislam::common
 {
 std::string oneLineError(const std::string& what)
@@ -27,5 +29,13 @@ std::string oneLineError(const std::string& what)
     start = end + 1;
   }
   return message.empty() ? firstLine : message;
+}
+
+std::string printableExcerpt(const std::string& text, std::size_t maxChars)
+{
+  std::string out;
+  for (unsigned char c : text.substr(0, maxChars))
+    out += std::isprint(c) ? static_cast<char>(c) : '?';
+  return text.size() > maxChars ? out + "..." : out;
 }
 }  // namespace roislam::common

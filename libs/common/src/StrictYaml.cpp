@@ -1,5 +1,7 @@
 #include "roislam/common/StrictYaml.h"
 
+#include <roislam/common/ErrorText.h>
+
 #include <cctype>
 #include <map>
 #include <sstream>
@@ -20,10 +22,7 @@ std::string trim(const std::string& s)
 
 std::string quoted(const std::string& t)
 {
-  std::string out;
-  for (unsigned char c : t.substr(0, 60))
-    out += std::isprint(c) ? static_cast<char>(c) : '?';
-  return "'" + out + (t.size() > 60 ? "...'" : "'");
+  return "'" + printableExcerpt(t) + "'";
 }
 
 /** The line without its comment: '#' at the start or after a blank, outside

@@ -5,9 +5,14 @@
  */
 #pragma once
 
+#include <cstddef>
 #include <string>
 
 namespace roislam::common
 {
 std::string oneLineError(const std::string& what);
+
+/** `text` as an error message may quote it: non-printable bytes (newlines,
+ *  control characters, non-ASCII) as '?', at most maxChars then "...". */
+std::string printableExcerpt(const std::string& text, std::size_t maxChars = 60);
 }  // namespace roislam::common
