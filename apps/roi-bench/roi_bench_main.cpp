@@ -13,7 +13,8 @@ int main(int argc, char** argv)
       ->expected(1, -1);
   cli.add_option("--output-dir", o.outputDir, "Results folder (runs/, results.csv, report.md)")
       ->required();
-  cli.add_option("--tests", o.tests, "Tests to run, e.g. 1,2,3")->capture_default_str();
+  cli.add_option("--tests", o.tests, "Tests to run, e.g. 1,2,3 (4: EKF-SLAM on ROI landmarks)")
+      ->capture_default_str();
   cli.add_option("--plan", o.planFile, "Ini with a [Bench] section (features, modes, caps...)");
   cli.add_option("--jobs", o.jobs, "Runs in parallel")->capture_default_str();
   cli.add_flag("--emit-jobs", o.emitJobs, "Print one shell command per run and exit");
@@ -27,7 +28,9 @@ int main(int argc, char** argv)
   cli.add_option("--timeout", o.timeoutS, "Seconds per run before it is killed (0 = none)");
   cli.add_flag("--retry-failed", o.retryFailed, "Rerun runs recorded as failed");
   cli.add_option("--variant", o.variantSpecs, "Extra variant name:Section.key=value[,...]");
-  cli.add_flag("--no-default-variants", o.noDefaultVariants, "Drop the strict/fallback variants");
+  cli.add_flag(
+      "--no-default-variants", o.noDefaultVariants,
+      "Drop the default variants (strict/fallback/roicap, Test 1's hue)");
   cli.footer(
       "Several machines: roi-bench ... --emit-jobs | parallel --sshlogin m1,m2 (shared output\n"
       "folder), or give each machine its own --output-dir and combine them with\n"

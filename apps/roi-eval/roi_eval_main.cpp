@@ -32,6 +32,7 @@ int main(int argc, char** argv)
       ->capture_default_str();
   cli.add_flag("--json", p.json, "print one JSON object instead of a table");
   cli.add_option("--plot", p.plotFile, "write a PNG: ground truth and aligned estimate");
+  cli.add_option("--plot-errors", p.errorPlotFile, "write a PNG: ATE and RPE over time");
   cli.add_option("--save-aligned", p.alignedFile, "write the aligned estimate (TUM format)");
   cli.add_flag(
       "--skip-invalid", p.skipInvalid,

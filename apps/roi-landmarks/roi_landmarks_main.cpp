@@ -1,6 +1,7 @@
 /* roi-landmarks: runs the ROI landmark pipeline (the dissertation's Test 1) on
  * an RGB-D sequence and writes frames.csv, landmarks/, landmarks.db and
- * summary.json into the output folder. All the work is in
+ * summary.json into the output folder; with --kf-slam also MRPT's EKF-SLAM
+ * on the landmarks. All the work is in
  * roislam::landmarks::CRoiLandmarksApp.
  */
 #include <roislam/common/ProcessTuning.h>
@@ -31,6 +32,10 @@ int main(int argc, char** argv)
   cli.add_option("--camera", args.camera, "Camera: auto|fr1|fr2|fr3|ros|<calibration file>");
   cli.add_option("--max-frames", args.maxFrames, "Process at most N frames (0 = all)");
   cli.add_flag("--overwrite", args.overwrite, "Replace an earlier output in --output-dir");
+  cli.add_flag(
+      "--kf-slam", args.kfSlam,
+      "Also write kf-slam.rawlog (odometry + landmarks) and run MRPT's EKF-SLAM on it "
+      "([KfSlam] options): kf-slam/trajectory.txt");
   CLI11_PARSE(cli, argc, argv);
 
   if (!feature.empty())

@@ -86,4 +86,6 @@ rawlog-edit --info -i "$out/sequence.rawlog" | tail -n 5 || true
 "$build/apps/roi-graphslam/roi-graphslam" --ini config/roi_big.ini --input "$out/sequence.rawlog" \
   --output-dir "$out/slam" --feature orb
 "$build/apps/roi-eval/roi-eval" --gt "$out/sequence/groundtruth.txt" --est "$out/slam/trajectory.txt"
-echo "demo outputs in $out/slam (trajectory.txt, graph.graph, map.bt, snapshot.png, summary.json)"
+echo "demo outputs in $out/slam: trajectory.txt, graph.graph, summary.json;"
+echo "  pictures (floor at the bottom, the ground truth's frame): snapshot.png, scene.3Dscene"
+echo "  (SceneViewer3D), map.bt; error plots: ate.png, errors.png"

@@ -34,6 +34,7 @@ struct Fixture
     o.binDir = tmp;
     o.configDir = tmp + "/config";
     o.charts = false;
+    o.noDefaultVariants = true;  // the plan's own runs only (Test 1's variants add some)
     o.selfExe = "/usr/local/bin/roi-bench";
     return o;
   }

@@ -174,7 +174,7 @@ TEST(CBenchApp, emitJobsAndMerge)
     while (std::getline(ss, l))
       lines.push_back(l);
   }
-  ASSERT_EQ(lines.size(), 6u);  // 2 sequences x 3 features
+  ASSERT_EQ(lines.size(), 12u);  // 2 sequences x 3 features x (plain + hue)
   EXPECT_EQ(
       lines[0], "/usr/local/bin/roi-bench --datasets " + fx.textured + " " + fx.featureless +
                     " --output-dir " + fx.tmp + "/shared_out --tests 1 --jobs 1 --no-report " +

@@ -38,9 +38,10 @@ std::size_t countTest(const std::vector<TBenchRun>& runs, int test)
 TEST(CExperimentPlan, countsPerTest)
 {
   const auto runs = CExperimentPlan({}, locations()).build(twoSequences());
-  // Test 1: 2 seq x 3 features. Test 2: 2 x 3 features x (traditional + 2 ROI modes x 3
-  // variants). Test 3: 2 x (traditional + big ROI x 3 variants).
-  EXPECT_EQ(countTest(runs, 1), 6u);
+  // Test 1: 2 seq x 3 features x (plain + hue). Test 2: 2 x 3 features x (traditional + 2
+  // ROI modes x 3 variants). Test 3: 2 x (traditional + big ROI x 3 variants). No Test 4.
+  EXPECT_EQ(countTest(runs, 1), 12u);
+  EXPECT_EQ(countTest(runs, 4), 0u);
   EXPECT_EQ(countTest(runs, 2), 42u);
   EXPECT_EQ(countTest(runs, 3), 8u);
   std::set<std::string> ids;
@@ -58,6 +59,39 @@ TEST(CExperimentPlan, countsWithoutVariantsAndSelectedTests)
   EXPECT_EQ(countTest(runs, 1), 0u);
   EXPECT_EQ(countTest(runs, 2), 18u);
   EXPECT_EQ(countTest(runs, 3), 4u);
+}
+
+TEST(CExperimentPlan, test1HueVariantAndTest4)
+{
+  CExperimentPlan::TOptions o;
+  o.tests = {1, 4};
+  const auto runs = CExperimentPlan(o, locations()).build(twoSequences());
+  const auto find = [&](const std::string& id)
+  {
+    const auto it =
+        std::find_if(runs.begin(), runs.end(), [&](const TBenchRun& r) { return r.id == id; });
+    EXPECT_NE(it, runs.end()) << id;
+    return it == runs.end() ? TBenchRun() : *it;
+  };
+  const auto hue = find("t1-seqA-orb-hue");
+  EXPECT_EQ(hue.iniFile, "/out/configs/roi_landmarks-hue.ini");
+  EXPECT_EQ(hue.baseIni, "/cfg/roi_landmarks.ini");
+  ASSERT_EQ(hue.iniOverrides.size(), 1u);
+  EXPECT_EQ(hue.iniOverrides[0].key, "verify_hue");
+  // Test 4: per sequence and extractor the EKF run and the graph SLAM run.
+  EXPECT_EQ(countTest(runs, 4), 12u);
+  const auto ekf = find("t4-seq_B-kf_slam-sift");
+  EXPECT_EQ(
+      ekf.argv,
+      (std::vector<std::string>{
+          "/bin/lm", "--ini", "/cfg/roi_landmarks.ini", "--input", "/data/seq B", "--output-dir",
+          "/out/runs/t4-seq_B-kf_slam-sift/output", "--kf-slam", "--feature", "sift"}));
+  const auto graph = find("t4-seqA-graph_slam-orb");
+  EXPECT_EQ(
+      graph.argv, (std::vector<std::string>{
+                      "/bin/gs", "--ini", "/cfg/roi_big.ini", "--input", "/data/seqA",
+                      "--output-dir", "/out/runs/t4-seqA-graph_slam-orb/output", "--mode",
+                      "roi_big", "--feature", "orb", "--no-snapshot"}));
 }
 
 TEST(CExperimentPlan, commandLines)
@@ -122,7 +156,8 @@ TEST(CExperimentPlan, optionsFromIniAndBadKeys)
   {
     EXPECT_NE(std::string(e.what()).find("[Bench] features"), std::string::npos) << e.what();
   }
-  EXPECT_THROW(CExperimentPlan::parseTests("1,4"), std::invalid_argument);
+  EXPECT_THROW(CExperimentPlan::parseTests("1,5"), std::invalid_argument);
+  EXPECT_EQ(CExperimentPlan::parseTests("4"), std::set<int>{4});
 }
 
 TEST(TVariant, parseAndApplyOverrides)

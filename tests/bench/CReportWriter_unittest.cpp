@@ -24,7 +24,7 @@ TRunRecord rec(
   r.run.feature = feature;
   r.run.variant = variant;
   r.run.maxFeatures = test == 3 ? 50 : 600;
-  r.run.app = test == 1 ? "roi-landmarks" : "roi-graphslam";
+  r.run.app = test == 1 || mode == "kf_slam" ? "roi-landmarks" : "roi-graphslam";
   r.run.id = "t" + std::to_string(test) + "-" + seq + "-" + mode + "-" + feature + "-" + variant;
   r.ok = ok;
   if (!ok)
@@ -51,6 +51,16 @@ std::vector<TRunRecord> fakeResults()
            {"precision", 0.8},
            {"recall", 0.6},
            {"fps", 4.0}}));
+  v.push_back(
+      rec(1, "rgbd_dataset_freiburg1_xyz", "", "surf", "hue",
+          {{"landmarks", 12},
+           {"false_positives", 1},
+           {"false_negatives", 2},
+           {"precision", 0.9},
+           {"recall", 0.5},
+           {"frames_with_roi", 40},
+           {"frames_rejected_by_hue", 100},
+           {"fps", 3.0}}));
   v.push_back(
       rec(1, "synthetic", "", "surf", "",
           {{"landmarks", 10},
@@ -81,6 +91,18 @@ std::vector<TRunRecord> fakeResults()
       2, "a", "roi_big", "surf", "strict",
       {{"ate_rmse", 0.07}, {"rpe_trans_rmse", 0.01}, {"rpe_rot_rmse_deg", 1.0}, {"wall_s", 15.0}}));
   v.push_back(rec(2, "b", "roi_big", "surf", "strict", nullptr, false));
+  v.push_back(
+      rec(4, "a", "kf_slam", "orb", "",
+          {{"kf_slam",
+            {{"ate_rmse", 0.02},
+             {"rpe_trans_rmse", 0.03},
+             {"rpe_rot_rmse_deg", 1.5},
+             {"odometry_ate_rmse", 0.025},
+             {"odometry_rpe_trans_rmse", 0.035},
+             {"odometry_rpe_rot_rmse_deg", 1.6}}}}));
+  v.push_back(
+      rec(4, "a", "graph_slam", "orb", "",
+          {{"ate_rmse", 0.012}, {"rpe_trans_rmse", 0.02}, {"rpe_rot_rmse_deg", 1.2}}));
   v.push_back(rec(
       3, "a", "traditional", "surf", "",
       {{"ate_rmse", 0.3}, {"rpe_trans_rmse", 0.05}, {"rpe_rot_rmse_deg", 4.0}, {"wall_s", 5.0}}));
@@ -134,6 +156,27 @@ TEST(CReportWriter, tablesHaveOurAndDissertationCells)
       std::string::npos)
       << md;
   EXPECT_NE(md.find("- `t2-b-roi_big-surf-strict`: exit code 1: no ROI"), std::string::npos);
+  // Test 1's hue variant: its own rows (no dissertation value), side by side.
+  EXPECT_NE(md.find("| rgbd_dataset_freiburg1_xyz (hue) | 12 / 1 / 2 | — |"), std::string::npos)
+      << md;
+  EXPECT_NE(
+      md.find("| SURF (hue) | 0.900 (n=1) | 0.500 (n=1) | — | — | 3.00 (n=1) | — |"),
+      std::string::npos)
+      << md;
+  EXPECT_NE(
+      md.find("| rgbd_dataset_freiburg1_xyz | SURF | 30 → 12 | 0.800 → 0.900 | 0.600 → 0.500 | "
+              "n/a → 40 |"),
+      std::string::npos)
+      << md;
+  EXPECT_NE(
+      md.find("| rgbd_dataset_freiburg1_xyz (hue) | SURF | ok | 40 | 100 |"), std::string::npos)
+      << md;
+  // Test 4: EKF, odometry (from the EKF run) and graph SLAM side by side.
+  EXPECT_NE(
+      md.find("| a | ORB | 0.0200 | 0.0250 | 0.0120 | 0.0300 / 1.50 | 0.0350 / 1.60 | "
+              "0.0200 / 1.20 |"),
+      std::string::npos)
+      << md;
 }
 
 TEST(CDissertationReference, lookups)
@@ -172,7 +215,8 @@ TEST(CChartWriter, drawsPngs)
   const auto pngs = charts.write(records, tmp + "/charts");
   for (const char* name :
        {"test1_landmarks.png", "test1_false_positives.png", "test2_ate.png", "test2_rpe_trans.png",
-        "test2_rpe_rot.png", "test2_duration.png", "test3_ate.png", "traj_a_surf.png"})
+        "test2_rpe_rot.png", "test2_duration.png", "test3_ate.png", "traj_a_surf.png",
+        "test4_ate.png"})
   {
     EXPECT_NE(std::find(pngs.begin(), pngs.end(), name), pngs.end()) << name;
     const fs::path p = fs::path(tmp) / "charts" / name;

@@ -53,6 +53,8 @@
  *   --frames <n>      frames loaded / run through the front end (default 20)
  *   --cv-threads <n>  cv::setNumThreads (default: OpenCV's own choice)
  *   --paired-passes <n>  passes of the paired comparison (default 1, 0 = off)
+ *   --config-dir <dir>  the <mode>.ini files of the end-to-end one (default
+ *                     config/: e.g. a copy with [FrontEnd] roi_extraction = region)
  *   --paired-slam-passes <n>  passes of the end-to-end one (default 0 = off;
  *                     needs real frames: skipped with --synthetic)
  * Select stages with --benchmark_filter (e.g. 'FrontEnd', 'Extract/orb').
@@ -739,7 +741,7 @@ void printPairedTable(const CCollectingReporter& rep, int passes)
  *  thread, stepped in turn frame by frame (order rotated), timing each step
  *  plus the wait for its next frame, and the final optimisation. Prints wall
  *  and process-CPU cost per frame and the cost ratio mode / traditional. */
-void printPairedSlamTable(const CCollectingReporter& rep, int passes)
+void printPairedSlamTable(const CCollectingReporter& rep, int passes, const std::string& configDir)
 {
   if (rep.frontEnd.empty() || passes <= 0)
     return;
@@ -772,8 +774,7 @@ void printPairedSlamTable(const CCollectingReporter& rep, int passes)
       std::vector<std::unique_ptr<roislam::graphslam::CSlamPipeline>> pipe(3);
       for (const std::size_t m : used)
       {
-        const std::string ini =
-            std::string(ROISLAM_CONFIG_DIR) + "/" + roislam::frontend::toString(modes[m]) + ".ini";
+        const std::string ini = configDir + "/" + roislam::frontend::toString(modes[m]) + ".ini";
         if (!fs::exists(ini))
           throw std::runtime_error(ini + ": no such config");
         auto cfg =
@@ -882,14 +883,14 @@ void registerBenchmarks()
 void printUsage()
 {
   benchmark::PrintDefaultHelp();
-  std::cout
-      << "roislam-stage-bench options:\n"
-         "  [--data <TUM folder or .rawlog>]  (default: the shared TUM sequence)\n"
-         "  [--synthetic]                     synthetic frames even if real data exist\n"
-         "  [--frames <n>]                    frames loaded / run (default 20)\n"
-         "  [--cv-threads <n>]                cv::setNumThreads (default OpenCV's)\n"
-         "  [--paired-passes <n>]             paired front-end comparison (default 1)\n"
-         "  [--paired-slam-passes <n>]        paired end-to-end SLAM comparison (default 0)\n";
+  std::cout << "roislam-stage-bench options:\n"
+               "  [--data <TUM folder or .rawlog>]  (default: the shared TUM sequence)\n"
+               "  [--synthetic]                     synthetic frames even if real data exist\n"
+               "  [--frames <n>]                    frames loaded / run (default 20)\n"
+               "  [--cv-threads <n>]                cv::setNumThreads (default OpenCV's)\n"
+               "  [--paired-passes <n>]             paired front-end comparison (default 1)\n"
+               "  [--paired-slam-passes <n>]        paired end-to-end SLAM comparison (default 0)\n"
+               "  [--config-dir <dir>]              its <mode>.ini files (default: config/)\n";
 }
 }  // namespace
 
@@ -907,6 +908,7 @@ int main(int argc, char** argv)
     int cvThreads = -1;
     int pairedPasses = 1;
     int pairedSlamPasses = 0;
+    std::string configDir = ROISLAM_CONFIG_DIR;
     app.add_option("--data", dataPath, "TUM folder or .rawlog (default: the shared TUM sequence)");
     app.add_flag("--synthetic", synthetic, "use synthetic frames even when real data exist");
     app.add_option("--frames", frames, "frames loaded and run through the front end")
@@ -920,6 +922,9 @@ int main(int argc, char** argv)
            "--paired-slam-passes", pairedSlamPasses,
            "passes of the interleaved end-to-end SLAM comparison (0 = off)")
         ->check(CLI::Range(0, 100));
+    app.add_option(
+        "--config-dir", configDir,
+        "folder of the traditional/roi_small/roi_big .ini files of the end-to-end comparison");
     try
     {
       app.parse(argc, argv);
@@ -946,7 +951,7 @@ int main(int argc, char** argv)
 
     printFrontEndTable(reporter);
     printPairedTable(reporter, pairedPasses);
-    printPairedSlamTable(reporter, pairedSlamPasses);
+    printPairedSlamTable(reporter, pairedSlamPasses, configDir);
     rusage usage{};
     getrusage(RUSAGE_SELF, &usage);
     std::cout << "\npeak memory (ru_maxrss): " << std::fixed << std::setprecision(1)

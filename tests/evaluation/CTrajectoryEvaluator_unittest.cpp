@@ -150,6 +150,27 @@ TEST(TrajectoryEvaluator, AteOfKnownPerPoseOffsetsIsTheirRms)
   const std::size_t m = expected.size() / 2;  // even count: mean of the middle two
   EXPECT_NEAR(r.ate.median, 0.5 * (expected[m - 1] + expected[m]), 1e-9);
   EXPECT_GT(r.ate.rmse, 0.05);  // the noise is really there
+
+  // The per-pose samples (the error-over-time plot): one per pair, in stamp
+  // order, each the error applied at its stamp.
+  ASSERT_EQ(r.ate.samples.size(), r.ate.pairs);
+  double samplesSq = 0;
+  for (std::size_t k = 0; k < r.ate.samples.size(); ++k)
+  {
+    const auto& smp = r.ate.samples[k];
+    if (k > 0)
+      EXPECT_LT(r.ate.samples[k - 1].timestamp, smp.timestamp);
+    EXPECT_EQ(smp.timestamp, noisy[k].timestamp);
+    EXPECT_NEAR(
+        smp.error,
+        std::sqrt(
+            std::pow(noisy[k].pose.x() - gt[k].pose.x(), 2) +
+            std::pow(noisy[k].pose.y() - gt[k].pose.y(), 2) +
+            std::pow(noisy[k].pose.z() - gt[k].pose.z(), 2)),
+        1e-9);
+    samplesSq += smp.error * smp.error;
+  }
+  EXPECT_NEAR(std::sqrt(samplesSq / n2), r.ate.rmse, 1e-12);
 }
 
 TEST(TrajectoryEvaluator, JitteredStampsMissingStretchAndShuffledInput)
@@ -213,6 +234,13 @@ TEST(TrajectoryEvaluator, RpeOfConstantTranslationalDriftPerSecond)
   EXPECT_NEAR(r.rpe.trans_max, 0.13, 1e-6);
   EXPECT_LT(r.rpe.rot_max_deg, 1e-5);
   EXPECT_GT(r.ate.rmse, 0.1);
+  ASSERT_EQ(r.rpe.samples.size(), r.rpe.pairs);
+  for (std::size_t k = 0; k < r.rpe.samples.size(); ++k)
+  {
+    EXPECT_EQ(r.rpe.samples[k].timestamp, gt[k].timestamp);  // the pair's first pose
+    EXPECT_NEAR(r.rpe.samples[k].trans, 0.13, 1e-6);
+    EXPECT_LT(r.rpe.samples[k].rot_deg, 1e-5);
+  }
 
   // In frames: delta 10 frames = 0.5 s.
   const auto f = CTrajectoryEvaluator(opts(10, true)).evaluate(gt, est);

@@ -101,9 +101,11 @@ TEST(RoiEvalApp, JsonTableAlignedAndPlot)
 
   if (std::system("gnuplot --version > /dev/null 2>&1") == 0)
   {
-    const TRun p = run(io + " --plot '" + dir + "/plot.png'", dir);
+    const TRun p =
+        run(io + " --plot '" + dir + "/plot.png' --plot-errors '" + dir + "/errors.png'", dir);
     ASSERT_EQ(p.code, 0) << p.err;
     EXPECT_GT(fs::file_size(dir + "/plot.png"), 10000u);
+    EXPECT_GT(fs::file_size(dir + "/errors.png"), 10000u);
   }
   fs::remove_all(dir);
 }

@@ -9,6 +9,7 @@
 #include <roislam/io/TumTrajectory.h>
 
 #include <chrono>
+#include <deque>
 #include <string>
 #include <vector>
 
@@ -19,7 +20,7 @@ struct TRunSummary
   io::TTrajectory trajectory;
   std::vector<TFrameResult> results;
   CRgbdOdometry::TStats stats;
-  std::size_t keyframes = 0;
+  std::deque<TKeyframe> keyframes;
   double wallSeconds = 0;     //!< whole loop incl. image decoding
   double processMs = 0;       //!< sum of process() times
   std::optional<double> ate;  //!< ATE RMSE (m) when ground truth exists
@@ -61,7 +62,7 @@ inline TRunSummary runOdometry(
   }
   s.wallSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   s.stats = odo.stats();
-  s.keyframes = odo.keyframes().size();
+  s.keyframes = odo.keyframes();
   if (!gt.empty() && s.trajectory.size() >= 3)
     s.ate = evaluation::CTrajectoryEvaluator().evaluate(gt, s.trajectory).ate.rmse;
   return s;

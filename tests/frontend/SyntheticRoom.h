@@ -6,6 +6,7 @@
 #pragma once
 
 #include <mrpt/poses/CPose3D.h>
+#include <roislam/io/CameraPresets.h>
 #include <roislam/io/TRGBDFrame.h>
 
 #include <cmath>
@@ -14,16 +15,10 @@
 
 namespace roislam::frontend::testing
 {
+/** 640 x 480, f 525 px, no distortion. */
 inline mrpt::img::TCamera syntheticCamera()
 {
-  mrpt::img::TCamera c;
-  c.ncols = 640;
-  c.nrows = 480;
-  c.fx(525.0);
-  c.fy(525.0);
-  c.cx(319.5);
-  c.cy(239.5);
-  return c;
+  return io::cameraPreset("ros");
 }
 
 /** contrast: grey amplitude of the blocks around 128 (0 = uniform grey). */

@@ -6,6 +6,10 @@
 #include <roislam/testing/TestData.h>
 
 #include <iostream>
+#include <map>
+#include <opencv2/core/types.hpp>
+#include <set>
+#include <tuple>
 
 #include "OdometryRun.h"
 
@@ -40,6 +44,75 @@ TEST(OdometrySynthetic, TexturedTraditionalAndRoi)
     EXPECT_EQ(s.trajectory.size(), s.results.size());
     EXPECT_LE(s.stats.constantVelocity, s.results.size() / 20);
     EXPECT_LT(*s.ate, 0.05) << toString(mode);
+  }
+}
+
+TEST(OdometrySynthetic, RegionFramesDescribeOnlyTheirRegion)
+{
+  ROISLAM_REQUIRE_SYNTHETIC(dir, "textured");
+  for (auto mode : {EFrontEndMode::RoiBig, EFrontEndMode::RoiSmall})
+  {
+    SCOPED_TRACE(toString(mode));
+    auto o = orb(mode);
+    o.roi_extraction = "region";
+    const auto s = runOdometry(dir, o);
+    ASSERT_TRUE(s.ate.has_value());
+    std::map<roislam::frontend::EExtension, std::size_t> counted;
+    std::size_t roiOnly = 0;
+    for (const auto& r : s.results)
+    {
+      const auto& w = r.work;
+      ++counted[w.extension];
+      const cv::Size image = r.imageSize;
+      if (w.extension == roislam::frontend::EExtension::None)
+      {
+        // ROI-only: the detector ran on the region and its margin alone, and
+        // every feature lies inside the region.
+        ++roiOnly;
+        ASSERT_FALSE(w.region.empty()) << "frame " << r.frameIndex;
+        const int m = 31;  // ORB's support (CFeatureExtractor::supportPx)
+        const cv::Rect padded =
+            cv::Rect(
+                w.region.x - m, w.region.y - m, w.region.width + 2 * m, w.region.height + 2 * m) &
+            cv::Rect(0, 0, image.width, image.height);
+        EXPECT_EQ(w.regionPixels, static_cast<std::size_t>(padded.area()));
+        EXPECT_EQ(w.extensionPixels, 0u);
+        EXPECT_EQ(w.extensionFeatures, 0u);
+        EXPECT_EQ(r.features, w.regionFeatures);
+        EXPECT_LE(w.describedFraction(image), 1.0);
+        EXPECT_EQ(r.trackingFeatures, r.featuresWithDepth) << "frame " << r.frameIndex;
+      }
+      else
+      {
+        // Extended once: the region's and the extension's features are all
+        // there is.
+        EXPECT_EQ(r.features, w.regionFeatures + w.extensionFeatures) << "frame " << r.frameIndex;
+      }
+      if (r.isNewKeyframe && r.method != ETrackingMethod::Initial)
+        EXPECT_NE(w.extension, roislam::frontend::EExtension::None);
+    }
+    // The extension never describes the region again: no keypoint twice in
+    // any keyframe (which stores the whole extended set).
+    for (const auto& kf : s.keyframes)
+    {
+      std::set<std::tuple<float, float, int>> seen;
+      for (const auto& k : kf.features.keypoints)
+        EXPECT_TRUE(seen.insert({k.pt.x, k.pt.y, k.octave}).second) << "keyframe " << kf.id;
+    }
+    // Every frame counted once, by its reason, in the run's statistics.
+    std::size_t total = 0;
+    for (const auto& [reason, n] : s.stats.extensions)
+    {
+      std::cout << "  " << toString(reason) << ": " << n << "\n";
+      EXPECT_EQ(n, counted[reason]) << toString(reason);
+      total += n;
+    }
+    EXPECT_EQ(total, s.results.size());
+    EXPECT_GT(roiOnly, s.results.size() / 3);
+    std::cout << toString(mode) << " region: ATE " << *s.ate << " m, ROI-only frames " << roiOnly
+              << " of " << s.results.size() << ", mean described fraction "
+              << s.stats.describedFractionSum / s.results.size() << "\n";
+    EXPECT_LT(*s.ate, 0.05);
   }
 }
 

@@ -18,7 +18,7 @@ TEST(OdometryTum, OrbTraditionalDriftBounded)
   o.extractor.max_features = 600;
   const auto s = roislam::frontend::testing::runOdometry(dir, o);
   ASSERT_TRUE(s.ate.has_value());
-  std::cout << "orb traditional: frames " << s.results.size() << " keyframes " << s.keyframes
+  std::cout << "orb traditional: frames " << s.results.size() << " keyframes " << s.keyframes.size()
             << " ATE " << *s.ate << " m, " << s.results.size() / s.wallSeconds
             << " fps (with decoding), process " << s.processMs / s.results.size()
             << " ms/frame; features " << s.stats.features << " icp " << s.stats.depthIcp << " cv "

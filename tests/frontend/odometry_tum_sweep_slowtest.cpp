@@ -32,7 +32,7 @@ TEST(OdometryTumSweep, AllExtractorsAndModes)
       std::printf(
           "%-6s %-12s %8.4f %7.1f %9.2f %6zu %6zu %6zu %6zu\n",
           roislam::features::toString(type).c_str(), toString(mode).c_str(), *s.ate,
-          n / s.wallSeconds, s.processMs / n, s.keyframes, s.stats.roiFeatures,
+          n / s.wallSeconds, s.processMs / n, s.keyframes.size(), s.stats.roiFeatures,
           s.stats.fullImageFallback, s.stats.depthIcp + s.stats.constantVelocity);
       std::fflush(stdout);
       EXPECT_EQ(s.stats.lost, 0u);

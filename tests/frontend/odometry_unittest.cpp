@@ -114,7 +114,7 @@ TEST(RgbdOdometry, PoorlyDeterminedRegistrationsAreCombinedWithDepthIcp)
   }
 }
 
-TEST(RgbdOdometry, RegisterKeyframesAndSetKeyframePose)
+TEST(RgbdOdometry, RegisterKeyframesAndCorrectKeyframePoses)
 {
   auto o = baseOptions();
   o.keyframe_translation_m = 0.03;
@@ -134,11 +134,11 @@ TEST(RgbdOdometry, RegisterKeyframesAndSetKeyframePose)
   // The back end moves the last keyframe: the next frame follows it.
   const std::size_t last = odo.keyframes().size() - 1;
   const CPose3D shift(0.5, 0, 0, 0, 0, 0);
-  odo.setKeyframePose(last, shift + odo.keyframe(last).pose);
+  odo.correctKeyframePoses({{last, shift + odo.keyframe(last).pose}, {999, CPose3D()}});
   const auto r = odo.process(renderRoom(trajectoryPose(8), 100, 8, 0.8));
   ASSERT_TRUE(r.pose.has_value());
   EXPECT_LT(transErr(*r.pose, shift + trajectoryPose(8)), 0.03);
-  EXPECT_THROW(odo.setKeyframePose(999, CPose3D()), std::out_of_range);
+  EXPECT_EQ(odo.keyframes().size(), last + 1);  // unknown ids are ignored
   EXPECT_THROW(odo.registerKeyframes(0, 999), std::out_of_range);
 }
 
@@ -178,7 +178,7 @@ TEST(RgbdOdometry, RoiModeUsesRoiFeaturesWhenPresent)
   }
 }
 
-TEST(RgbdOdometry, RoiDetectedAheadIsUsedOnlyForItsFrame)
+TEST(RgbdOdometry, PreparedFrameCarriesStageOne)
 {
   auto o = baseOptions();
   o.mode = EFrontEndMode::RoiBig;
@@ -186,28 +186,39 @@ TEST(RgbdOdometry, RoiDetectedAheadIsUsedOnlyForItsFrame)
   odo.setInitialPose(trajectoryPose(0));
   const auto f0 = renderRoom(trajectoryPose(0), 110, 0, 0.0);
   const auto f1 = renderRoom(trajectoryPose(1), 110, 1, 0.1);
-  // detectRoiAhead gives what process() would find itself.
-  const auto ahead = odo.detectRoiAhead(f0);
-  EXPECT_EQ(ahead.frameIndex, f0.index);
-  const auto r0 = odo.process(f0, ahead);
-  ASSERT_TRUE(ahead.roi.has_value());
+  // prepare() runs stage 1 once; process() uses its ROI as given.
+  const auto p0 = odo.prepare(f0);
+  ASSERT_TRUE(p0.roiDetected);
+  ASSERT_TRUE(p0.roi.has_value());
+  EXPECT_EQ(p0.grey.type(), CV_8UC1);
+  const auto r0 = odo.process(p0);
   ASSERT_TRUE(r0.roi.has_value());
-  EXPECT_EQ(*r0.roi, ahead.roi->box);
-  // A hint is taken as given for its frame (here a made-up box)...
-  auto forged = odo.detectRoiAhead(f1);
-  ASSERT_TRUE(forged.roi.has_value());
-  forged.roi->box = cv::Rect(10, 20, 300, 200);
+  EXPECT_EQ(*r0.roi, p0.roi->box);
+  auto p1 = odo.prepare(f1);
+  ASSERT_TRUE(p1.roi.has_value());
+  p1.roi->box = cv::Rect(10, 20, 300, 200);
+  EXPECT_EQ(*odo.process(p1).roi, cv::Rect(10, 20, 300, 200));
+  // The raw-frame overload prepares on the caller's thread: the same ROI.
   CRgbdOdometry other(o);
-  other.setInitialPose(trajectoryPose(0));
-  other.process(f0);
-  EXPECT_EQ(*other.process(f1, forged).roi, cv::Rect(10, 20, 300, 200));
-  // ...and ignored for any other frame.
-  auto stale = ahead;  // frame 0's
-  stale.roi->box = cv::Rect(10, 20, 300, 200);
-  const auto r1 = odo.process(f1, stale);
-  ASSERT_TRUE(r1.roi.has_value());
-  EXPECT_NE(*r1.roi, cv::Rect(10, 20, 300, 200));
-  EXPECT_EQ(*r1.roi, odo.detectRoiAhead(f1).roi->box);
+  EXPECT_EQ(*other.process(f0).roi, p0.roi->box);
+  // Bad frames are refused before any work.
+  auto bad = f0;
+  bad.depth = cv::Mat(2, 2, CV_32FC1, cv::Scalar(1.0));
+  EXPECT_THROW(odo.prepare(bad), std::invalid_argument);
+}
+
+TEST(RgbdOdometry, TraditionalModeDetectsRoiForKeyframesOnly)
+{
+  CRgbdOdometry odo(baseOptions());
+  const auto p = odo.prepare(renderRoom(trajectoryPose(0), 110, 0, 0.0));
+  EXPECT_FALSE(p.roiDetected);
+  EXPECT_EQ(p.roi_ms, 0.0);
+  const auto res = run(odo, 110, 6);
+  for (const auto& r : res)
+    EXPECT_EQ(r.roi.has_value(), r.isNewKeyframe) << "frame " << r.frameIndex;
+  for (const auto& kf : odo.keyframes())
+    EXPECT_TRUE(kf.roi.has_value()) << "keyframe " << kf.id;
+  EXPECT_EQ(odo.stats().noRoi, 0u);
 }
 
 TEST(RgbdOdometry, StrictRoiLosesFramesWithoutRoi)

@@ -5,6 +5,7 @@
 
 #include <mrpt/img/TCamera.h>
 #include <mrpt/poses/CPose3D.h>
+#include <roislam/io/CameraPresets.h>
 #include <roislam/io/TRGBDFrame.h>
 
 #include <cmath>
@@ -25,12 +26,7 @@ class CSyntheticPlane
     cv::resize(noise(cv::Rect(0, 0, 200, 150)), blobs, noise.size(), 0, 0, cv::INTER_NEAREST);
     cv::GaussianBlur(noise, noise, cv::Size(3, 3), 0);
     cv::addWeighted(noise, 0.5, blobs, 0.5, 0, m_texture);
-    m_camera.ncols = 640;
-    m_camera.nrows = 480;
-    m_camera.fx(525);
-    m_camera.fy(525);
-    m_camera.cx(319.5);
-    m_camera.cy(239.5);
+    m_camera = io::cameraPreset("ros");  // 640 x 480, f 525 px, no distortion
   }
 
   /** The frame seen from `pose` (optical camera in the world). */

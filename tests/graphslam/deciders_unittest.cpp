@@ -45,7 +45,7 @@ TEST(Deciders, RegisterKeyframeNodesEdgesAndLoopClosure)
     const std::size_t nodesBefore = graph.nodes.size();
     const bool added = nrd.updateState(nullptr, nullptr, obs);
     erd.updateState(nullptr, nullptr, obs);
-    const auto& r = *ctx->lastResult();
+    const auto& r = *ctx->lastFrame();
     ASSERT_TRUE(r.pose) << "frame " << i;
     EXPECT_EQ(added, r.isNewKeyframe && r.newKeyframeId > 0) << "frame " << i;
     if (added)
@@ -69,6 +69,7 @@ TEST(Deciders, RegisterKeyframeNodesEdgesAndLoopClosure)
   EXPECT_GE(erd.edgeCounts().at("loop_proximity"), 1);
 
   ctx->optimize(graph);
+  ctx->correctFrontEnd(graph);
   for (const auto& [id, pose] : graph.nodes)
   {
     const auto truth = roislam::testing::outAndBackPose(static_cast<int>(kfs[id].frameIndex));
@@ -85,7 +86,10 @@ TEST(Deciders, NoNodeWithoutMotion)
   graphslam::CKeyframeNRD nrd(ctx);
   nrd.setGraphPtr(&graph);
   for (int i = 0; i < 5; ++i)
-    EXPECT_FALSE(nrd.processFrame(plane.render(mrpt::poses::CPose3D(), i, 0.1 * i)));
+  {
+    const auto r = ctx->odometry().process(plane.render(mrpt::poses::CPose3D(), i, 0.1 * i));
+    EXPECT_FALSE(nrd.registerFrame(r));
+  }
   EXPECT_TRUE(graph.nodes.empty());
   // Observations of other kinds are ignored.
   EXPECT_FALSE(nrd.updateState(nullptr, nullptr, nullptr));

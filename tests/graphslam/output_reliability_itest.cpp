@@ -227,7 +227,7 @@ TEST(OutputReliability, FailureWhileWritingTheMapLeavesTheFolderAbsentOrAsBefore
             throw std::runtime_error("injected failure while writing map.bt");
           return p.keyframePose(id);
         }};
-    const auto content = writer.writeMap(run);
+    const auto content = writer.writeMap(run, mrpt::poses::CPose3D());
     writer.writeScene(content, false);
     writer.writeSummary({{"frames", p.records().size()}});
   };

@@ -33,22 +33,6 @@ using namespace roislam::iotest;
 
 namespace
 {
-template <typename F>
-void expectError(F&& fn, const std::string& part)
-{
-  try
-  {
-    fn();
-    ADD_FAILURE() << "no exception, expected one mentioning '" << part << "'";
-  }
-  catch (const std::exception& e)
-  {
-    const std::string what = e.what();
-    EXPECT_NE(what.find(part), std::string::npos) << "message: " << what;
-    EXPECT_EQ(what.find('\n'), std::string::npos) << "not one line: " << what;
-  }
-}
-
 CTum2RawlogApp::TResult convert(const std::string& in, const std::string& out)
 {
   CTum2RawlogApp::TOptions o;
@@ -65,6 +49,7 @@ TEST(RawlogFrameSource, RoundTripIsBitExact)
   const auto dir = writeTumFolder(tmp, "seq", {1.0, 1.5, 2.0, 3.0}, {1.001, 1.499, 2.05, 3.01});
   writeCameraIni((fs::path(dir) / "camera.ini").string(), smallCamera());
   std::ofstream(fs::path(dir) / "groundtruth.txt") << "1.0 0 0 0 0 0 0 1\n";
+  std::ofstream(fs::path(dir) / "accelerometer.txt") << "1.0 0 9.8 0\n";
 
   const auto out = tmp + "/out/seq.rawlog";
   fs::create_directories(tmp + "/out");
@@ -75,6 +60,8 @@ TEST(RawlogFrameSource, RoundTripIsBitExact)
   EXPECT_TRUE(fs::is_directory(tmp + "/out/seq_Images"));
   ASSERT_TRUE(r.groundTruth);
   EXPECT_TRUE(fs::is_regular_file(tmp + "/out/seq.groundtruth.txt"));
+  ASSERT_TRUE(r.accelerometer);
+  EXPECT_TRUE(fs::is_regular_file(tmp + "/out/seq.accelerometer.txt"));
   // Only the final names remain (no temporary leftovers).
   std::size_t entries = 0;
   for (const auto& e : fs::directory_iterator(tmp + "/out"))
@@ -82,7 +69,7 @@ TEST(RawlogFrameSource, RoundTripIsBitExact)
     ++entries;
     EXPECT_EQ(e.path().string().find("partial"), std::string::npos) << e.path();
   }
-  EXPECT_EQ(entries, 3u);
+  EXPECT_EQ(entries, 4u);
 
   CTumFrameSource tum(dir, smallCamera());
   CRawlogFrameSource raw(out);
@@ -91,6 +78,9 @@ TEST(RawlogFrameSource, RoundTripIsBitExact)
   EXPECT_EQ(raw.name(), "seq");
   ASSERT_TRUE(raw.groundTruthFile());
   EXPECT_EQ(*raw.groundTruthFile(), fs::absolute(tmp + "/out/seq.groundtruth.txt").string());
+  ASSERT_TRUE(raw.accelerometerFile());
+  EXPECT_EQ(*raw.accelerometerFile(), fs::absolute(tmp + "/out/seq.accelerometer.txt").string());
+  ASSERT_TRUE(tum.accelerometerFile());
   EXPECT_DOUBLE_EQ(raw.camera().fx(), 20.0);
   EXPECT_DOUBLE_EQ(raw.camera().cy(), 5.5);
 
@@ -242,6 +232,7 @@ TEST(RawlogFrameSource, ForeignRawlogVariants)
   CRawlogFrameSource mm(tmp + "/mm.rawlog");
   EXPECT_EQ(mm.size(), 3u);
   EXPECT_FALSE(mm.groundTruthFile());
+  EXPECT_FALSE(mm.accelerometerFile());
   for (int k = 0; k < 3; ++k)
   {
     auto f = mm.next();

@@ -1,8 +1,10 @@
 /* Builds small TUM-layout folders in a temporary directory for the io tests:
- * rgb/ and depth/ PNGs with known content plus rgb.txt/depth.txt.
+ * rgb/ and depth/ PNGs with known content plus rgb.txt/depth.txt; and the
+ * check of the one-line error messages the io layer promises.
  */
 #pragma once
 
+#include <gtest/gtest.h>
 #include <mrpt/config/CConfigFile.h>
 #include <mrpt/img/TCamera.h>
 #include <roislam/testing/TestData.h>
@@ -19,6 +21,23 @@
 
 namespace roislam::iotest
 {
+/** Expects fn to throw an exception whose one-line message contains part. */
+template <typename F>
+void expectError(F&& fn, const std::string& part)
+{
+  try
+  {
+    fn();
+    ADD_FAILURE() << "no exception, expected one mentioning '" << part << "'";
+  }
+  catch (const std::exception& e)
+  {
+    const std::string what = e.what();
+    EXPECT_NE(what.find(part), std::string::npos) << "message: " << what;
+    EXPECT_EQ(what.find('\n'), std::string::npos) << "not one line: " << what;
+  }
+}
+
 /** Small pinhole camera for synthetic folders (W x H pixels). */
 inline mrpt::img::TCamera smallCamera(int w = 16, int h = 12)
 {

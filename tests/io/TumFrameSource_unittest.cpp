@@ -20,26 +20,6 @@ using roislam::io::CFrameSource;
 using roislam::io::CTumFrameSource;
 using namespace roislam::iotest;
 
-namespace
-{
-// Expects `fn` to throw std::runtime_error whose one-line message contains `part`.
-template <typename F>
-void expectError(F&& fn, const std::string& part)
-{
-  try
-  {
-    fn();
-    ADD_FAILURE() << "no exception, expected one mentioning '" << part << "'";
-  }
-  catch (const std::exception& e)
-  {
-    const std::string what = e.what();
-    EXPECT_NE(what.find(part), std::string::npos) << "message: " << what;
-    EXPECT_EQ(what.find('\n'), std::string::npos) << "not one line: " << what;
-  }
-}
-}  // namespace
-
 TEST(TumFrameSource, SharedSequenceAssociationAndFrames)
 {
   ROISLAM_REQUIRE_SHARED_TUM(dir);
@@ -139,6 +119,7 @@ TEST(TumFrameSource, AssociationIsGreedyOneToOneWithinWindow)
   EXPECT_DOUBLE_EQ(e[2].rgbStamp, 3.000);
   EXPECT_DOUBLE_EQ(e[2].depthStamp, 3.019);
   EXPECT_FALSE(src.groundTruthFile());
+  EXPECT_FALSE(src.accelerometerFile());
 
   // Frames carry the images of the associated files (depth image index 1 for
   // the second frame) and metres = raw / 5000.

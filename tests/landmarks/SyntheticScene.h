@@ -4,6 +4,7 @@
 #pragma once
 
 #include <mrpt/img/TCamera.h>
+#include <roislam/io/CameraPresets.h>
 #include <roislam/io/TRGBDFrame.h>
 
 #include <opencv2/core.hpp>
@@ -59,16 +60,10 @@ inline cv::Mat warped(const cv::Mat& img, double deg, cv::Point2f shift)
   return out;
 }
 
+/** 640 x 480, f 525 px, no distortion. */
 inline mrpt::img::TCamera testCamera()
 {
-  mrpt::img::TCamera cam;
-  cam.ncols = 640;
-  cam.nrows = 480;
-  cam.fx(525);
-  cam.fy(525);
-  cam.cx(319.5);
-  cam.cy(239.5);
-  return cam;
+  return io::cameraPreset("ros");
 }
 
 /** A frame of image rgb over a fronto-parallel plane at depth metres. */

@@ -1,8 +1,9 @@
 /* CObservationProcessor and FeatureGeometry: a landmark at a known 3-D
  * position gives MRPT's range/yaw/pitch; feature depths and positions from a
- * depth image; scans convert to frames. */
+ * depth image; regions with extracted features (the SLAM back end's path). */
 #include <gtest/gtest.h>
 #include <mrpt/core/bits_math.h>
+#include <roislam/io/ObservationConversion.h>
 #include <roislam/landmarks/CObservationProcessor.h>
 #include <roislam/landmarks/FeatureGeometry.h>
 
@@ -44,11 +45,16 @@ TEST(ObservationProcessor, KnownPositionsGiveMrptBearingRange)
 
   // Sensor description.
   EXPECT_EQ(obs->sensorLabel, "ROI_LANDMARKS");
-  EXPECT_FALSE(obs->validCovariances);
+  // Each measurement carries the depth-noise model's covariance.
+  EXPECT_TRUE(obs->validCovariances);
+  const double far = 0.02 * 0.02 + std::pow(1.425e-3 * 16, 2);  // the point at 4 m depth
+  EXPECT_NEAR(obs->sensedData[2].covariance(0, 0), far, 1e-9);
+  EXPECT_NEAR(obs->sensedData[0].covariance(1, 1), 0.01 * 0.01, 1e-12);
+  EXPECT_NEAR(obs->sensedData[0].covariance(2, 2), 0.01 * 0.01, 1e-12);
   EXPECT_NEAR(obs->fieldOfView_yaw, 2 * std::atan(320.0 / 525.0), 1e-5);
   EXPECT_NEAR(obs->fieldOfView_pitch, 2 * std::atan(240.0 / 525.0), 1e-5);
   EXPECT_FLOAT_EQ(obs->maxSensorDistance, 8.0f);
-  EXPECT_FLOAT_EQ(obs->sensor_std_range, 0.05f);
+  EXPECT_FLOAT_EQ(obs->sensor_std_range, 0.02f);
   EXPECT_NEAR(mrpt::Clock::toDouble(obs->timestamp), 12.5, 1e-6);
 }
 
@@ -89,14 +95,16 @@ TEST(FeatureGeometry, DepthStatisticsAndPositionOnAPlane)
     kps.emplace_back(cv::Point2f(400 + 10 * i, 300), 5.f);
   kps.emplace_back(cv::Point2f(100, 100), 5.f);  // left half, 1 m
   kps.emplace_back(cv::Point2f(-5, 100), 5.f);   // outside the image: ignored
-  depth.at<float>(301, 600) = 0;                 // no reading...
-  kps.emplace_back(cv::Point2f(600, 301), 5.f);  // ...takes its neighbours' 2 m
+  depth.at<float>(301, 600) = 0;                 // no reading: no depth (the
+  kps.emplace_back(cv::Point2f(600, 301), 5.f);  // neighbours' is not borrowed)
+  depth.at<float>(200, 501) = 0;                 // a hole beside a keypoint...
+  kps.emplace_back(cv::Point2f(500, 200), 5.f);  // ...does not matter (no edge test)
   const auto d = featureDepth(kps, depth, cam, 0.1, 8.0);
   EXPECT_EQ(d.valid, 7);
   EXPECT_NEAR(d.mean, (6 * 2.0 + 1.0) / 7, 1e-6);
   EXPECT_NEAR(d.median, 2.0, 1e-6);
   ASSERT_TRUE(d.position);
-  // Median x over u = 400..440 (2 m), 600 (2 m), 100 (1 m): u = 420 at 2 m.
+  // Median x over u = 400..440 (2 m), 500 (2 m), 100 (1 m): u = 420 at 2 m.
   EXPECT_NEAR(d.position->x, (420 - cam.cx()) * 2.0 / cam.fx(), 1e-3);
   EXPECT_NEAR(d.position->y, (300 - cam.cy()) * 2.0 / cam.fy(), 1e-3);
   EXPECT_NEAR(d.position->z, 2.0, 1e-6);
@@ -142,31 +150,41 @@ TEST(FeatureGeometry, OpticalToMrptCamera)
   EXPECT_NEAR(back.z, 3, 1e-9);
 }
 
-TEST(ObservationProcessor, ScanToFrameConversion)
+TEST(ObservationProcessor, RegionsWithExtractedFeaturesAreIdentified)
 {
-  mrpt::obs::CObservation3DRangeScan scan;
-  EXPECT_THROW(CObservationProcessor::frameFromScan(scan), std::invalid_argument);
-  scan.timestamp = mrpt::Clock::fromDouble(42.0);
-  scan.cameraParams = scan.cameraParamsIntensity = test::testCamera();
-  scan.hasIntensityImage = true;
-  cv::Mat rgb(480, 640, CV_8UC3, cv::Scalar(10, 20, 30));
-  scan.intensityImage = mrpt::img::CImage(rgb, mrpt::img::DEEP_COPY);
-  scan.hasRangeImage = true;
-  scan.range_is_depth = true;
-  scan.rangeUnits = 1.0f / 5000;
-  scan.rangeImage_setSize(480, 640);
-  scan.rangeImage.fill(7500);
-  const auto f = CObservationProcessor::frameFromScan(scan);
-  EXPECT_NEAR(f.timestamp, 42.0, 1e-6);
-  ASSERT_EQ(f.depth.type(), CV_32FC1);
-  EXPECT_NEAR(f.depth.at<float>(100, 200), 1.5f, 1e-6);
-  ASSERT_EQ(f.rgb.type(), CV_8UC3);
-  EXPECT_EQ(f.rgb.at<cv::Vec3b>(5, 5), cv::Vec3b(10, 20, 30));
-  scan.range_is_depth = false;
-  EXPECT_THROW(CObservationProcessor::frameFromScan(scan), std::invalid_argument);
+  // The SLAM back end's path: a keyframe's ROI with its features already
+  // extracted, no confirmation. The first is stored, a warped view of it is
+  // recalled; without depth points neither has a position, so the
+  // observations carry no measurement.
+  const cv::Mat base = test::onCanvas(test::texturePatch(3), {200, 150});
+  const features::CFeatureExtractor extractor;
+  CObservationProcessor proc;
+  std::vector<CObservationProcessor::TOutput> outs;
+  for (int i = 0; i < 2; ++i)
+  {
+    TRegion region;
+    region.frame = 10 + i;
+    region.timestamp = 1.0 + i;
+    region.box = cv::Rect(180, 130, 280, 220);
+    region.imageSize = base.size();
+    region.features =
+        extractor.extract(test::warped(base, 3.0 * i, {5.f * i, 2.f * i})).subset(region.box);
+    outs.push_back(proc.processRegion(region));
+  }
+  ASSERT_EQ(outs[0].result.status, ERoiStatus::Landmark);
+  EXPECT_TRUE(outs[0].result.newLandmark);
+  ASSERT_EQ(outs[1].result.status, ERoiStatus::Landmark);
+  EXPECT_FALSE(outs[1].result.newLandmark);
+  EXPECT_EQ(outs[1].result.landmarkId, outs[0].result.landmarkId);
+  EXPECT_GT(outs[1].result.recallInliers, 10);
+  for (const auto& o : outs)
+    EXPECT_TRUE(o.observation->sensedData.empty());
+  ASSERT_EQ(proc.tracker().database().size(), 1u);
+  EXPECT_EQ(proc.tracker().database().landmark(0).sightings.size(), 2u);
+  EXPECT_EQ(proc.tracker().database().landmark(0).sightings[1].frame, 11u);
 }
 
-TEST(ObservationProcessor, ProcessesFramesAndScansEndToEnd)
+TEST(ObservationProcessor, ProcessesFramesEndToEnd)
 {
   // A textured patch seen in three frames: the second confirms it (new
   // landmark 0) and the third recalls it; each gives one measurement.
@@ -192,19 +210,15 @@ TEST(ObservationProcessor, ProcessesFramesAndScansEndToEnd)
   EXPECT_TRUE(outs[1].result.newLandmark);
   EXPECT_FALSE(outs[2].result.newLandmark);
 
-  // The same frame as a scan.
-  mrpt::obs::CObservation3DRangeScan scan;
+  // An MRPT scan goes through the one conversion to a frame
+  // (io::observationToFrame); observations carry [ObservationProcessor]
+  // sensor_pose, by default the optical-frame robot of our rawlogs.
   const auto f = test::makeFrame(3, test::warped(base, 5.0, {15.f, 8.f}));
-  scan.cameraParams = scan.cameraParamsIntensity = f.camera;
-  scan.hasIntensityImage = true;
-  scan.intensityImage = mrpt::img::CImage(f.rgb, mrpt::img::DEEP_COPY);
-  scan.hasRangeImage = scan.range_is_depth = true;
-  scan.rangeUnits = 1.0f / 5000;
-  scan.rangeImage_setSize(480, 640);
-  scan.rangeImage.fill(7500);
-  scan.sensorPose = mrpt::poses::CPose3D(0.1, 0, 0.2, 0, 0, 0);
-  const auto out = proc.process(scan);
+  const auto scan = io::frameToObservation(f);
+  auto frame = io::observationToFrame(*scan, "test scan");
+  frame.index = 3;
+  const auto out = proc.process(frame);
   ASSERT_EQ(out.result.status, ERoiStatus::Landmark);
   EXPECT_EQ(out.result.landmarkId, 0);
-  EXPECT_EQ(out.observation->sensorLocationOnRobot, scan.sensorPose);
+  EXPECT_EQ(out.observation->sensorLocationOnRobot, io::tumSensorPose());
 }

@@ -78,9 +78,6 @@ TEST(RigidRansac, ExactDataGivesExactTransform)
   EXPECT_LT((r->transform.translation() - truth.translation()).norm(), 1e-9);
   EXPECT_LT(rotationErrorDeg(r->transform, truth), 1e-5);
   EXPECT_EQ(r->inliers.size(), 50u);
-  const auto ls = CRigidTransformRansac::fitLeastSquares(d.target, d.source);
-  ASSERT_TRUE(ls.has_value());
-  EXPECT_LT((ls->translation() - truth.translation()).norm(), 1e-9);
 }
 
 TEST(RigidRansac, PureOutliersGiveNoResult)
@@ -97,11 +94,35 @@ TEST(RigidRansac, DegenerateInputs)
   std::vector<TPoint3D> line;
   for (int i = 0; i < 10; ++i)
     line.emplace_back(0.1 * i, 0, 1);
-  EXPECT_FALSE(CRigidTransformRansac::fitLeastSquares(line, line).has_value());
   EXPECT_FALSE(CRigidTransformRansac().estimate(line, line).has_value());
   // Too few pairs and size mismatch.
   EXPECT_FALSE(CRigidTransformRansac().estimate({}, {}).has_value());
   EXPECT_THROW(CRigidTransformRansac().estimate(line, {}), std::invalid_argument);
+}
+
+TEST(RigidRansac, MinSampleSpreadAndSmallRegions)
+{
+  // 40 pairs within a 6 cm cube (a ROI's features), 4 cm inlier gate: the
+  // default spread (2 x 4 cm) skips nearly every sample, 0 keeps them.
+  const CPose3D truth(0.05, -0.02, 0.01, 0.1, 0.05, -0.03);
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> u(-0.03, 0.03);
+  std::vector<TPoint3D> target, source;
+  for (int i = 0; i < 40; ++i)
+  {
+    source.emplace_back(u(rng), u(rng), 1.5 + u(rng));
+    target.push_back(truth.composePoint(source.back()));
+  }
+  CRigidTransformRansac::TOptions o;
+  o.threshold_m = 0.04;
+  EXPECT_FALSE(CRigidTransformRansac(o).estimate(target, source).has_value());
+  o.min_sample_spread = 0;
+  const auto r = CRigidTransformRansac(o).estimate(target, source);
+  ASSERT_TRUE(r.has_value());
+  EXPECT_EQ(r->inliers.size(), 40u);
+  EXPECT_LT((r->transform.translation() - truth.translation()).norm(), 1e-9);
+  o.min_sample_spread = -1;
+  EXPECT_THROW(CRigidTransformRansac{o}, std::invalid_argument);
 }
 
 TEST(RigidRansac, Deterministic)
@@ -134,10 +155,12 @@ TEST(RigidRansac, OptionsValidationAndIni)
   CRigidTransformRansac::TOptions o3;
   o3.threshold_m = 0.05;
   o3.seed = 42;
+  o3.min_sample_spread = 0.5;
   mrpt::config::CConfigFileMemory out;
   o3.saveToConfigFile(out, "RigidRansac");
   CRigidTransformRansac::TOptions o4;
   o4.loadFromConfigFile(out, "RigidRansac");
   EXPECT_DOUBLE_EQ(o4.threshold_m, 0.05);
   EXPECT_EQ(o4.seed, 42u);
+  EXPECT_DOUBLE_EQ(o4.min_sample_spread, 0.5);
 }

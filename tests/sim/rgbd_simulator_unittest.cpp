@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 #include <mrpt/config/CConfigFile.h>
 #include <mrpt/config/CConfigFileMemory.h>
+#include <roislam/io/TumAccelerometer.h>
 #include <roislam/io/TumTrajectory.h>
 #include <roislam/sim/CRgbdSimulator.h>
 #include <roislam/testing/TestData.h>
@@ -312,6 +313,30 @@ TEST(RgbdSimulator, OptionsLoadValidateAndRoundTrip)
   expectError("framez", "10");              // unknown key
 }
 
+// The accelerometer reads gravity plus the path's acceleration, in the
+// Kinect's axes: turned into the world by the ground truth, its mean over the
+// closed loop (whose accelerations average out) is 9.81 m/s^2 straight up.
+TEST(RgbdSimulator, AccelerometerReadsGravityInTheKinectAxes)
+{
+  const CRgbdSimulator sim(opts("textured", false, 90));
+  mrpt::math::TVector3D mean(0, 0, 0);
+  for (std::size_t i = 0; i < 90; ++i)
+  {
+    const auto kinect = sim.accelerometerReading(i);
+    // Kinect axes = optical axes turned half a turn about the optical axis.
+    const mrpt::math::TVector3D optical(-kinect.x, -kinect.y, kinect.z);
+    mean = mean + sim.groundTruthPose(i).rotateVector(optical) * (1.0 / 90);
+  }
+  EXPECT_NEAR(mean.x, 0, 0.02);
+  EXPECT_NEAR(mean.y, 0, 0.02);
+  EXPECT_NEAR(mean.z, 9.81, 0.02);
+  // Not gravity alone: the hand-held path accelerates.
+  double most = 0;
+  for (std::size_t i = 0; i < 90; ++i)
+    most = std::max(most, std::abs(sim.accelerometerReading(i).norm() - 9.81));
+  EXPECT_GT(most, 0.1);
+}
+
 TEST(RgbdSimulator, WritesTumLayoutMatchingRenderedFrames)
 {
   const std::string dir = roislam::testing::makeTempDir("sim_write");
@@ -323,9 +348,12 @@ TEST(RgbdSimulator, WritesTumLayoutMatchingRenderedFrames)
     const auto st = sim.writeSequence(out.string());
     EXPECT_EQ(st.frames, 4u);
   }
-  for (const char* f : {"rgb.txt", "depth.txt", "groundtruth.txt", "camera.ini", "simulator.ini"})
+  for (const char* f :
+       {"rgb.txt", "depth.txt", "groundtruth.txt", "accelerometer.txt", "camera.ini",
+        "simulator.ini"})
     EXPECT_TRUE(fs::is_regular_file(out / f)) << f;
   EXPECT_EQ(countLines(out / "rgb.txt"), 4u);
+  EXPECT_EQ(roislam::io::loadTumAccelerometer((out / "accelerometer.txt").string()).size(), 4u);
   EXPECT_EQ(countLines(out / "depth.txt"), 4u);
   // Nothing but the output is left in the parent folder.
   EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator()), 1);

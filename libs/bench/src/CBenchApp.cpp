@@ -63,7 +63,10 @@ CBenchApp::CBenchApp(const TOptions& options) : m_options(options)
   if (!m_options.tests.empty())
     m_options.plan.tests = CExperimentPlan::parseTests(m_options.tests);
   if (m_options.noDefaultVariants)
+  {
     m_options.plan.variants.clear();
+    m_options.plan.test1_variants.clear();
+  }
   for (const auto& spec : m_options.variantSpecs)
     m_options.plan.variants.push_back(TVariant::parse(spec));
   m_options.plan.validate();

@@ -38,8 +38,8 @@ std::set<int> CExperimentPlan::parseTests(const std::string& text)
   std::set<int> tests;
   for (const auto& t : splitList(text))
   {
-    if (t != "1" && t != "2" && t != "3")
-      throw std::invalid_argument("tests: '" + t + "' is not one of 1, 2, 3");
+    if (t != "1" && t != "2" && t != "3" && t != "4")
+      throw std::invalid_argument("tests: '" + t + "' is not one of 1, 2, 3, 4");
     tests.insert(std::stoi(t));
   }
   if (tests.empty())
@@ -52,8 +52,8 @@ void CExperimentPlan::TOptions::validate(const std::string& section) const
   const auto bad = [&](const std::string& key, const std::string& why)
   { return std::invalid_argument("[" + section + "] " + key + ": " + why); };
   for (int t : tests)
-    if (t < 1 || t > 3)
-      throw bad("tests", "values must be 1, 2 or 3");
+    if (t < 1 || t > 4)
+      throw bad("tests", "values must be 1, 2, 3 or 4");
   const std::vector<std::string> knownF{"surf", "sift", "orb"};
   const std::vector<std::string> knownM{"traditional", "roi_small", "roi_big"};
   for (const auto& f : features)
@@ -73,10 +73,13 @@ void CExperimentPlan::TOptions::validate(const std::string& section) const
     throw bad("test2_max_features", "must be > 0");
   if (test3_max_features <= 0)
     throw bad("test3_max_features", "must be > 0");
-  std::set<std::string> names;
-  for (const auto& v : variants)
-    if (v.name.empty() || !names.insert(v.name).second)
-      throw std::invalid_argument("variants: empty or repeated name '" + v.name + "'");
+  for (const auto* list : {&variants, &test1_variants})
+  {
+    std::set<std::string> names;
+    for (const auto& v : *list)
+      if (v.name.empty() || !names.insert(v.name).second)
+        throw std::invalid_argument("variants: empty or repeated name '" + v.name + "'");
+  }
 }
 
 void CExperimentPlan::TOptions::loadFromConfigFile(
@@ -147,7 +150,8 @@ TBenchRun CExperimentPlan::makeRun(
   if (maxFeatures > 0)
     r.id += "-" + std::to_string(maxFeatures);
   const fs::path cfgDir(m_locations.configDir);
-  r.baseIni = (cfgDir / (test == 1 ? "roi_landmarks.ini" : mode + ".ini")).string();
+  const std::string config = test == 1 ? "roi_landmarks" : mode;
+  r.baseIni = (cfgDir / (config + ".ini")).string();
   r.iniFile = r.baseIni;
   if (variant)
   {
@@ -156,9 +160,22 @@ TBenchRun CExperimentPlan::makeRun(
     r.id += "-" + variant->name;
     r.iniOverrides = variant->overrides;
     r.iniFile =
-        (fs::path(m_locations.outputDir) / "configs" / (mode + "-" + variant->name + ".ini"))
+        (fs::path(m_locations.outputDir) / "configs" / (config + "-" + variant->name + ".ini"))
             .string();
   }
+  placeRun(r);
+  if (test != 1)
+    r.argv.insert(r.argv.end(), {"--mode", mode});
+  r.argv.insert(r.argv.end(), {"--feature", feature});
+  if (maxFeatures > 0)
+    r.argv.insert(r.argv.end(), {"--max-features", std::to_string(maxFeatures)});
+  if (test != 1 && !m_options.snapshots)
+    r.argv.push_back("--no-snapshot");
+  return r;
+}
+
+void CExperimentPlan::placeRun(TBenchRun& r) const
+{
   r.runDir = (fs::path(m_locations.outputDir) / "runs" / r.id).string();
   r.appOutputDir = (fs::path(r.runDir) / "output").string();
   const auto exe = m_locations.executables.find(r.app);
@@ -170,12 +187,30 @@ TBenchRun CExperimentPlan::makeRun(
       r.sequencePath,
       "--output-dir",
       r.appOutputDir};
-  if (test != 1)
-    r.argv.insert(r.argv.end(), {"--mode", mode});
+}
+
+TBenchRun CExperimentPlan::makeTest4Run(
+    const TSequence& seq, const std::string& kind, const std::string& feature) const
+{
+  TBenchRun r;
+  r.test = 4;
+  r.sequence = seq.name;
+  r.sequencePath = seq.path;
+  r.feature = feature;
+  const bool ekf = kind == "kf_slam";
+  r.app = ekf ? "roi-landmarks" : "roi-graphslam";
+  r.mode = kind;
+  r.id = "t4-" + safeName(seq.name) + "-" + kind + "-" + feature;
+  r.baseIni =
+      (fs::path(m_locations.configDir) / (ekf ? "roi_landmarks.ini" : "roi_big.ini")).string();
+  r.iniFile = r.baseIni;
+  placeRun(r);
+  if (ekf)
+    r.argv.push_back("--kf-slam");
+  else
+    r.argv.insert(r.argv.end(), {"--mode", "roi_big"});
   r.argv.insert(r.argv.end(), {"--feature", feature});
-  if (maxFeatures > 0)
-    r.argv.insert(r.argv.end(), {"--max-features", std::to_string(maxFeatures)});
-  if (test != 1 && !m_options.snapshots)
+  if (!ekf && !m_options.snapshots)
     r.argv.push_back("--no-snapshot");
   return r;
 }
@@ -195,7 +230,11 @@ std::vector<TBenchRun> CExperimentPlan::build(const std::vector<TSequence>& sequ
   if (m_options.tests.count(1))
     for (const auto& s : sequences)
       for (const auto& f : m_options.features)
+      {
         runs.push_back(makeRun(1, s, "", f, m_options.test1_max_features, nullptr));
+        for (const auto& v : m_options.test1_variants)
+          runs.push_back(makeRun(1, s, "", f, m_options.test1_max_features, &v));
+      }
   if (m_options.tests.count(2))
     for (const auto& s : sequences)
       for (const auto& m : m_options.modes)
@@ -205,6 +244,11 @@ std::vector<TBenchRun> CExperimentPlan::build(const std::vector<TSequence>& sequ
     for (const auto& s : sequences)
       for (const auto& m : m_options.test3_modes)
         addSlam(3, s, m, m_options.test3_feature, m_options.test3_max_features);
+  if (m_options.tests.count(4))
+    for (const auto& s : sequences)
+      for (const auto& f : m_options.features)
+        for (const std::string kind : {"kf_slam", "graph_slam"})
+          runs.push_back(makeTest4Run(s, kind, f));
   return runs;
 }
 

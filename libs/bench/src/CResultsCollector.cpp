@@ -126,6 +126,26 @@ std::vector<TRunRecord> CResultsCollector::orderByPlan(
   return out;
 }
 
+namespace
+{
+/** The summary's field `key` ("object.key" one level deep), or null. */
+const nlohmann::json* summaryField(const nlohmann::json& summary, const std::string& key)
+{
+  if (!summary.is_object())
+    return nullptr;
+  if (const auto it = summary.find(key); it != summary.end())
+    return &*it;
+  const auto dot = key.find('.');
+  if (dot == std::string::npos)
+    return nullptr;
+  const auto parent = summary.find(key.substr(0, dot));
+  if (parent == summary.end() || !parent->is_object())
+    return nullptr;
+  const auto it = parent->find(key.substr(dot + 1));
+  return it == parent->end() ? nullptr : &*it;
+}
+}  // namespace
+
 std::string CResultsCollector::toCsv(const std::vector<TRunRecord>& records)
 {
   // Known summary fields first (both apps' contracts), then anything else seen.
@@ -155,11 +175,20 @@ std::string CResultsCollector::toCsv(const std::vector<TRunRecord>& records)
       "failed"};
   std::set<std::string> known(keys.begin(), keys.end());
   std::set<std::string> extra;
+  // Objects one level deep (e.g. roi-landmarks' "kf_slam") become "object.key" columns.
   for (const auto& r : records)
     if (r.summary.is_object())
       for (const auto& [k, v] : r.summary.items())
-        if (!known.count(k) && !v.is_object() && !v.is_array())
+      {
+        if (v.is_object())
+        {
+          for (const auto& [k2, v2] : v.items())
+            if (!v2.is_object() && !v2.is_array())
+              extra.insert(k + "." + k2);
+        }
+        else if (!known.count(k) && !v.is_array())
           extra.insert(k);
+      }
   keys.insert(keys.end(), extra.begin(), extra.end());
 
   std::ostringstream out;
@@ -179,8 +208,8 @@ std::string CResultsCollector::toCsv(const std::vector<TRunRecord>& records)
     for (const auto& k : keys)
     {
       out << ",";
-      if (r.summary.is_object() && r.summary.contains(k))
-        out << csvField(jsonScalar(r.summary.at(k)));
+      if (const auto* v = summaryField(r.summary, k))
+        out << csvField(jsonScalar(*v));
     }
     out << "," << csvField(shellJoin(r.run.argv)) << "\n";
   }

@@ -1,6 +1,7 @@
 #include "roislam/bench/ProcessUtils.h"
 
 #include <fcntl.h>
+#include <mrpt/system/string_utils.h>
 #include <signal.h>
 #include <spawn.h>
 #include <sys/resource.h>
@@ -147,12 +148,10 @@ std::optional<std::string> findOnPath(const std::string& name)
   const char* path = std::getenv("PATH");
   if (!path || name.empty())
     return std::nullopt;
-  std::stringstream ss(path);
-  std::string dir;
-  while (std::getline(ss, dir, ':'))
+  std::vector<std::string> dirs;
+  mrpt::system::tokenize(path, ":", dirs);
+  for (const auto& dir : dirs)
   {
-    if (dir.empty())
-      continue;
     const fs::path p = fs::path(dir) / name;
     if (fs::is_regular_file(p) && access(p.c_str(), X_OK) == 0)
       return p.string();
@@ -186,35 +185,4 @@ std::string fileTail(const std::string& file, std::size_t lines)
   return out;
 }
 
-void writeFileAtomically(const std::string& file, const std::string& content)
-{
-  const std::string tmp = file + ".tmp" + std::to_string(getpid()) + "_" +
-                          std::to_string(std::hash<std::thread::id>()(std::this_thread::get_id()));
-  {
-    std::ofstream out(tmp, std::ios::binary);
-    if (!out)
-      throw std::runtime_error(file + ": cannot write");
-    out << content;
-    out.flush();
-    if (!out)
-      throw std::runtime_error(file + ": write failed");
-  }
-  std::error_code ec;
-  fs::rename(tmp, file, ec);
-  if (ec)
-  {
-    fs::remove(tmp, ec);
-    throw std::runtime_error(file + ": cannot rename temporary file into place");
-  }
-}
-
-std::string readFile(const std::string& file)
-{
-  std::ifstream in(file, std::ios::binary);
-  if (!in)
-    throw std::runtime_error(file + ": cannot open");
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
 }  // namespace roislam::bench

@@ -6,12 +6,25 @@ namespace roislam::bench
 {
 std::optional<double> TRunRecord::number(const std::string& key) const
 {
-  if (!summary.is_object())
+  // "a.b": field b of the object a.
+  const nlohmann::json* node = &summary;
+  std::size_t start = 0;
+  for (;;)
+  {
+    if (!node->is_object())
+      return std::nullopt;
+    const auto dot = key.find('.', start);
+    const auto it = node->find(key.substr(start, dot == std::string::npos ? dot : dot - start));
+    if (it == node->end())
+      return std::nullopt;
+    node = &*it;
+    if (dot == std::string::npos)
+      break;
+    start = dot + 1;
+  }
+  if (!node->is_number())
     return std::nullopt;
-  const auto it = summary.find(key);
-  if (it == summary.end() || !it->is_number())
-    return std::nullopt;
-  return it->get<double>();
+  return node->get<double>();
 }
 
 nlohmann::json TRunRecord::toJson() const

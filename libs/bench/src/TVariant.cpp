@@ -1,5 +1,6 @@
 #include "roislam/bench/TVariant.h"
 
+#include <mrpt/system/string_utils.h>
 #include <roislam/common/ErrorText.h>
 
 #include <cctype>
@@ -10,13 +11,11 @@ namespace roislam::bench
 {
 namespace
 {
+// Lines of raw ini text end in '\r' in CRLF files, which mrpt::system::trim
+// (blanks and tabs) keeps.
 std::string trim(const std::string& s)
 {
-  const auto b = s.find_first_not_of(" \t\r");
-  if (b == std::string::npos)
-    return {};
-  const auto e = s.find_last_not_of(" \t\r");
-  return s.substr(b, e - b + 1);
+  return mrpt::system::trim(!s.empty() && s.back() == '\r' ? s.substr(0, s.size() - 1) : s);
 }
 }  // namespace
 
@@ -67,6 +66,14 @@ std::vector<TVariant> defaultVariants()
           {"roicap",
            "ROI with fallback, N features in the ROI (ours)",
            {{"FrontEnd", "strict_roi", "false"}, {"FrontEnd", "roi_feature_cap", "roi"}}}};
+}
+
+std::vector<TVariant> defaultTest1Variants()
+{
+  return {
+      {"hue",
+       "hue-verified ROI ([RoiDetector] verify_hue = true)",
+       {{"RoiDetector", "verify_hue", "true"}}}};
 }
 
 std::string applyIniOverrides(const std::string& iniText, const std::vector<TIniOverride>& ov)

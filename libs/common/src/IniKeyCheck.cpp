@@ -1,30 +1,22 @@
 #include "roislam/common/IniKeyCheck.h"
 
 #include <mrpt/config/CConfigFileMemory.h>
+#include <mrpt/system/string_utils.h>
 #include <roislam/common/CStrictIniFile.h>
 
 #include <algorithm>
-#include <cctype>
 #include <stdexcept>
 
 namespace roislam::common
 {
-namespace
-{
-std::string lower(std::string s)
-{
-  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return std::tolower(c); });
-  return s;
-}
-}  // namespace
-
-std::vector<std::string> knownIniKeys(const mrpt::config::CLoadableOptions& options)
+std::vector<std::string> knownIniKeys(
+    const mrpt::config::CLoadableOptions& options, const std::string& section,
+    const std::string& keysSection)
 {
   mrpt::config::CConfigFileMemory mem;
-  const std::string section = "S";
   options.saveToConfigFile(mem, section);
   std::vector<std::string> keys;
-  mem.getAllKeys(section, keys);
+  mem.getAllKeys(keysSection.empty() ? section : keysSection, keys);
   return keys;
 }
 
@@ -38,9 +30,9 @@ void checkIniKeys(
   cfg.getAllKeys(section, present);
   for (const auto& key : present)
   {
-    const std::string k = lower(key);
     const bool known = std::any_of(
-        knownKeys.begin(), knownKeys.end(), [&](const std::string& s) { return lower(s) == k; });
+        knownKeys.begin(), knownKeys.end(),
+        [&](const std::string& s) { return mrpt::system::strCmpI(s, key); });
     if (known)
       continue;
     // Read through CStrictIniFile, the key's line is known.

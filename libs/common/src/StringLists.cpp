@@ -1,22 +1,16 @@
 #include "roislam/common/StringLists.h"
 
-#include <sstream>
+#include <mrpt/system/string_utils.h>
 
 namespace roislam::common
 {
 std::vector<std::string> splitList(const std::string& text)
 {
-  std::vector<std::string> out;
-  std::stringstream ss(text);
-  std::string item;
-  while (std::getline(ss, item, ','))
-  {
-    const auto first = item.find_first_not_of(" \t");
-    if (first == std::string::npos)
-      continue;
-    const auto last = item.find_last_not_of(" \t");
-    out.push_back(item.substr(first, last - first + 1));
-  }
+  std::vector<std::string> items, out;
+  mrpt::system::tokenize(text, ",", items);
+  for (const auto& item : items)
+    if (std::string t = mrpt::system::trim(item); !t.empty())
+      out.push_back(std::move(t));
   return out;
 }
 

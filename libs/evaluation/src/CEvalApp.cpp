@@ -1,5 +1,6 @@
 #include "roislam/evaluation/CEvalApp.h"
 
+#include <roislam/evaluation/CErrorPlot.h>
 #include <roislam/evaluation/CTrajectoryPlot.h>
 
 #include <cstdio>
@@ -55,6 +56,12 @@ TEvaluationResult CEvalApp::run(std::ostream& out) const
     po.title = std::filesystem::path(m_params.estimateFile).filename().string() + "  (ATE rmse " +
                fixed(r.ate.rmse, 4) + " m)";
     CTrajectoryPlot(po).plot(m_params.plotFile, gt, {{"estimate (aligned)", r.aligned}});
+  }
+  if (!m_params.errorPlotFile.empty())
+  {
+    CErrorPlot::TOptions eo;
+    eo.title = std::filesystem::path(m_params.estimateFile).filename().string();
+    CErrorPlot(eo).plot(m_params.errorPlotFile, r);
   }
 
   if (m_params.json)

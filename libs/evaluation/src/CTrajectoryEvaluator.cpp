@@ -1,18 +1,18 @@
 #include "roislam/evaluation/CTrajectoryEvaluator.h"
 
 #include <mrpt/config/CConfigFileBase.h>
+#include <roislam/common/IniRead.h>
+#include <roislam/geometry/RigidAlignment.h>
 #include <roislam/io/StampAssociation.h>
 
 #include <Eigen/Dense>
 #include <algorithm>
-#include <charconv>
 #include <cmath>
 #include <limits>
 #include <numeric>
 #include <set>
 #include <sstream>
 #include <stdexcept>
-#include <system_error>
 
 namespace roislam::evaluation
 {
@@ -109,25 +109,6 @@ std::string num(double v)
   ss << v;
   return ss.str();
 }
-
-double parseDouble(
-    const mrpt::config::CConfigFileBase& cfg, const std::string& section, const std::string& key,
-    double def)
-{
-  std::string text = cfg.read_string(section, key, "", false);
-  text.erase(0, text.find_first_not_of(" \t\r"));
-  text.erase(text.find_last_not_of(" \t\r") + 1);
-  if (text.empty())
-    return def;
-  double v = 0;
-  const char* first = text.data();
-  if (*first == '+')
-    ++first;
-  const auto [ptr, ec] = std::from_chars(first, text.data() + text.size(), v);
-  if (ec != std::errc() || ptr != text.data() + text.size() || !std::isfinite(v))
-    throw std::invalid_argument("[" + section + "] " + key + ": not a number: '" + text + "'");
-  return v;
-}
 }  // namespace
 
 std::string toString(CTrajectoryEvaluator::TDeltaUnit unit)
@@ -158,9 +139,9 @@ void CTrajectoryEvaluator::TOptions::validate(const std::string& section) const
 void CTrajectoryEvaluator::TOptions::loadFromConfigFile(
     const mrpt::config::CConfigFileBase& cfg, const std::string& section)
 {
-  max_difference = parseDouble(cfg, section, "max_difference", max_difference);
-  offset = parseDouble(cfg, section, "offset", offset);
-  delta = parseDouble(cfg, section, "delta", delta);
+  max_difference = common::readDouble(cfg, section, "max_difference", max_difference);
+  offset = common::readDouble(cfg, section, "offset", offset);
+  delta = common::readDouble(cfg, section, "delta", delta);
   const std::string unit = cfg.read_string(section, "delta_unit", toString(delta_unit), false);
   try
   {
@@ -226,24 +207,18 @@ TEvaluationResult CTrajectoryEvaluator::evaluate(
     data.col(k) << g.x(), g.y(), g.z();
     model.col(k) << e.x(), e.y(), e.z();
   }
-  const Eigen::Vector3d modelMean = model.rowwise().mean();
-  const Eigen::Vector3d dataMean = data.rowwise().mean();
-  Eigen::Matrix3d W = Eigen::Matrix3d::Zero();
-  for (std::size_t k = 0; k < n; ++k)
-    W += (model.col(k) - modelMean) * (data.col(k) - dataMean).transpose();
-  // As align(): svd(W^T) = U diag(d) Vh, rot = U S Vh.
-  Eigen::JacobiSVD<Eigen::Matrix3d> svd(W.transpose(), Eigen::ComputeFullU | Eigen::ComputeFullV);
-  const Eigen::Matrix3d U = svd.matrixU();
-  const Eigen::Matrix3d V = svd.matrixV();
-  Eigen::Matrix3d S = Eigen::Matrix3d::Identity();
-  if (U.determinant() * V.determinant() < 0)
-    S(2, 2) = -1;
-  const Eigen::Matrix3d rot = U * S * V.transpose();
-  const Eigen::Vector3d trans = dataMean - rot * modelMean;
-
+  // align(): the least-squares rotation and translation (no scale) by SVD,
+  // which is what geometry::alignRigid (Eigen::umeyama) computes.
+  const geometry::TRigid T = geometry::alignRigid(data, model);
   std::vector<double> ateErrors(n);
   for (std::size_t k = 0; k < n; ++k)
-    ateErrors[k] = (rot * model.col(k) + trans - data.col(k)).norm();
+  {
+    ateErrors[k] = (T * model.col(k) - data.col(k)).norm();
+    result.ate.samples.push_back({estStamps[matches[k].second], ateErrors[k]});
+  }
+  std::sort(
+      result.ate.samples.begin(), result.ate.samples.end(),
+      [](const auto& a, const auto& b) { return a.timestamp < b.timestamp; });
   const TStats ate = computeStats(ateErrors);
   result.ate.rmse = ate.rmse;
   result.ate.mean = ate.mean;
@@ -252,15 +227,7 @@ TEvaluationResult CTrajectoryEvaluator::evaluate(
   result.ate.min = ate.min;
   result.ate.max = ate.max;
   result.ate.pairs = n;
-  mrpt::math::CMatrixDouble33 R;
-  mrpt::math::CVectorFixedDouble<3> t;
-  for (int r = 0; r < 3; ++r)
-  {
-    t[r] = trans[r];
-    for (int c = 0; c < 3; ++c)
-      R(r, c) = rot(r, c);
-  }
-  result.ate.alignment = mrpt::poses::CPose3D(R, t);
+  result.ate.alignment = T.toPose();
   result.aligned.reserve(est.size());
   for (const auto& p : est)
     result.aligned.push_back(io::TPoseStamped{p.timestamp, result.ate.alignment + p.pose});
@@ -311,6 +278,8 @@ TEvaluationResult CTrajectoryEvaluator::evaluate(
     const auto Rm = error.getRotationMatrix();
     const double c = std::min(1.0, std::max(-1.0, (Rm(0, 0) + Rm(1, 1) + Rm(2, 2) - 1) / 2));
     rotErrors.push_back(std::acos(c));
+    result.rpe.samples.push_back(
+        {estStamps[i], transErrors.back(), rotErrors.back() * 180.0 / M_PI});
   }
   if (transErrors.size() < 2)
     throw std::runtime_error(

@@ -4,6 +4,7 @@
 #include <roislam/common/IniErrors.h>
 
 #include <algorithm>
+#include <cmath>
 #include <numeric>
 #include <opencv2/imgproc.hpp>
 #include <stdexcept>
@@ -58,33 +59,14 @@ CFeatureExtractor::CFeatureExtractor(const TOptions& options) : m_options(option
 {
   if (m_options.max_features < 0)
     throw std::invalid_argument("CFeatureExtractor: max_features must be >= 0");
-  switch (m_options.feature_type)
-  {
-    case EFeatureType::SIFT:
-      // nfeatures = 0 keeps all, otherwise OpenCV keeps the best N by response.
-      m_detector = cv::SIFT::create(m_options.max_features);
-      m_uncapped =
-          m_options.max_features > 0 ? cv::Ptr<cv::Feature2D>(cv::SIFT::create(0)) : m_detector;
-      break;
-    case EFeatureType::ORB:
-      m_detector = cv::ORB::create(m_options.max_features > 0 ? m_options.max_features : 500);
-      m_uncapped = cv::ORB::create(std::max(5000, 10 * m_options.max_features));
-      break;
-    case EFeatureType::SURF:
-    {
-      CSurf::TParams p;
-      p.hessianThreshold = m_options.surf_hessian_threshold;
-      p.nOctaves = m_options.surf_octaves;
-      p.nOctaveLayers = m_options.surf_octave_layers;
-      p.extended = m_options.surf_extended;
-      p.upright = m_options.surf_upright;
-      p.maxFeatures = m_options.max_features;
-      m_detector = CSurf::create(p);
-      p.maxFeatures = 0;
-      m_uncapped = CSurf::create(p);
-      break;
-    }
-  }
+  // SIFT and SURF: cap 0 keeps all, otherwise the best N by response. ORB
+  // needs a budget: without a cap, extractAll() allows 10 x max_features
+  // (at least 5000).
+  m_detector = detectorWithCap(m_options.max_features);
+  if (m_options.feature_type == EFeatureType::ORB)
+    m_uncapped = detectorWithCap(std::max(5000, 10 * m_options.max_features));
+  else
+    m_uncapped = m_options.max_features > 0 ? detectorWithCap(0) : m_detector;
 }
 
 namespace
@@ -132,6 +114,85 @@ TFeatureSet CFeatureExtractor::extract(const cv::Mat& image, const cv::Mat& mask
 TFeatureSet CFeatureExtractor::extractAll(const cv::Mat& image) const
 {
   return detectSorted(*m_uncapped, m_options.feature_type, toGrey(image), cv::Mat(), 0);
+}
+
+cv::Ptr<cv::Feature2D> CFeatureExtractor::detectorWithCap(int cap) const
+{
+  switch (m_options.feature_type)
+  {
+    case EFeatureType::SIFT:
+      return cv::SIFT::create(cap);
+    case EFeatureType::ORB:
+      // ORB's budget is also its cost (Harris scores and descriptors).
+      return cv::ORB::create(cap > 0 ? cap : 500);
+    case EFeatureType::SURF:
+    {
+      CSurf::TParams p;
+      p.hessianThreshold = m_options.surf_hessian_threshold;
+      p.nOctaves = m_options.surf_octaves;
+      p.nOctaveLayers = m_options.surf_octave_layers;
+      p.extended = m_options.surf_extended;
+      p.upright = m_options.surf_upright;
+      p.maxFeatures = cap;
+      return CSurf::create(p);
+    }
+  }
+  throw std::logic_error("CFeatureExtractor: unknown feature type");
+}
+
+int CFeatureExtractor::supportPx() const
+{
+  // A keypoint is found and described from the pixels within about this
+  // distance at the finest scales; coarser ones near the rim are lost, as
+  // they would be at the image's border.
+  switch (m_options.feature_type)
+  {
+    case EFeatureType::ORB:
+      return 31;  // OpenCV's edgeThreshold = patchSize = 31
+    case EFeatureType::SIFT:
+      return 16;  // SIFT_IMG_BORDER 5 px per octave + the 4x4 window's half
+    case EFeatureType::SURF:
+      return 26;  // half the 51-px filter of the second octave
+  }
+  return 32;
+}
+
+TFeatureSet CFeatureExtractor::extractIn(
+    const cv::Mat& image, const cv::Rect& region, int cap, std::size_t* describedPixels) const
+{
+  const cv::Mat grey = toGrey(image);
+  const cv::Rect bounds(0, 0, grey.cols, grey.rows);
+  const cv::Rect inner = region & bounds;
+  const int m = supportPx();
+  const cv::Rect padded =
+      cv::Rect(inner.x - m, inner.y - m, inner.width + 2 * m, inner.height + 2 * m) & bounds;
+  if (describedPixels)
+    *describedPixels = inner.empty() ? 0 : static_cast<std::size_t>(padded.area());
+  TFeatureSet out;
+  out.type = m_options.feature_type;
+  if (inner.empty())
+    return out;
+  // The detector's own budget (which is also ORB's and SIFT's cost: scores
+  // and descriptors) covers the padding's share of the crop too.
+  const int detCap =
+      cap > 0 ? static_cast<int>(std::ceil(cap * static_cast<double>(padded.area()) / inner.area()))
+              : 0;
+  const auto detector = detectorWithCap(detCap);
+  TFeatureSet crop = detectSorted(*detector, m_options.feature_type, grey(padded), cv::Mat(), 0);
+  // Back to image coordinates; only the region's own keypoints, strongest
+  // first, then the cap (applied after the region filter, so the padding's
+  // keypoints never take the region's budget).
+  const cv::Rect2f box(inner);
+  std::vector<int> keep;
+  for (std::size_t i = 0; i < crop.size(); ++i)
+  {
+    auto& k = crop.keypoints[i];
+    k.pt.x += static_cast<float>(padded.x);
+    k.pt.y += static_cast<float>(padded.y);
+    if (box.contains(k.pt) && (cap <= 0 || keep.size() < static_cast<std::size_t>(cap)))
+      keep.push_back(static_cast<int>(i));
+  }
+  return crop.select(keep);
 }
 
 TFeatureSet CFeatureExtractor::capWithRegion(

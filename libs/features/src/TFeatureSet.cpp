@@ -1,15 +1,14 @@
 #include "roislam/features/TFeatureSet.h"
 
-#include <algorithm>
-#include <cctype>
+#include <mrpt/system/string_utils.h>
+
 #include <stdexcept>
 
 namespace roislam::features
 {
 EFeatureType featureTypeFromString(const std::string& s)
 {
-  std::string l(s);
-  std::transform(l.begin(), l.end(), l.begin(), [](unsigned char c) { return std::tolower(c); });
+  const std::string l = mrpt::system::lowerCase(s);
   if (l == "sift")
     return EFeatureType::SIFT;
   if (l == "surf")
@@ -45,6 +44,22 @@ TFeatureSet TFeatureSet::select(const std::vector<int>& indices) const
     out.keypoints.push_back(keypoints.at(static_cast<std::size_t>(indices[k])));
     descriptors.row(indices[k]).copyTo(out.descriptors.row(static_cast<int>(k)));
   }
+  return out;
+}
+
+TFeatureSet concat(const TFeatureSet& a, const TFeatureSet& b)
+{
+  if (b.empty())
+    return a;
+  if (a.empty())
+    return b;
+  if (a.type != b.type)
+    throw std::invalid_argument("concat: feature sets of different types");
+  TFeatureSet out;
+  out.type = a.type;
+  out.keypoints = a.keypoints;
+  out.keypoints.insert(out.keypoints.end(), b.keypoints.begin(), b.keypoints.end());
+  cv::vconcat(a.descriptors, b.descriptors, out.descriptors);
   return out;
 }
 

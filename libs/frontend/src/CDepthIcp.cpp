@@ -1,5 +1,7 @@
 #include "CDepthIcp.h"
 
+#include <roislam/geometry/Rotation.h>
+
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -168,7 +170,7 @@ std::optional<CDepthIcp::TResult> CDepthIcp::align(
     return std::nullopt;
   // Plausibility: ICP should only correct the prediction, not jump.
   const TRigid dT = {T.R * guess.R.transpose(), T.t - T.R * guess.R.transpose() * guess.t};
-  const double ang = Eigen::AngleAxisd(dT.R).angle();
+  const double ang = geometry::rotationAngle(dT.R);
   if ((T.t - guess.t).norm() > 0.3 || ang > 0.5)
     return std::nullopt;
   TResult out;

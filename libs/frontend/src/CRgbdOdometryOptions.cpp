@@ -61,6 +61,28 @@ std::string toString(EFrontEndMode m)
   return "unknown";
 }
 
+std::string toString(EExtension e)
+{
+  switch (e)
+  {
+    case EExtension::None:
+      return "none";
+    case EExtension::WholeImage:
+      return "whole_image";
+    case EExtension::NoRoi:
+      return "no_roi";
+    case EExtension::FewRoiFeatures:
+      return "few_roi_features";
+    case EExtension::RoiFailed:
+      return "roi_failed";
+    case EExtension::RoiWeak:
+      return "roi_weak";
+    case EExtension::Keyframe:
+      return "keyframe";
+  }
+  return "unknown";
+}
+
 // ---------------------------------------------------------------- options
 void CRgbdOdometry::TOptions::loadFromConfigFile(
     const mrpt::config::CConfigFileBase& c, const std::string& s)
@@ -80,6 +102,9 @@ void CRgbdOdometry::TOptions::loadFromConfigFile(
   max_roi_sigma_m = c.read_double(s, "max_roi_sigma_m", max_roi_sigma_m);
   max_roi_sigma_deg = c.read_double(s, "max_roi_sigma_deg", max_roi_sigma_deg);
   roi_feature_cap = c.read_string(s, "roi_feature_cap", roi_feature_cap);
+  roi_extraction = c.read_string(s, "roi_extraction", roi_extraction);
+  roi_min_area_fraction = c.read_double(s, "roi_min_area_fraction", roi_min_area_fraction);
+  roi_min_aspect = c.read_double(s, "roi_min_aspect", roi_min_aspect);
   min_inliers = c.read_int(s, "min_inliers", min_inliers);
   keyframe_translation_m = c.read_double(s, "keyframe_translation_m", keyframe_translation_m);
   keyframe_rotation_deg = c.read_double(s, "keyframe_rotation_deg", keyframe_rotation_deg);
@@ -124,6 +149,9 @@ void CRgbdOdometry::TOptions::saveToConfigFile(
   c.write(s, "max_roi_sigma_m", max_roi_sigma_m);
   c.write(s, "max_roi_sigma_deg", max_roi_sigma_deg);
   c.write(s, "roi_feature_cap", roi_feature_cap);
+  c.write(s, "roi_extraction", roi_extraction);
+  c.write(s, "roi_min_area_fraction", roi_min_area_fraction);
+  c.write(s, "roi_min_aspect", roi_min_aspect);
   c.write(s, "min_inliers", min_inliers);
   c.write(s, "keyframe_translation_m", keyframe_translation_m);
   c.write(s, "keyframe_rotation_deg", keyframe_rotation_deg);
@@ -167,6 +195,13 @@ void CRgbdOdometry::TOptions::validate() const
   if (roi_feature_cap != "image" && roi_feature_cap != "roi")
     common::throwBadIniKey(
         s, "roi_feature_cap", "unknown value '" + roi_feature_cap + "' (expected image or roi)");
+  if (roi_extraction != "region" && roi_extraction != "image")
+    common::throwBadIniKey(
+        s, "roi_extraction", "unknown value '" + roi_extraction + "' (expected region or image)");
+  if (!(roi_min_area_fraction >= 0 && roi_min_area_fraction <= 1))
+    common::throwBadIniKey(s, "roi_min_area_fraction", "must be in [0, 1]");
+  if (!(roi_min_aspect >= 0 && roi_min_aspect <= 1))
+    common::throwBadIniKey(s, "roi_min_aspect", "must be in [0, 1]");
   if (min_inliers < 3)
     common::throwBadIniKey(s, "min_inliers", "must be >= 3");
   if (!(keyframe_translation_m > 0))

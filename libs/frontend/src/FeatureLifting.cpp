@@ -1,8 +1,6 @@
 #include "FeatureLifting.h"
 
-#include <algorithm>
-#include <cmath>
-#include <opencv2/calib3d.hpp>
+#include <roislam/geometry/KeypointLifting.h>
 
 namespace roislam::frontend::detail
 {
@@ -17,37 +15,19 @@ TLiftedFeatures liftFeatures(
   pts.reserve(all.size());
   for (const auto& k : all.keypoints)
     pts.push_back(k.pt);
-  cv::undistortPoints(pts, out.rawUndistorted, K, dist, cv::noArray(), K);
-  out.rawZ.assign(pts.size(), 0.0F);
+  geometry::TDepthRule rule;
+  rule.min_depth_m = o.min_depth_m;
+  rule.max_depth_m = o.max_depth_m;
+  rule.depth_discontinuity_m = o.depth_discontinuity_m;
+  geometry::TLiftedPixels lifted = geometry::liftPixels(pts, depth, K, dist, rule);
+  out.valid = std::move(lifted.valid);
+  out.rawUndistorted = std::move(lifted.undistorted);
+  out.rawZ = std::move(lifted.z);
+  // The depth image is registered to the (distorted) colour image, whose rows
+  // are the ones read out in sequence.
   out.rowFraction.resize(pts.size());
   for (std::size_t i = 0; i < pts.size(); ++i)
-  {
-    // The depth image is registered to the (distorted) colour image, whose
-    // rows are the ones read out in sequence.
     out.rowFraction[i] = static_cast<float>(pts[i].y / depth.rows - 0.5);
-    const int u = static_cast<int>(std::lround(pts[i].x));
-    const int v = static_cast<int>(std::lround(pts[i].y));
-    if (u < 1 || v < 1 || u >= depth.cols - 1 || v >= depth.rows - 1)
-      continue;
-    const float z = depth.at<float>(v, u);
-    if (!(z >= o.min_depth_m && z <= o.max_depth_m))
-      continue;
-    if (o.depth_discontinuity_m > 0)
-    {
-      float lo = z, hi = z;
-      for (int dv = -1; dv <= 1; ++dv)
-        for (int du = -1; du <= 1; ++du)
-        {
-          const float zz = depth.at<float>(v + dv, u + du);
-          lo = std::min(lo, zz);
-          hi = std::max(hi, zz);
-        }
-      if (lo <= 0 || hi - lo > o.depth_discontinuity_m * z)
-        continue;
-    }
-    out.rawZ[i] = z;
-    out.valid.push_back(static_cast<int>(i));
-  }
   out.undistorted = out.rawUndistorted;
   out.z = out.rawZ;
   return out;
@@ -74,10 +54,20 @@ void updateFeatureSetPoints(
   for (int i : idx)
   {
     const auto& u = lifted.undistorted[static_cast<std::size_t>(i)];
-    const double z = lifted.z[static_cast<std::size_t>(i)];
-    k.points.emplace_back(
-        (u.x - pinhole.cx) / pinhole.fx * z, (u.y - pinhole.cy) / pinhole.fy * z, z);
+    const Eigen::Vector3d X = pinhole.backProject(u, lifted.z[static_cast<std::size_t>(i)]);
+    k.points.emplace_back(X.x(), X.y(), X.z());
     k.pixels.push_back(u);
   }
+}
+void appendLifted(TLiftedFeatures& a, const TLiftedFeatures& b, int offset)
+{
+  for (int i : b.valid)
+    a.valid.push_back(offset + i);
+  auto append = [](auto& to, const auto& from) { to.insert(to.end(), from.begin(), from.end()); };
+  append(a.undistorted, b.undistorted);
+  append(a.z, b.z);
+  append(a.rawUndistorted, b.rawUndistorted);
+  append(a.rawZ, b.rawZ);
+  append(a.rowFraction, b.rowFraction);
 }
 }  // namespace roislam::frontend::detail

@@ -1,5 +1,6 @@
 /* Keypoints to 3-D points with the registered depth image: which keypoints
- * have usable depth, and the feature sets (TKeyframe layout) built from them.
+ * have usable depth (the project's one depth rule, geometry::liftPixels), and
+ * the feature sets (TKeyframe layout) built from them.
  * The rolling-shutter correction of the lifted points is in RollingShutter.h.
  */
 #pragma once
@@ -40,6 +41,10 @@ struct TLiftedFeatures
 TLiftedFeatures liftFeatures(
     const features::TFeatureSet& all, const cv::Mat& depth, const cv::Mat& K, const cv::Mat& dist,
     const CRgbdOdometry::TOptions& o);
+
+/** Appends b (lifted from features that follow a's `offset` features in the
+ *  frame's set) to a. */
+void appendLifted(TLiftedFeatures& a, const TLiftedFeatures& b, int offset);
 
 /** The features at idx (indices into all, each in lifted.valid) with their
  *  3-D points in the camera's optical frame and undistorted pixels. Only the

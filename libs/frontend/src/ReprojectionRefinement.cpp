@@ -1,5 +1,7 @@
 #include "ReprojectionRefinement.h"
 
+#include <mrpt/math/geometry.h>
+
 #include <algorithm>
 #include <cmath>
 
@@ -7,13 +9,6 @@ namespace roislam::frontend::detail
 {
 namespace
 {
-inline Eigen::Matrix3d skew(const Eigen::Vector3d& v)
-{
-  Eigen::Matrix3d S;
-  S << 0, -v.z(), v.y(), v.z(), 0, -v.x(), -v.y(), v.x(), 0;
-  return S;
-}
-
 // Projection and its Jacobian w.r.t. the 3-D point.
 inline bool project(
     const TPinhole& cam, const Eigen::Vector3d& X, Eigen::Vector2d& u,
@@ -28,7 +23,27 @@ inline bool project(
   return true;
 }
 
-// One Gauss-Newton system over the given pairs: returns false if degenerate.
+/** d(exp(d) p)/d(d) at d = 0 for the left perturbation: [I, -[p]x]. */
+Eigen::Matrix<double, 3, 6> leftJacobian(const Eigen::Vector3d& p)
+{
+  Eigen::Matrix<double, 3, 6> J;
+  J << Eigen::Matrix3d::Identity(), mrpt::math::skew_symmetric3_neg(p).asEigen();
+  return J;
+}
+
+/** One Huber-weighted reprojection residual r (in sigmas) with Jacobian J. */
+void addResidual(
+    const Eigen::Vector2d& r, const Eigen::Matrix<double, 2, 6>& J, double huber, Matrix6d& H,
+    Vector6d& g, double& sumSq)
+{
+  const double n = r.norm();
+  const double w = n <= huber ? 1.0 : huber / n;
+  H.noalias() += w * J.transpose() * J;
+  g.noalias() += w * J.transpose() * r;
+  sumSq += r.squaredNorm();
+}
+
+// One Gauss-Newton system over the given pairs.
 void buildSystem(
     const TPinhole& cam, const TCorrespondences& c, const TRigid& T,
     const std::vector<std::size_t>& idx, const TRefineParams& p, Matrix6d& H, Vector6d& g,
@@ -42,42 +57,15 @@ void buildSystem(
   for (auto i : idx)
   {
     const double is = 1.0 / (c.sigma.empty() ? p.pixelSigma : c.sigma[i]);
-    // Forward: b -> a image. d(exp(d) X)/d(d) = [I, -[X]x].
-    {
-      const Eigen::Vector3d X = T * c.b[i];
-      Eigen::Vector2d u;
-      Eigen::Matrix<double, 2, 3> Jp;
-      if (project(cam, X, u, &Jp))
-      {
-        const Eigen::Vector2d r = (u - c.ua[i]) * is;
-        const double n = r.norm();
-        const double w = n <= huber ? 1.0 : huber / n;
-        Eigen::Matrix<double, 3, 6> Jx;
-        Jx << Eigen::Matrix3d::Identity(), -skew(X);
-        const Eigen::Matrix<double, 2, 6> J = is * Jp * Jx;
-        H.noalias() += w * J.transpose() * J;
-        g.noalias() += w * J.transpose() * r;
-        s += r.squaredNorm();
-      }
-    }
+    Eigen::Vector2d u;
+    Eigen::Matrix<double, 2, 3> Jp;
+    // Forward: b -> a image, X = exp(d) T b.
+    const Eigen::Vector3d X = T * c.b[i];
+    if (project(cam, X, u, &Jp))
+      addResidual((u - c.ua[i]) * is, is * Jp * leftJacobian(X), huber, H, g, s);
     // Backward: a -> b image. Y = T^-1 exp(-d) a => dY/dd = -R^T [I, -[a]x].
-    {
-      const Eigen::Vector3d Y = Tinv * c.a[i];
-      Eigen::Vector2d u;
-      Eigen::Matrix<double, 2, 3> Jp;
-      if (project(cam, Y, u, &Jp))
-      {
-        const Eigen::Vector2d r = (u - c.ub[i]) * is;
-        const double n = r.norm();
-        const double w = n <= huber ? 1.0 : huber / n;
-        Eigen::Matrix<double, 3, 6> Jx;
-        Jx << Eigen::Matrix3d::Identity(), -skew(c.a[i]);
-        const Eigen::Matrix<double, 2, 6> J = -is * Jp * Tinv.R * Jx;
-        H.noalias() += w * J.transpose() * J;
-        g.noalias() += w * J.transpose() * r;
-        s += r.squaredNorm();
-      }
-    }
+    if (project(cam, Tinv * c.a[i], u, &Jp))
+      addResidual((u - c.ub[i]) * is, -is * Jp * Tinv.R * leftJacobian(c.a[i]), huber, H, g, s);
   }
   if (sumSq)
     *sumSq = s;

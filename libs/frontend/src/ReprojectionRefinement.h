@@ -6,6 +6,8 @@
  */
 #pragma once
 
+#include <roislam/geometry/TPinhole.h>
+
 #include <cstddef>
 #include <vector>
 
@@ -13,10 +15,7 @@
 
 namespace roislam::frontend::detail
 {
-struct TPinhole
-{
-  double fx = 1, fy = 1, cx = 0, cy = 0;
-};
+using geometry::TPinhole;
 
 /** Pair i: point a[i] / pixel ua[i] in the reference view, b[i] / ub[i] in the
  *  other view; the motion T maps b-coordinates to a-coordinates. */

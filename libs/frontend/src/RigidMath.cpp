@@ -1,15 +1,9 @@
 #include "RigidMath.h"
 
+#include <roislam/geometry/Rotation.h>
+
 namespace roislam::frontend::detail
 {
-TRigid fromPose(const mrpt::poses::CPose3D& p)
-{
-  TRigid T;
-  T.R = p.getRotationMatrix().asEigen();
-  T.t = Eigen::Vector3d(p.x(), p.y(), p.z());
-  return T;
-}
-
 mrpt::poses::CPose3D toPose(const TRigid& T)
 {
   // Re-orthonormalise: repeated small updates accumulate rounding.
@@ -22,17 +16,12 @@ mrpt::poses::CPose3D toPose(const TRigid& T)
 
 double rotationAngle(const mrpt::poses::CPose3D& p)
 {
-  const Eigen::Matrix3d R = p.getRotationMatrix().asEigen();
-  return Eigen::AngleAxisd(R).angle();
+  return geometry::rotationAngle(p.getRotationMatrix().asEigen());
 }
 
 TRigid applyLeft(const Vector6d& delta, const TRigid& T)
 {
-  const Eigen::Vector3d w = delta.tail<3>();
-  const double angle = w.norm();
-  Eigen::Matrix3d dR = Eigen::Matrix3d::Identity();
-  if (angle > 1e-12)
-    dR = Eigen::AngleAxisd(angle, w / angle).toRotationMatrix();
+  const Eigen::Matrix3d dR = geometry::expSO3(delta.tail<3>());
   TRigid o;
   o.R = dR * T.R;
   o.t = dR * T.t + delta.head<3>();
@@ -59,10 +48,9 @@ Matrix6d tangentInfoToYpr(const Matrix6d& H, const mrpt::poses::CPose3D& T)
       // exp(delta) = Tq * T0^-1; for tiny delta: v ~ translation, w ~ rotation vector.
       const Eigen::Matrix3d dR = Tq.R * T0inv.R;
       const Eigen::Vector3d dt = Tq.R * T0inv.t + Tq.t;
-      const Eigen::AngleAxisd aa(dR);
       Vector6d d;
       d.head<3>() = dt;
-      d.tail<3>() = aa.axis() * aa.angle();
+      d.tail<3>() = geometry::logSO3(dR);
       if (sgn < 0)
         col = -d;
       else
@@ -77,10 +65,9 @@ TRigid fuseLeft(const TRigid& a, const Matrix6d& Ha, const TRigid& b, const Matr
 {
   // b = exp(d) a with d = (v, w): Exp(w) = Rb Ra^T, v = tb - Exp(w) ta.
   const Eigen::Matrix3d dR = b.R * a.R.transpose();
-  const Eigen::AngleAxisd aa(dR);
   Vector6d d;
   d.head<3>() = b.t - dR * a.t;
-  d.tail<3>() = aa.angle() * aa.axis();
+  d.tail<3>() = geometry::logSO3(dR);
   const Vector6d f = (Ha + Hb).ldlt().solve(Hb * d);
   if (!f.allFinite())
     return a;

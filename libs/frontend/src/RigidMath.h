@@ -1,4 +1,4 @@
-/* Private helpers of the front end: rigid transforms as Eigen (R, t), the
+/* Private helpers of the front end: rigid transforms (geometry::TRigid), the
  * left-perturbation update used by every Gauss-Newton solver here, and the
  * conversion of an information matrix from that tangent space to MRPT's
  * CPose3DPDFGaussianInf convention (x, y, z, yaw, pitch, roll).
@@ -6,6 +6,7 @@
 #pragma once
 
 #include <mrpt/poses/CPose3D.h>
+#include <roislam/geometry/TRigid.h>
 
 #include <Eigen/Dense>
 
@@ -14,25 +15,16 @@ namespace roislam::frontend::detail
 using Matrix6d = Eigen::Matrix<double, 6, 6>;
 using Vector6d = Eigen::Matrix<double, 6, 1>;
 
-/** x_a = R x_b + t. */
-struct TRigid
+using geometry::TRigid;
+
+inline TRigid fromPose(const mrpt::poses::CPose3D& p)
 {
-  Eigen::Matrix3d R = Eigen::Matrix3d::Identity();
-  Eigen::Vector3d t = Eigen::Vector3d::Zero();
-
-  Eigen::Vector3d operator*(const Eigen::Vector3d& p) const { return R * p + t; }
-  TRigid inverse() const
-  {
-    TRigid o;
-    o.R = R.transpose();
-    o.t = -(o.R * t);
-    return o;
-  }
-};
-
-TRigid fromPose(const mrpt::poses::CPose3D& p);
+  return TRigid::fromPose(p);
+}
 /** Rotation angle of a pose, radians. */
 double rotationAngle(const mrpt::poses::CPose3D& p);
+/** T as a pose, its rotation re-orthonormalised (repeated small updates
+ *  accumulate rounding). */
 mrpt::poses::CPose3D toPose(const TRigid& T);
 
 /** exp(delta) * T with delta = (v, w): x' = Exp(w) (R x + t) + v, whose

@@ -1,19 +1,11 @@
 #include "RollingShutter.h"
 
+#include <roislam/geometry/Rotation.h>
+
 #include <cmath>
 
 namespace roislam::frontend::detail
 {
-namespace
-{
-cv::Point2f project(const Eigen::Vector3d& X, const TPinhole& pinhole)
-{
-  return {
-      static_cast<float>(pinhole.fx * X.x() / X.z() + pinhole.cx),
-      static_cast<float>(pinhole.fy * X.y() / X.z() + pinhole.cy)};
-}
-}  // namespace
-
 // Beyond a full turn or 3 m per second (no hand-held camera) the motion is
 // taken as a failed registration: zero.
 TCameraRate cameraRate(const mrpt::poses::CPose3D& motion, double dt)
@@ -22,8 +14,7 @@ TCameraRate cameraRate(const mrpt::poses::CPose3D& motion, double dt)
   TCameraRate r;
   if (!(dt > 0))
     return r;
-  const Eigen::AngleAxisd aa(motion.getRotationMatrix().asEigen());
-  r.omega = aa.axis() * (aa.angle() / dt);
+  r.omega = geometry::logSO3(motion.getRotationMatrix().asEigen()) / dt;
   r.linear = Eigen::Vector3d(motion.x(), motion.y(), motion.z()) / dt;
   if (!r.omega.allFinite() || !r.linear.allFinite() || r.omega.norm() > maxTurn ||
       r.linear.norm() > maxSpeed)
@@ -35,14 +26,8 @@ Eigen::Vector3d rectifyPoint(
     const cv::Point2f& rawPixel, double rawZ, double s, const TCameraRate& rate,
     const TPinhole& pinhole)
 {
-  Eigen::Vector3d X(
-      (rawPixel.x - pinhole.cx) / pinhole.fx * rawZ, (rawPixel.y - pinhole.cy) / pinhole.fy * rawZ,
-      rawZ);
-  const Eigen::Vector3d w = rate.omega * s;
-  const double a = w.norm();
-  if (a > 0)
-    X = Eigen::AngleAxisd(a, w / a) * X;
-  return X + rate.linear * s;
+  const Eigen::Vector3d X = pinhole.backProject(rawPixel, rawZ);
+  return geometry::expSO3(rate.omega * s) * X + rate.linear * s;
 }
 
 void rectifyRollingShutter(
@@ -62,7 +47,7 @@ void rectifyRollingShutter(
     if (!(X.z() > 0))
       continue;
     lifted.z[k] = static_cast<float>(X.z());
-    lifted.undistorted[k] = project(X, pinhole);
+    lifted.undistorted[k] = pinhole.project(X);
   }
 }
 
@@ -92,7 +77,7 @@ void correctKeyframe(
     if (!(X.z() > 0))  // as in rectifyRollingShutter
       continue;
     k.points[j] = mrpt::math::TPoint3D(X.x(), X.y(), X.z());
-    k.pixels[j] = project(X, pinhole);
+    k.pixels[j] = pinhole.project(X);
   }
 }
 }  // namespace roislam::frontend::detail

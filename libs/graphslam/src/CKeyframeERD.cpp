@@ -37,44 +37,42 @@ bool CKeyframeERD::updateState(
     mrpt::obs::CActionCollection::Ptr, mrpt::obs::CSensoryFrame::Ptr, mrpt::obs::CObservation::Ptr)
 {
   this->m_just_inserted_lc = false;
-  auto& c = ctx();
-  const auto& last = c.lastResult();
-  if (!last || !last->isNewKeyframe || last->newKeyframeId == 0)
-    return true;
-  if (!this->m_graph->nodes.count(last->newKeyframeId))
-    return true;
-  processNewKeyframe(last->newKeyframeId);
+  if (const auto& last = ctx().lastFrame())
+    registerKeyframe(*last);
   return true;
 }
 
-CKeyframeERD::TEdgeReport CKeyframeERD::processNewKeyframe(std::size_t id)
+CKeyframeERD::TEdgeReport CKeyframeERD::registerKeyframe(const frontend::TFrameResult& r)
 {
   this->m_just_inserted_lc = false;
-  auto& c = ctx();
-  auto& g = *this->m_graph;
   TEdgeReport rep;
-  const auto& last = c.lastResult();
-
+  if (!r.isNewKeyframe || r.newKeyframeId == 0 || !this->m_graph->nodes.count(r.newKeyframeId))
+    return rep;
+  auto& c = ctx();
   // Recent-keyframe constraints measured by the front end (the first one is
   // the odometry edge the NRD added).
-  if (last && last->isNewKeyframe && last->newKeyframeId == id)
+  for (std::size_t i = 1; i < r.constraints.size(); ++i)
   {
-    for (std::size_t i = 1; i < last->constraints.size(); ++i)
-    {
-      const auto& k = last->constraints[i];
-      g.insertEdgeAtEnd(
-          static_cast<mrpt::graphs::TNodeID>(k.fromKeyframe),
-          static_cast<mrpt::graphs::TNodeID>(k.toKeyframe),
-          mrpt::poses::CPose3DPDFGaussianInf(
-              k.relativePose, c.edgeInformation(k.information, k.method, k.inliers)));
-      ++rep.recentEdges;
-      ++m_stats["recent"];
-    }
+    const auto& k = r.constraints[i];
+    this->m_graph->insertEdgeAtEnd(
+        static_cast<mrpt::graphs::TNodeID>(k.fromKeyframe),
+        static_cast<mrpt::graphs::TNodeID>(k.toKeyframe),
+        mrpt::poses::CPose3DPDFGaussianInf(
+            k.relativePose, c.edgeInformation(k.information, k.method, k.inliers)));
+    ++rep.recentEdges;
+    ++m_stats["recent"];
   }
+  addLoopClosures(r.newKeyframeId, rep);
+  return rep;
+}
 
-  // Loop closures.
+void CKeyframeERD::addLoopClosures(std::size_t id, TEdgeReport& rep)
+{
+  auto& c = ctx();
+  auto& g = *this->m_graph;
   const auto& opt = c.config().backEnd;
-  const auto candidates = c.loopCandidates(id, g);
+  const auto recalled = c.observeLandmarks(id);
+  const auto candidates = c.loopCandidates(id, recalled, g);
   rep.loopCandidates = candidates.size();
   for (const auto& [cand, source] : candidates)
   {
@@ -105,7 +103,6 @@ CKeyframeERD::TEdgeReport CKeyframeERD::processNewKeyframe(std::size_t id)
     ++m_stats[source == ELoopSource::Landmark ? "loop_landmark" : "loop_proximity"];
     this->m_just_inserted_lc = true;
   }
-  return rep;
 }
 
 void CKeyframeERD::getEdgesStats(std::map<std::string, int>* edgeTypeToNum) const

@@ -24,6 +24,7 @@ void CKeyframeGSO::optimizeGraph()
   if (!m_context || !this->m_graph)
     return;
   m_context->optimize(*this->m_graph);
+  m_context->correctFrontEnd(*this->m_graph);
   ++m_optimizations;
   m_justOptimized = true;
 }

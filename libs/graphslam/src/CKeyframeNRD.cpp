@@ -62,15 +62,19 @@ bool CKeyframeNRD::updateState(
   scan->unload();
   // Observations carry no sequence index; number them in arrival order.
   frame.index = m_observations++;
-  return processFrame(frame);
+  auto ctx = context();
+  if (!ctx)
+    throw std::logic_error("CKeyframeNRD: no graph and no context set");
+  const frontend::TFrameResult result = ctx->odometry().process(frame);
+  ctx->recordFrame(result, frame);
+  return registerFrame(result);
 }
 
-bool CKeyframeNRD::processFrame(const io::TRGBDFrame& frame)
+bool CKeyframeNRD::registerFrame(const frontend::TFrameResult& r)
 {
   auto ctx = context();
   if (!ctx)
     throw std::logic_error("CKeyframeNRD: no graph and no context set");
-  const auto& r = ctx->trackFrame(frame);
   if (r.pose)
     m_currentPose = *r.pose;
   if (!r.isNewKeyframe || r.newKeyframeId == 0)

@@ -221,6 +221,16 @@ nlohmann::json CRoiGraphSlamApp::summaryJson(
       {"lost", st.lost},
       {"no_roi", st.noRoi},
       {"icp_refined", st.icpRefined}};
+  // What stage 2 described: ROI-only frames describe their tracking region
+  // alone; the others were extended once, for the reason given.
+  nlohmann::json ext = nlohmann::json::object();
+  for (const auto& [reason, n] : st.extensions)
+    if (reason != frontend::EExtension::None)
+      ext[frontend::toString(reason)] = n;
+  const auto roiOnly = st.extensions.find(frontend::EExtension::None);
+  j["described_pixel_fraction"] = st.frames > 0 ? st.describedFractionSum / st.frames : 0.0;
+  j["roi_only_frames"] = roiOnly == st.extensions.end() ? 0 : roiOnly->second;
+  j["extended_frames"] = ext;
   j["failed"] = s.failed;
   j["wall_s"] = s.wallS;
   j["fps"] = s.fps;
@@ -269,32 +279,24 @@ CRoiGraphSlamApp::TSummary CRoiGraphSlamApp::run()
   const CSlamOutputWriter::TRun run{
       pipeline.records(), pipeline.context(), pipeline.graph(),
       [&pipeline](std::size_t id) { return pipeline.keyframePose(id); }};
-  mrpt::system::CTicTac mapTimer;
-  viz::TSceneContent content = writer.writeMap(run);
-  s.mapS = mapTimer.Tac();
-
-  mrpt::system::CTicTac snapTimer;
-  for (const auto& p : estimate)
-    content.trajectory.push_back(p.pose.translation());
-  if (ev.result)
-  {
-    // Ground truth shown in the estimate's frame.
-    const auto toEstimate = -ev.result->ate.alignment;
-    for (const auto& p : ev.groundTruth)
-      content.groundTruth.push_back((toEstimate + p.pose).translation());
-  }
-  const std::string snapshotError = writer.writeScene(content, m_args.snapshot);
-  if (!snapshotError.empty())
-  {
-    progress("roi-graphslam: warning: no snapshot: " + snapshotError);
-    s.incomplete.push_back("no snapshot: " + snapshotError);
-  }
-  s.snapshotS = snapTimer.Tac();
+  const CSlamOutputWriter::TReference reference{
+      pipeline.source().name(), estimate, ev.groundTruth, ev.result ? &*ev.result : nullptr,
+      pipeline.source().accelerometerFile()};
+  const auto pictures = writer.writePictures(run, reference, m_args.snapshot);
+  for (const auto& w : pictures.warnings())
+    progress("roi-graphslam: warning: " + w);
+  // A missing snapshot or plot makes the output partial (exit 3); a picture
+  // not levelled by the accelerometer is only a warning.
+  if (!pictures.snapshotError.empty())
+    s.incomplete.push_back("no snapshot: " + pictures.snapshotError);
+  if (!pictures.plotError.empty())
+    s.incomplete.push_back("no error plots: " + pictures.plotError);
+  s.mapS = pictures.mapS;
+  s.snapshotS = pictures.snapshotS;
   s.peakRssMb = peakRssMb();
 
   nlohmann::json j = summaryJson(pipeline, s, finalReport, ev);
-  if (!snapshotError.empty())
-    j["snapshot_error"] = snapshotError;
+  pictures.addToSummary(j);
   j["partial"] = !s.incomplete.empty();
   j["incomplete"] = s.incomplete;
   writer.writeSummary(j);

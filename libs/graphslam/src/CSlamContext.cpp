@@ -1,4 +1,3 @@
-#include <mrpt/config/CConfigFileMemory.h>
 #include <mrpt/containers/yaml.h>
 #include <mrpt/graphslam/levmarq.h>
 #include <mrpt/system/CTicTac.h>
@@ -115,25 +114,36 @@ void CSlamContext::TOptions::validate() const
     badKey("map_max_depth_m", "must be > 0");
 }
 
+namespace
+{
+/** The landmark pipeline's options for the back end's database: its
+ *  database and homography settings, the front end's matcher. */
+landmarks::TPipelineOptions landmarkOptions(const CSlamContext::TConfig& config)
+{
+  landmarks::TPipelineOptions o;
+  o.database = config.database;
+  o.matcher = config.frontEnd.matcher;
+  o.locator = config.locator;
+  o.roi = config.frontEnd.roi;
+  o.features = config.frontEnd.extractor;
+  return o;
+}
+}  // namespace
+
 CSlamContext::CSlamContext() : CSlamContext(TConfig()) {}
 
 CSlamContext::CSlamContext(const TConfig& config)
-    : m_config(config),
-      m_odometry(config.frontEnd),
-      m_database(config.database, config.frontEnd.matcher, config.locator),
-      m_roiDetector(config.frontEnd.roi)
+    : m_config(config), m_odometry(config.frontEnd), m_landmarks(landmarkOptions(config))
 {
   m_config.backEnd.validate();
 }
 
-const frontend::TFrameResult& CSlamContext::trackFrame(const io::TRGBDFrame& frame)
+void CSlamContext::recordFrame(const frontend::TFrameResult& result, const io::TRGBDFrame& frame)
 {
-  m_last = m_odometry.process(frame, m_roiHint);
-  m_roiHint.reset();
+  m_last = result;
   m_imageSize = frame.rgb.size();
-  if (!m_last->isNewKeyframe)
-    return *m_last;
-
+  if (!result.isNewKeyframe)
+    return;
   // Map cloud of the keyframe, in its optical frame (decimated: the OctoMap
   // insertion cost grows with the number of rays).
   const auto& cam = frame.camera;
@@ -154,20 +164,8 @@ const frontend::TFrameResult& CSlamContext::trackFrame(const io::TRGBDFrame& fra
       cloud.insertPointRGB(x, y, z, c[u][2] / 255.f, c[u][1] / 255.f, c[u][0] / 255.f);
     }
   }
-  m_clouds.resize(m_last->newKeyframeId + 1);
-  m_clouds[m_last->newKeyframeId] = std::move(cloud);
-
-  // The ROI used as landmark: the front end's in ROI modes, detected here
-  // (keyframes only) in traditional mode.
-  std::optional<cv::Rect> roi = m_last->roi;
-  if (!roi && m_config.backEnd.landmark_loops)
-  {
-    if (const auto r = m_roiDetector.detect(frame.rgb); r)
-      roi = r->box;
-  }
-  m_rois.resize(m_last->newKeyframeId + 1);
-  m_rois[m_last->newKeyframeId] = roi;
-  return *m_last;
+  m_clouds.resize(result.newKeyframeId + 1);
+  m_clouds[result.newKeyframeId] = std::move(cloud);
 }
 
 double CSlamContext::loopDiscrepancyLimit(
@@ -184,96 +182,83 @@ double CSlamContext::loopDiscrepancyLimit(
   return o.loop_max_discrepancy_m + o.loop_max_discrepancy_per_m * path;
 }
 
+std::optional<int32_t> CSlamContext::observeLandmarks(std::size_t id)
+{
+  std::optional<int32_t> recalled;
+  if (!m_config.backEnd.landmark_loops)
+    return recalled;
+  for (std::size_t k = m_landmarkQueried; k <= id && k < m_odometry.keyframes().size(); ++k)
+  {
+    m_landmarkQueried = k + 1;
+    const auto& kf = m_odometry.keyframe(k);
+    if (!kf.roi)
+      continue;
+    const auto roiFeatures = kf.features.subset(*kf.roi);
+    if (roiFeatures.size() < 10)
+      continue;
+    landmarks::TRegion region;
+    region.frame = kf.frameIndex;
+    region.timestamp = kf.timestamp;
+    region.box = *kf.roi;
+    region.imageSize = m_imageSize;
+    region.features = roiFeatures;
+    const auto seen = m_landmarks.processRegion(region).result;
+    const int32_t lm = seen.landmarkId;
+    if (!seen.newLandmark && k == id)
+      recalled = lm;
+    m_sightings[lm].push_back(k);
+  }
+  return recalled;
+}
+
 std::vector<std::pair<std::size_t, ELoopSource>> CSlamContext::loopCandidates(
-    std::size_t id, const TGraph& graph)
+    std::size_t id, std::optional<int32_t> recalledLandmark, const TGraph& graph) const
 {
   const auto& o = m_config.backEnd;
   std::vector<std::pair<std::size_t, ELoopSource>> out;
   auto already = [&](std::size_t k)
   { return std::any_of(out.begin(), out.end(), [&](const auto& p) { return p.first == k; }); };
   const std::size_t gap = static_cast<std::size_t>(o.loop_min_keyframe_gap);
+  const std::size_t maxCandidates = static_cast<std::size_t>(o.max_loop_candidates);
 
-  if (o.landmark_loops)
+  if (recalledLandmark && m_sightings.count(*recalledLandmark))
   {
-    for (std::size_t k = m_landmarkQueried; k <= id && k < m_rois.size(); ++k)
-    {
-      m_landmarkQueried = k + 1;
-      if (!m_rois[k])
-        continue;
-      const auto& kf = m_odometry.keyframe(k);
-      const auto roiFeatures = kf.features.subset(*m_rois[k]);
-      if (roiFeatures.size() < 10)
-        continue;
-      const auto q = m_database.query(roiFeatures, *m_rois[k], m_imageSize);
-      landmarks::TLandmarkSighting s;
-      s.frame = kf.frameIndex;
-      s.timestamp = kf.timestamp;
-      s.box = *m_rois[k];
-      int32_t lm = -1;
-      if (q.landmarkId)
-      {
-        lm = *q.landmarkId;
-        s.inliers = q.inliers;
-        m_database.addSighting(lm, s);
-        if (k == id)
-        {
-          // Most recent earlier sightings first: their relative pose is the
-          // most likely to register.
-          const auto& seen = m_sightings[lm];
-          for (auto it = seen.rbegin(); it != seen.rend(); ++it)
-          {
-            if (*it + gap > id || already(*it))
-              continue;
-            out.emplace_back(*it, ELoopSource::Landmark);
-            if (out.size() >= static_cast<std::size_t>(o.max_loop_candidates))
-              break;
-          }
-        }
-      }
-      else
-      {
-        landmarks::CLandmark l;
-        l.features = roiFeatures;
-        l.box = *m_rois[k];
-        l.imageSize = m_imageSize;
-        l.sightings.push_back(s);
-        lm = m_database.add(std::move(l));
-      }
-      m_sightings[lm].push_back(k);
-    }
+    // Most recent earlier sightings first: their relative pose is the most
+    // likely to register.
+    const auto& seen = m_sightings.at(*recalledLandmark);
+    for (auto it = seen.rbegin(); it != seen.rend() && out.size() < maxCandidates; ++it)
+      if (*it + gap <= id && !already(*it))
+        out.emplace_back(*it, ELoopSource::Landmark);
   }
-
-  if (o.proximity_loops && id >= gap && graph.nodes.count(id))
+  if (!o.proximity_loops || id < gap || !graph.nodes.count(id))
+    return out;
+  const auto& cur = graph.nodes.at(id);
+  const double cosMax = std::cos(o.proximity_max_angle_deg * M_PI / 180.0);
+  std::vector<std::pair<double, std::size_t>> near;
+  for (std::size_t k = 0; k + gap <= id; ++k)
   {
-    const auto& cur = graph.nodes.at(id);
-    const double cosMax = std::cos(o.proximity_max_angle_deg * M_PI / 180.0);
-    std::vector<std::pair<double, std::size_t>> near;
-    for (std::size_t k = 0; k + gap <= id; ++k)
-    {
-      const auto it = graph.nodes.find(k);
-      if (it == graph.nodes.end())
-        continue;
-      const double d = (it->second.translation() - cur.translation()).norm();
-      if (d > o.proximity_radius_m)
-        continue;
-      // Optical axes (third rotation column) must look roughly the same way.
-      const auto R1 = it->second.getRotationMatrix(), R2 = cur.getRotationMatrix();
-      const double c = R1(0, 2) * R2(0, 2) + R1(1, 2) * R2(1, 2) + R1(2, 2) * R2(2, 2);
-      if (c < cosMax)
-        continue;
+    const auto it = graph.nodes.find(k);
+    if (it == graph.nodes.end())
+      continue;
+    const double d = (it->second.translation() - cur.translation()).norm();
+    if (d > o.proximity_radius_m)
+      continue;
+    // Optical axes (third rotation column) must look roughly the same way.
+    const auto R1 = it->second.getRotationMatrix(), R2 = cur.getRotationMatrix();
+    const double c = R1(0, 2) * R2(0, 2) + R1(1, 2) * R2(1, 2) + R1(2, 2) * R2(2, 2);
+    if (c >= cosMax)
       near.emplace_back(d, k);
-    }
-    std::sort(near.begin(), near.end());
-    std::size_t added = 0;
-    for (const auto& [d, k] : near)
-    {
-      if (added >= static_cast<std::size_t>(o.max_loop_candidates))
-        break;
-      if (already(k))
-        continue;
-      out.emplace_back(k, ELoopSource::Proximity);
-      ++added;
-    }
+  }
+  std::sort(near.begin(), near.end());
+  std::size_t added = 0;
+  for (const auto& [d, k] : near)
+  {
+    if (added >= maxCandidates)
+      break;
+    if (already(k))
+      continue;
+    out.emplace_back(k, ELoopSource::Proximity);
+    ++added;
   }
   return out;
 }
@@ -359,11 +344,16 @@ TOptimizationReport CSlamContext::optimize(TGraph& graph, std::size_t window)
     r.iterations += info.num_iters;
   }
   r.chi2After = graph.chi2();
-  for (const auto& [id, pose] : graph.nodes)
-    if (id < m_odometry.keyframes().size())
-      m_odometry.setKeyframePose(id, pose);
   r.seconds = timer.Tac();
   return r;
+}
+
+void CSlamContext::correctFrontEnd(const TGraph& graph)
+{
+  std::map<std::size_t, mrpt::poses::CPose3D> poses;
+  for (const auto& [id, pose] : graph.nodes)
+    poses.emplace(static_cast<std::size_t>(id), pose);
+  m_odometry.correctKeyframePoses(poses);
 }
 }  // namespace roislam::graphslam
 
@@ -376,19 +366,6 @@ std::map<const void*, std::shared_ptr<CSlamContext>>& registry()
 {
   static std::map<const void*, std::shared_ptr<CSlamContext>> r;
   return r;
-}
-
-/** Keys a TOptions writes into each section (saveToConfigFile is symmetric
- *  with loadFromConfigFile for all our options). */
-std::vector<std::string> keysOf(
-    const mrpt::config::CLoadableOptions& o, const std::string& saveSection,
-    const std::string& section)
-{
-  mrpt::config::CConfigFileMemory mem;
-  o.saveToConfigFile(mem, saveSection);
-  std::vector<std::string> keys;
-  mem.getAllKeys(section, keys);
-  return keys;
 }
 }  // namespace
 
@@ -416,14 +393,12 @@ CSlamContext::TConfig CSlamContext::loadConfig(
   TConfig c;
   // Front-end options save their sub-component sections under fixed names.
   for (const std::string s : {"FrontEnd", "RoiDetector", "FeatureExtractor", "FeatureMatcher"})
-    common::checkIniKeys(cfg, s, keysOf(c.frontEnd, "FrontEnd", s), fileLabel);
-  common::checkIniKeys(cfg, "GraphSlam", keysOf(c.backEnd, "GraphSlam", "GraphSlam"), fileLabel);
+    common::checkIniKeys(cfg, s, common::knownIniKeys(c.frontEnd, "FrontEnd", s), fileLabel);
+  common::checkIniKeys(cfg, "GraphSlam", common::knownIniKeys(c.backEnd, "GraphSlam"), fileLabel);
   common::checkIniKeys(
-      cfg, "LandmarkDatabase", keysOf(c.database, "LandmarkDatabase", "LandmarkDatabase"),
-      fileLabel);
+      cfg, "LandmarkDatabase", common::knownIniKeys(c.database, "LandmarkDatabase"), fileLabel);
   common::checkIniKeys(
-      cfg, "HomographyLocator", keysOf(c.locator, "HomographyLocator", "HomographyLocator"),
-      fileLabel);
+      cfg, "HomographyLocator", common::knownIniKeys(c.locator, "HomographyLocator"), fileLabel);
   try
   {
     c.frontEnd.loadFromConfigFile(cfg, "FrontEnd");

@@ -1,4 +1,7 @@
+#include <mrpt/system/CTicTac.h>
 #include <octomap/OcTree.h>
+#include <roislam/evaluation/CErrorPlot.h>
+#include <roislam/evaluation/CTrajectoryPlot.h>
 #include <roislam/frontend/PoseUncertainty.h>
 #include <roislam/graphslam/CSlamOutputWriter.h>
 #include <roislam/viz/CSlamSceneBuilder.h>
@@ -23,6 +26,34 @@ std::string firstLine(const std::string& s)
   return s.substr(0, s.find('\n'));
 }
 
+/** Ground truth drawn this far (s) beyond the run's first and last frames. */
+constexpr double kGroundTruthSlackS = 0.05;
+
+std::string fixedText(double v, int decimals)
+{
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.*f", decimals, v);
+  return buf;
+}
+
+/** The snapshot's legend: sequence, front end, accuracy, which way is up. */
+std::vector<std::string> legend(
+    const CSlamOutputWriter::TRun& run, const CSlamOutputWriter::TReference& reference,
+    const CGravityFrame::TResult& frame)
+{
+  const auto& fe = run.context.config().frontEnd;
+  std::vector<std::string> lines{
+      reference.sequence,
+      "mode " + frontend::toString(fe.mode) + ", " + features::toString(fe.extractor.feature_type)};
+  if (reference.evaluation)
+    lines.push_back("ATE RMSE " + fixedText(reference.evaluation->ate.rmse, 4) + " m");
+  else
+    lines.push_back("ATE n/a (no ground truth)");
+  const char* up[] = {"up: ground truth's z", "up: accelerometer", "up: first camera's -y"};
+  lines.push_back(up[static_cast<int>(frame.source)]);
+  return lines;
+}
+
 void renameOrThrow(const std::string& tmp, const std::string& file)
 {
   if (std::rename(tmp.c_str(), file.c_str()) != 0)
@@ -36,7 +67,8 @@ const char* kFramesCsvHeader =
     "index,timestamp,method,features,features_with_depth,roi_features,tracking_features,"
     "matches,inliers,roi_x,roi_y,roi_w,roi_h,keyframe,reference_keyframe,roi_ms,"
     "extract_ms,lift_ms,match_ms,ransac_ms,icp_ms,keyframe_ms,frontend_ms,backend_ms,"
-    "sigma_t_mm,sigma_r_deg,icp_refined\n";
+    "sigma_t_mm,sigma_r_deg,icp_refined,region_x,region_y,region_w,region_h,region_pixels,"
+    "region_features,extension_pixels,extension_features,extension\n";
 
 void writeFramesCsvRow(std::ostream& csv, const CSlamPipeline::TFrameRecord& r)
 {
@@ -61,7 +93,14 @@ void writeFramesCsvRow(std::ostream& csv, const CSlamPipeline::TFrameRecord& r)
     csv << 1e3 * sd->translation_m << "," << sd->rotation_rad * 180.0 / M_PI << ",";
   else
     csv << ",,";
-  csv << (f.icpRefined ? 1 : 0) << "\n";
+  csv << (f.icpRefined ? 1 : 0) << ",";
+  const auto& w = f.work;
+  if (!w.region.empty())
+    csv << w.region.x << "," << w.region.y << "," << w.region.width << "," << w.region.height;
+  else
+    csv << ",,,";
+  csv << "," << w.regionPixels << "," << w.regionFeatures << "," << w.extensionPixels << ","
+      << w.extensionFeatures << "," << frontend::toString(w.extension) << "\n";
 }
 }  // namespace
 
@@ -80,7 +119,7 @@ const std::vector<std::string>& CSlamOutputWriter::files()
 {
   static const std::vector<std::string> names{"trajectory.txt", "graph.graph",  "map.bt",
                                               "scene.3Dscene",  "snapshot.png", "frames.csv",
-                                              "summary.json"};
+                                              "ate.png",        "errors.png",   "summary.json"};
   return names;
 }
 
@@ -138,7 +177,8 @@ void CSlamOutputWriter::writeFramesCsv(
   writeTextFile(m_dir + "frames.csv", csv.str());
 }
 
-viz::TSceneContent CSlamOutputWriter::writeMap(const TRun& run) const
+viz::TSceneContent CSlamOutputWriter::writeMap(
+    const TRun& run, const mrpt::poses::CPose3D& toDisplay) const
 {
   viz::TSceneContent content;
   octomap::OcTree tree(0.05);
@@ -151,7 +191,7 @@ viz::TSceneContent CSlamOutputWriter::writeMap(const TRun& run) const
   std::size_t counter = 0;
   for (std::size_t k = 0; k < clouds.size(); ++k)
   {
-    const auto pose = run.keyframePose(k);
+    const auto pose = toDisplay + run.keyframePose(k);
     octomap::Pointcloud pc;
     pc.reserve(clouds[k].size());
     for (std::size_t i = 0; i < clouds[k].size(); ++i)
@@ -185,13 +225,114 @@ std::string CSlamOutputWriter::writeScene(const viz::TSceneContent& content, boo
     return {};
   try
   {
-    viz::CSnapshotRenderer().renderToFile(*scene, m_dir + "snapshot.png");
+    viz::CSnapshotRenderer().renderToFile(content, m_dir + "snapshot.png");
   }
   catch (const std::exception& e)
   {
     return firstLine(e.what());
   }
   return {};
+}
+
+std::string CSlamOutputWriter::writePlots(const TReference& reference) const
+{
+  const std::string ate = m_dir + "ate.png", errors = m_dir + "errors.png";
+  // The folder is a fresh staging folder (COutputFolder): no plot of an
+  // earlier run can remain beside these.
+  if (!reference.evaluation)
+    return {};
+  const auto& ev = *reference.evaluation;
+  std::string error;
+  try
+  {
+    evaluation::CTrajectoryPlot::TOptions po;
+    po.title = reference.sequence + ": ground truth and the aligned estimate (ATE RMSE " +
+               fixedText(ev.ate.rmse, 4) + " m)";
+    evaluation::CTrajectoryPlot(po).plot(
+        ate, reference.groundTruth, {{"estimate (aligned)", ev.aligned}});
+  }
+  catch (const std::exception& e)
+  {
+    error = firstLine(e.what());
+  }
+  try
+  {
+    evaluation::CErrorPlot::TOptions eo;
+    eo.title = reference.sequence + ": errors over time";
+    evaluation::CErrorPlot(eo).plot(errors, ev);
+  }
+  catch (const std::exception& e)
+  {
+    if (error.empty())
+      error = firstLine(e.what());
+  }
+  return error;
+}
+
+std::vector<std::string> CSlamOutputWriter::TPictures::warnings() const
+{
+  std::vector<std::string> w;
+  if (!snapshotError.empty())
+    w.push_back("no snapshot: " + snapshotError);
+  if (!plotError.empty())
+    w.push_back("no error plots: " + plotError);
+  if (!frame.note.empty())
+    w.push_back("pictures not levelled by the accelerometer: " + frame.note);
+  return w;
+}
+
+void CSlamOutputWriter::TPictures::addToSummary(nlohmann::json& summary) const
+{
+  summary["display_frame"] = frame.toJson();
+  if (!snapshotError.empty())
+    summary["snapshot_error"] = snapshotError;
+  if (!plotError.empty())
+    summary["plot_error"] = plotError;
+}
+
+CSlamOutputWriter::TPictures CSlamOutputWriter::writePictures(
+    const TRun& run, const TReference& reference, bool snapshot) const
+{
+  TPictures out;
+  const auto* ev = reference.evaluation;
+  out.frame = CGravityFrame::choose(
+      reference.estimate,
+      ev ? std::optional<mrpt::poses::CPose3D>(ev->ate.alignment) : std::nullopt,
+      reference.accelerometerFile);
+  const auto& toDisplay = out.frame.toDisplay;
+
+  mrpt::system::CTicTac mapTimer;
+  viz::TSceneContent content = writeMap(run, toDisplay);
+  out.mapS = mapTimer.Tac();
+
+  mrpt::system::CTicTac snapTimer;
+  for (const auto& p : reference.estimate)
+  {
+    const auto pose = toDisplay + p.pose;
+    content.trajectory.push_back(pose.translation());
+    const auto R = pose.getRotationMatrix();
+    content.lookDirection =
+        content.lookDirection + mrpt::math::TVector3D(R(0, 2), R(1, 2), R(2, 2));
+  }
+  for (std::size_t k = 0; k < run.context.keyframeClouds().size(); ++k)
+    content.keyframes.push_back((toDisplay + run.keyframePose(k)).translation());
+  if (ev)
+  {
+    // The ground truth in the display frame: back through the alignment.
+    // The ground truth in the display frame (back through the alignment),
+    // over the run's span only (TUM files start and end a second around it).
+    const auto gtToDisplay = toDisplay + (-ev->ate.alignment);
+    const double t0 = reference.estimate.front().timestamp;
+    const double t1 = reference.estimate.back().timestamp;
+    for (const auto& p : reference.groundTruth)
+      if (p.timestamp >= t0 - kGroundTruthSlackS && p.timestamp <= t1 + kGroundTruthSlackS)
+        content.groundTruth.push_back((gtToDisplay + p.pose).translation());
+  }
+  content.legend = legend(run, reference, out.frame);
+  out.snapshotError = writeScene(content, snapshot);
+  out.plotError = writePlots(reference);
+  out.snapshotS = snapTimer.Tac();
+  return out;
 }
 
 void CSlamOutputWriter::writeSummary(const nlohmann::json& summary)

@@ -240,6 +240,15 @@ std::optional<std::string> CRawlogFrameSource::groundTruthFile() const
   return std::nullopt;
 }
 
+std::optional<std::string> CRawlogFrameSource::accelerometerFile() const
+{
+  const fs::path p(m_file);
+  const fs::path file = p.parent_path() / (p.stem().string() + ".accelerometer.txt");
+  if (fs::is_regular_file(file))
+    return file.string();
+  return std::nullopt;
+}
+
 std::string CRawlogFrameSource::name() const
 {
   return fs::path(m_file).stem().string();

@@ -10,6 +10,7 @@
 #include <cerrno>
 #include <cstring>
 #include <filesystem>
+#include <optional>
 #include <stdexcept>
 
 namespace fs = std::filesystem;
@@ -37,6 +38,55 @@ class CRemoveOnExit
 
  private:
   fs::path m_path;
+};
+
+// A file copied next to the rawlog (ground truth, accelerometer log): staged
+// under a temporary name, renamed by commit(), removed again on failure
+// until release().
+class CSideFile
+{
+ public:
+  CSideFile(std::optional<std::string> source, fs::path target, const std::string& tempSuffix)
+      : m_source(std::move(source)),
+        m_target(std::move(target)),
+        m_temp(m_target.string() + tempSuffix),
+        m_removeTemp(m_temp),
+        m_removeTarget(fs::path())
+  {
+    if (!m_source)
+      return;
+    std::error_code ec;
+    fs::copy_file(*m_source, m_temp, fs::copy_options::overwrite_existing, ec);
+    if (ec)
+      throw std::runtime_error(m_target.string() + ": cannot write (" + ec.message() + ")");
+  }
+  void setPermissions(mode_t mask) const
+  {
+    std::error_code ec;
+    if (m_source)
+      fs::permissions(m_temp, static_cast<fs::perms>(0666 & ~mask), ec);
+  }
+  void commit()
+  {
+    if (!m_source)
+      return;
+    std::error_code ec;
+    fs::rename(m_temp, m_target, ec);
+    if (ec)
+      throw std::runtime_error(m_target.string() + ": cannot write (" + ec.message() + ")");
+    m_removeTemp.release();
+    m_removeTarget.arm(m_target);
+  }
+  void release() { m_removeTarget.release(); }
+  std::optional<std::string> written() const
+  {
+    return m_source ? std::optional<std::string>(m_target.string()) : std::nullopt;
+  }
+
+ private:
+  std::optional<std::string> m_source;
+  fs::path m_target, m_temp;
+  CRemoveOnExit m_removeTemp, m_removeTarget;
 };
 
 void linkOrCopy(const fs::path& from, const fs::path& to)
@@ -108,27 +158,21 @@ CTum2RawlogApp::TResult CTum2RawlogApp::run()
       MRPT_LOG_INFO_STREAM("frame " << (i + 1) << " / " << entries.size());
   }
 
-  // Ground truth next to the rawlog, also via a temporary name.
+  // Ground truth and accelerometer log next to the rawlog, also via temporary names.
   TResult result;
-  const auto gtSource = source.groundTruthFile();
-  const fs::path gtTarget = outDir / (stem + ".groundtruth.txt");
-  const fs::path gtTemp = fs::path(gtTarget.string() + staging.extension().string());
-  CRemoveOnExit removeGtTemp(gtTemp);
-  if (gtSource)
-  {
-    std::error_code ec;
-    fs::copy_file(*gtSource, gtTemp, fs::copy_options::overwrite_existing, ec);
-    if (ec)
-      throw std::runtime_error(gtTarget.string() + ": cannot write (" + ec.message() + ")");
-  }
+  CSideFile groundTruth(
+      source.groundTruthFile(), outDir / (stem + ".groundtruth.txt"), staging.extension().string());
+  CSideFile accelerometer(
+      source.accelerometerFile(), outDir / (stem + ".accelerometer.txt"),
+      staging.extension().string());
 
-  // Commit: images folder, ground truth, then the rawlog itself; undo on failure.
+  // Commit: images folder, side files, then the rawlog itself; undo on failure.
   std::error_code ec;
   const mode_t mask = ::umask(0);  // mkdtemp made the folder 0700
   ::umask(mask);
   fs::permissions(staging, static_cast<fs::perms>(0777 & ~mask), ec);
-  if (gtSource)
-    fs::permissions(gtTemp, static_cast<fs::perms>(0666 & ~mask), ec);
+  groundTruth.setPermissions(mask);
+  accelerometer.setPermissions(mask);
   if (fs::exists(imagesDir))
   {
     fs::remove_all(imagesDir, ec);
@@ -140,25 +184,19 @@ CTum2RawlogApp::TResult CTum2RawlogApp::run()
     throw std::runtime_error(imagesDir.string() + ": cannot write (" + ec.message() + ")");
   removeStaging.release();
   CRemoveOnExit removeImages(imagesDir);
-  CRemoveOnExit removeGt{fs::path()};
-  if (gtSource)
-  {
-    fs::rename(gtTemp, gtTarget, ec);
-    if (ec)
-      throw std::runtime_error(gtTarget.string() + ": cannot write (" + ec.message() + ")");
-    removeGtTemp.release();
-    removeGt.arm(gtTarget);
-  }
+  groundTruth.commit();
+  accelerometer.commit();
   writer.commit();
   removeImages.release();
-  removeGt.release();
+  groundTruth.release();
+  accelerometer.release();
 
   result.frames = writer.count();
   result.skipped = source.skippedFrames();
   result.rawlog = rawlog.string();
   result.imagesDir = imagesDir.string();
-  if (gtSource)
-    result.groundTruth = gtTarget.string();
+  result.groundTruth = groundTruth.written();
+  result.accelerometer = accelerometer.written();
   result.seconds = timer.Tac();
   MRPT_LOG_INFO_STREAM(
       "wrote " << result.frames << " observations to " << result.rawlog << " in " << result.seconds

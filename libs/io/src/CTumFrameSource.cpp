@@ -1,6 +1,7 @@
 #include "roislam/io/CTumFrameSource.h"
 
 #include <mrpt/config/CConfigFileBase.h>
+#include <roislam/common/IniRead.h>
 #include <roislam/io/StampAssociation.h>
 
 #include <algorithm>
@@ -53,21 +54,12 @@ std::vector<TListItem> readList(const fs::path& file)
     const auto where = file.string() + ":" + std::to_string(lineNo) + ": ";
     if (name.empty())
       throw std::runtime_error(where + "expected 'timestamp filename', got '" + line + "'");
-    std::size_t used = 0;
-    double stamp = 0;
-    try
-    {
-      stamp = std::stod(stampText, &used);
-    }
-    catch (const std::exception&)
-    {
-      used = 0;
-    }
-    if (used != stampText.size() || !std::isfinite(stamp))
+    const auto stamp = common::parseDouble(stampText);
+    if (!stamp)
       throw std::runtime_error(where + "invalid timestamp '" + stampText + "'");
     if (ss >> extra)
       throw std::runtime_error(where + "expected 'timestamp filename', got '" + line + "'");
-    items.push_back({stamp, name, file.string() + ":" + std::to_string(lineNo)});
+    items.push_back({*stamp, name, file.string() + ":" + std::to_string(lineNo)});
   }
   if (in.bad())
     throw std::runtime_error(file.string() + ": read error");
@@ -255,6 +247,14 @@ std::optional<std::string> CTumFrameSource::groundTruthFile() const
   const fs::path gt = fs::path(m_dir) / "groundtruth.txt";
   if (fs::is_regular_file(gt))
     return gt.string();
+  return std::nullopt;
+}
+
+std::optional<std::string> CTumFrameSource::accelerometerFile() const
+{
+  const fs::path file = fs::path(m_dir) / "accelerometer.txt";
+  if (fs::is_regular_file(file))
+    return file.string();
   return std::nullopt;
 }
 

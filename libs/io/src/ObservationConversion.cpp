@@ -21,6 +21,10 @@ std::string sizeText(int w, int h)
   return std::to_string(w) + "x" + std::to_string(h);
 }
 
+// The pinhole part only, not TCamera's operator== (which also compares the
+// names, the distortion and the focal length in metres): registerDepth moves
+// pixels by the pinhole model alone, and a depth camera named "depth" beside
+// one named "rgb" with the same grid needs no registration.
 bool sameIntrinsics(const mrpt::img::TCamera& a, const mrpt::img::TCamera& b)
 {
   return a.ncols == b.ncols && a.nrows == b.nrows && a.fx() == b.fx() && a.fy() == b.fy() &&

@@ -59,37 +59,11 @@ CLandmarkScorer::CLandmarkScorer(const TOptions& options, io::TTrajectory ground
   std::sort(
       m_gt.begin(), m_gt.end(),
       [](const auto& a, const auto& b) { return a.timestamp < b.timestamp; });
-  m_stamps.reserve(m_gt.size());
-  for (const auto& p : m_gt)
-    m_stamps.push_back(p.timestamp);
 }
 
 std::optional<mrpt::poses::CPose3D> CLandmarkScorer::poseAt(double t) const
 {
-  if (m_gt.empty())
-    return std::nullopt;
-  // First stamp >= t; the nearest stamp is it or its predecessor.
-  const auto it = std::lower_bound(m_stamps.begin(), m_stamps.end(), t);
-  const std::size_t hi = static_cast<std::size_t>(it - m_stamps.begin());
-  std::size_t nearest = hi;
-  if (hi == m_stamps.size() || (hi > 0 && t - m_stamps[hi - 1] < m_stamps[hi] - t))
-    nearest = hi - 1;
-  if (std::abs(m_stamps[nearest] - t) > m_options.max_time_difference)
-    return std::nullopt;
-  if (!m_options.interpolate || hi == 0 || hi == m_stamps.size() || m_stamps[hi] == t)
-    return m_gt[nearest].pose;
-
-  const auto& a = m_gt[hi - 1];
-  const auto& b = m_gt[hi];
-  const double s = (t - a.timestamp) / (b.timestamp - a.timestamp);
-  const Eigen::Quaterniond qa(a.pose.getRotationMatrix().asEigen());
-  const Eigen::Quaterniond qb(b.pose.getRotationMatrix().asEigen());
-  const Eigen::Matrix3d R = qa.slerp(s, qb).toRotationMatrix();
-  const auto ta = a.pose.translation();
-  const auto tb = b.pose.translation();
-  mrpt::math::CMatrixDouble33 Rm;
-  Rm.asEigen() = R;
-  return mrpt::poses::CPose3D(Rm, mrpt::math::CVectorFixedDouble<3>(ta + (tb - ta) * s));
+  return io::poseAt(m_gt, t, m_options.max_time_difference, m_options.interpolate);
 }
 
 CLandmarkScorer::TScore CLandmarkScorer::score(const std::vector<TEvent>& events) const

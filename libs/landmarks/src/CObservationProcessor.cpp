@@ -3,8 +3,7 @@
 #include <mrpt/system/datetime.h>
 
 #include <cmath>
-#include <opencv2/imgproc.hpp>
-#include <stdexcept>
+#include <limits>
 
 #include "roislam/landmarks/FeatureGeometry.h"
 
@@ -18,26 +17,35 @@ CObservationProcessor::CObservationProcessor(const TPipelineOptions& options)
 CObservationProcessor::TOutput CObservationProcessor::process(
     const io::TRGBDFrame& frame, const std::optional<mrpt::poses::CPose3D>& cameraPose)
 {
-  return finish(m_tracker.process(frame, cameraPose), frame, m_options.sensor_pose);
+  return finish(m_tracker.process(frame, cameraPose), frame.camera);
 }
 
-CObservationProcessor::TOutput CObservationProcessor::process(
-    const mrpt::obs::CObservation3DRangeScan& scan,
-    const std::optional<mrpt::poses::CPose3D>& cameraPose)
+CObservationProcessor::TOutput CObservationProcessor::processRegion(const TRegion& region)
 {
-  io::TRGBDFrame frame = frameFromScan(scan);
-  frame.index = m_scans++;
-  return finish(m_tracker.process(frame, cameraPose), frame, scan.sensorPose);
+  TFrameResult r;
+  r.frame = region.frame;
+  r.timestamp = region.timestamp;
+  r.roi = region.box;
+  r.features = region.frameFeatures ? static_cast<int>(region.frameFeatures->size()) : 0;
+  r.roiFeatures = static_cast<int>(region.features.size());
+  r.depthMean = r.depthMedian = r.rigidRms = std::numeric_limits<double>::quiet_NaN();
+  r.roiPosition = region.position;
+  m_tracker.identify(region, r);
+  return finish(std::move(r), region.camera);
 }
 
 CObservationProcessor::TOutput CObservationProcessor::finish(
-    TFrameResult result, const io::TRGBDFrame& frame, const mrpt::poses::CPose3D& pose)
+    TFrameResult result, const mrpt::img::TCamera& camera)
 {
   std::vector<std::pair<int32_t, mrpt::math::TPoint3D>> seen;
-  if (result.status == ERoiStatus::Landmark && result.landmarkPosition)
+  // A recall's point is carried by its 3-D alignment; one measured from few
+  // pairs is left out (min_rigid_pairs). New landmarks define their point.
+  const bool supported = result.newLandmark || result.rigidInliers >= m_options.min_rigid_pairs;
+  if (result.status == ERoiStatus::Landmark && result.landmarkPosition && supported)
     seen.emplace_back(result.landmarkId, *result.landmarkPosition);
   TOutput out;
-  out.observation = makeObservation(seen, frame.camera, frame.timestamp, pose, m_options);
+  out.observation =
+      makeObservation(seen, camera, result.timestamp, m_options.sensor_pose, m_options);
   out.result = std::move(result);
   return out;
 }
@@ -58,7 +66,7 @@ mrpt::obs::CObservationBearingRange::Ptr CObservationProcessor::makeObservation(
     obs->fieldOfView_yaw = static_cast<float>(2 * std::atan(0.5 * camera.ncols / camera.fx()));
     obs->fieldOfView_pitch = static_cast<float>(2 * std::atan(0.5 * camera.nrows / camera.fy()));
   }
-  obs->validCovariances = false;
+  obs->validCovariances = true;
   obs->sensor_std_range = static_cast<float>(options.sensor_std_range);
   obs->sensor_std_yaw = static_cast<float>(options.sensor_std_yaw);
   obs->sensor_std_pitch = static_cast<float>(options.sensor_std_pitch);
@@ -74,7 +82,10 @@ mrpt::obs::CObservationBearingRange::Ptr CObservationProcessor::makeObservation(
     m.yaw = static_cast<float>(yaw);
     m.pitch = static_cast<float>(pitch);
     m.covariance.setZero();
-    m.covariance(0, 0) = options.sensor_std_range * options.sensor_std_range;
+    // Depth-noise model: the landmark's spread plus k z^2 (z = depth).
+    const double depthNoise = options.range_std_per_m2 * optical.z * optical.z;
+    m.covariance(0, 0) =
+        options.sensor_std_range * options.sensor_std_range + depthNoise * depthNoise;
     m.covariance(1, 1) = options.sensor_std_yaw * options.sensor_std_yaw;
     m.covariance(2, 2) = options.sensor_std_pitch * options.sensor_std_pitch;
     obs->sensedData.push_back(m);
@@ -82,40 +93,4 @@ mrpt::obs::CObservationBearingRange::Ptr CObservationProcessor::makeObservation(
   return obs;
 }
 
-io::TRGBDFrame CObservationProcessor::frameFromScan(const mrpt::obs::CObservation3DRangeScan& scan)
-{
-  if (!scan.hasIntensityImage)
-    throw std::invalid_argument(
-        "CObservation3DRangeScan '" + scan.sensorLabel + "' has no intensity image");
-  if (!scan.hasRangeImage)
-    throw std::invalid_argument(
-        "CObservation3DRangeScan '" + scan.sensorLabel + "' has no range image");
-  if (!scan.range_is_depth)
-    throw std::invalid_argument(
-        "CObservation3DRangeScan '" + scan.sensorLabel +
-        "': range images must hold depth (range_is_depth)");
-  io::TRGBDFrame f;
-  f.timestamp = mrpt::Clock::toDouble(scan.timestamp);
-  f.depthTimestamp = f.timestamp;
-  f.camera = scan.cameraParamsIntensity;
-  const cv::Mat img = scan.intensityImage.asCvMat<cv::Mat>(mrpt::img::SHALLOW_COPY);
-  if (img.channels() == 1)
-    cv::cvtColor(img, f.rgb, cv::COLOR_GRAY2BGR);
-  else
-    f.rgb = img.clone();
-  const auto& range = scan.rangeImage;
-  f.depth.create(static_cast<int>(range.rows()), static_cast<int>(range.cols()), CV_32FC1);
-  for (int r = 0; r < f.depth.rows; ++r)
-  {
-    float* row = f.depth.ptr<float>(r);
-    for (int c = 0; c < f.depth.cols; ++c)
-      row[c] = range(r, c) * scan.rangeUnits;
-  }
-  if (f.depth.size() != f.rgb.size())
-    throw std::invalid_argument(
-        "CObservation3DRangeScan '" + scan.sensorLabel + "': range image " +
-        std::to_string(f.depth.cols) + "x" + std::to_string(f.depth.rows) +
-        " does not match the intensity image");
-  return f;
-}
 }  // namespace roislam::landmarks

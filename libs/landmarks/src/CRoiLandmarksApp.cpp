@@ -6,22 +6,20 @@
 
 #include <chrono>
 #include <cmath>
-#include <condition_variable>
-#include <cstdio>
-#include <deque>
-#include <exception>
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
-#include <mutex>
 #include <nlohmann/json.hpp>
 #include <opencv2/imgcodecs.hpp>
 #include <sstream>
-#include <thread>
 
 #include "roislam/common/COutputFolder.h"
+#include "roislam/common/TextFiles.h"
+#include "roislam/io/CFramePrefetcher.h"
 #include "roislam/io/CFrameSource.h"
+#include "roislam/io/ObservationConversion.h"
 #include "roislam/io/TumTrajectory.h"
+#include "roislam/kfslam/CKfSlamSession.h"
 #include "roislam/landmarks/CLandmarkScorer.h"
 #include "roislam/landmarks/CObservationProcessor.h"
 
@@ -31,97 +29,6 @@ namespace roislam::landmarks
 {
 namespace
 {
-/** Reads frames on a second thread (PNG decoding costs about as much as the
- *  ORB pipeline), a few frames ahead of the consumer. */
-class CFramePrefetcher
-{
- public:
-  CFramePrefetcher(io::CFrameSource& source, std::size_t maxFrames)
-      : m_thread([this, &source, maxFrames] { run(source, maxFrames); })
-  {
-  }
-  ~CFramePrefetcher()
-  {
-    {
-      std::lock_guard<std::mutex> lock(m_mutex);
-      m_stop = true;
-    }
-    m_cv.notify_all();
-    m_thread.join();
-  }
-
-  /** The next frame, nullopt at the end; rethrows the reader's exception. */
-  std::optional<io::TRGBDFrame> next()
-  {
-    std::unique_lock<std::mutex> lock(m_mutex);
-    m_cv.wait(lock, [&] { return !m_queue.empty() || m_done; });
-    if (m_queue.empty())
-    {
-      if (m_error)
-        std::rethrow_exception(m_error);
-      return std::nullopt;
-    }
-    io::TRGBDFrame f = std::move(m_queue.front());
-    m_queue.pop_front();
-    m_cv.notify_all();
-    return f;
-  }
-
- private:
-  void run(io::CFrameSource& source, std::size_t maxFrames)
-  {
-    try
-    {
-      for (std::size_t n = 0; maxFrames == 0 || n < maxFrames; ++n)
-      {
-        auto f = source.next();
-        std::unique_lock<std::mutex> lock(m_mutex);
-        if (!f || m_stop)
-          break;
-        m_queue.push_back(std::move(*f));
-        m_cv.notify_all();
-        m_cv.wait(lock, [&] { return m_queue.size() < kDepth || m_stop; });
-        if (m_stop)
-          break;
-      }
-    }
-    catch (...)
-    {
-      std::lock_guard<std::mutex> lock(m_mutex);
-      m_error = std::current_exception();
-    }
-    std::lock_guard<std::mutex> lock(m_mutex);
-    m_done = true;
-    m_cv.notify_all();
-  }
-
-  static constexpr std::size_t kDepth = 4;
-  std::mutex m_mutex;
-  std::condition_variable m_cv;
-  std::deque<io::TRGBDFrame> m_queue;
-  bool m_done = false;
-  bool m_stop = false;
-  std::exception_ptr m_error;
-  std::thread m_thread;  // last: starts after the other members exist
-};
-
-void writeTextAtomically(const std::string& file, const std::string& text)
-{
-  const std::string tmp = file + ".tmp";
-  {
-    std::ofstream f(tmp, std::ios::binary);
-    if (!f)
-      throw std::runtime_error(file + ": cannot write");
-    f << text;
-    f.close();
-    if (!f)
-      throw std::runtime_error(file + ": cannot write");
-  }
-  std::error_code ec;
-  fs::rename(tmp, file, ec);
-  if (ec)
-    throw std::runtime_error(file + ": cannot write: " + ec.message());
-}
 
 std::string frameName(uint64_t frame)
 {
@@ -133,55 +40,24 @@ std::string frameName(uint64_t frame)
 /** An RGB-D observation for the annotated rawlog: raw TUM-scaled depth in an
  *  external .bin, the colour image external (the source PNG when it exists,
  *  else a PNG written next to the depth). */
-mrpt::obs::CObservation3DRangeScan makeScan(
+mrpt::obs::CObservation3DRangeScan::Ptr makeScan(
     const io::TRGBDFrame& f, const std::string& imagesDir, const mrpt::poses::CPose3D& sensorPose)
 {
-  mrpt::obs::CObservation3DRangeScan obs;
-  obs.sensorLabel = "RGBD";
-  obs.timestamp = mrpt::Clock::fromDouble(f.timestamp);
-  obs.sensorPose = sensorPose;
-  obs.cameraParams = f.camera;
-  obs.cameraParams.ncols = static_cast<uint32_t>(f.depth.cols);
-  obs.cameraParams.nrows = static_cast<uint32_t>(f.depth.rows);
-  obs.cameraParamsIntensity = obs.cameraParams;
-  obs.range_is_depth = true;
-  obs.maxRange = 10;
-  obs.hasRangeImage = true;
-  obs.rangeUnits = 1.0f / 5000;
-  obs.rangeImage_setSize(f.depth.rows, f.depth.cols);
-  for (int r = 0; r < f.depth.rows; ++r)
-  {
-    const float* row = f.depth.ptr<float>(r);
-    for (int c = 0; c < f.depth.cols; ++c)
-    {
-      const double v = std::isfinite(row[c]) && row[c] > 0 ? std::lround(row[c] * 5000.0) : 0;
-      obs.rangeImage(r, c) = static_cast<uint16_t>(std::min(v, 65535.0));
-    }
-  }
+  auto obs = io::frameToObservation(f);
+  obs->sensorPose = sensorPose;
   const std::string name = frameName(f.index);
-  obs.hasIntensityImage = true;
   std::error_code ec;
   if (!f.rgbSource.empty() && fs::is_regular_file(f.rgbSource, ec))
-    obs.intensityImage.setExternalStorage(fs::absolute(f.rgbSource).string());
+    obs->intensityImage.setExternalStorage(fs::absolute(f.rgbSource).string());
   else
   {
     const std::string png = imagesDir + "/" + name + "_rgb.png";
     if (!cv::imwrite(png, f.rgb))
       throw std::runtime_error(png + ": cannot write");
-    obs.intensityImage.setExternalStorage(name + "_rgb.png");
+    obs->intensityImage.setExternalStorage(name + "_rgb.png");
   }
-  obs.rangeImage_convertToExternalStorage(name + "_depth.bin", imagesDir + "/");
+  obs->rangeImage_convertToExternalStorage(name + "_depth.bin", imagesDir + "/");
   return obs;
-}
-
-/** `file` relative to `dir` when it lies inside it. */
-std::optional<fs::path> pathInside(const std::string& file, const std::string& dir)
-{
-  const fs::path rel = fs::absolute(file).lexically_normal().lexically_relative(
-      fs::absolute(dir).lexically_normal());
-  if (rel.empty() || *rel.begin() == "..")
-    return std::nullopt;
-  return rel;
 }
 
 std::string fmt(double v, int precision = 4)
@@ -198,12 +74,344 @@ nlohmann::json orNull(const std::optional<T>& v)
 {
   return v ? nlohmann::json(*v) : nlohmann::json(nullptr);
 }
+
+/** The annotated rawlog (--output-rawlog), written to a temporary name and
+ *  renamed by commitAnnotatedRawlog(). */
+struct TAnnotatedRawlog
+{
+  std::string file, tmp, imagesDir;
+  std::string label;  //!< the name given on the command line, for errors
+  std::unique_ptr<mrpt::io::CFileGZOutputStream> stream;
+};
+
+/** `file` relative to `dir` when it lies inside it. */
+std::optional<fs::path> pathInside(const std::string& file, const std::string& dir)
+{
+  const fs::path rel = fs::absolute(file).lexically_normal().lexically_relative(
+      fs::absolute(dir).lexically_normal());
+  if (rel.empty() || *rel.begin() == "..")
+    return std::nullopt;
+  return rel;
+}
+
+/** Opens the annotated rawlog `label` at `file` (inside the staging folder
+ *  when `label` lies inside the output folder). */
+TAnnotatedRawlog openAnnotatedRawlog(
+    const std::optional<std::string>& file, const std::string& label)
+{
+  TAnnotatedRawlog out;
+  if (!file)
+    return out;
+  std::error_code ec;
+  const fs::path rl(*file);
+  out.file = *file;
+  out.label = label;
+  out.imagesDir = (rl.parent_path() / (rl.stem().string() + "_Images")).string();
+  if (rl.has_parent_path())
+    fs::create_directories(rl.parent_path(), ec);
+  fs::create_directories(out.imagesDir, ec);
+  if (ec)
+    throw std::runtime_error(out.imagesDir + ": cannot create folder");
+  out.tmp = *file + ".tmp";
+  out.stream = std::make_unique<mrpt::io::CFileGZOutputStream>();
+  if (!out.stream->open(out.tmp))
+    throw std::runtime_error(label + ": cannot write");
+  return out;
+}
+
+void commitAnnotatedRawlog(TAnnotatedRawlog& rawlog)
+{
+  if (!rawlog.stream)
+    return;
+  rawlog.stream->close();
+  rawlog.stream.reset();
+  std::error_code ec;
+  fs::rename(rawlog.tmp, rawlog.file, ec);
+  if (ec)
+    throw std::runtime_error(rawlog.label + ": cannot write: " + ec.message());
+}
+
+/** What the frame loop collects: every frame's record and the confirmed ROI
+ *  events for scoring, with both recall positions (ROI median, landmark
+ *  point) and the frames.csv row of each event. */
+struct TFrameLog
+{
+  std::vector<TFrameResult> results;
+  std::vector<CLandmarkScorer::TEvent> roiEvents, pointEvents;
+  std::vector<std::size_t> eventRow;
+  double durationS = 0, cpuS = 0;
+
+  void add(const TFrameResult& r)
+  {
+    durationS += r.seconds;
+    cpuS += r.cpuSeconds;
+    if (r.status == ERoiStatus::Landmark)
+    {
+      roiEvents.push_back({r.frame, r.timestamp, r.landmarkId, r.newLandmark, r.roiPosition});
+      pointEvents.push_back(
+          {r.frame, r.timestamp, r.landmarkId, r.newLandmark, r.landmarkPosition});
+      eventRow.push_back(results.size());
+    }
+    results.push_back(r);
+  }
+};
+
+/** The ground-truth scores of the events and each frame's outcome text
+ *  (empty for frames without an event), primary and alternative. */
+struct TScores
+{
+  std::optional<CLandmarkScorer::TScore> primary, alternative;
+  std::vector<std::string> outcome, altOutcome;
+};
+
+TScores scoreEvents(
+    const TFrameLog& log, const std::optional<CLandmarkScorer>& scorer, bool pointPrimary)
+{
+  TScores s;
+  s.outcome.resize(log.results.size());
+  s.altOutcome.resize(log.results.size());
+  if (!scorer)
+    return s;
+  s.primary = scorer->score(pointPrimary ? log.pointEvents : log.roiEvents);
+  s.alternative = scorer->score(pointPrimary ? log.roiEvents : log.pointEvents);
+  for (std::size_t i = 0; i < log.roiEvents.size(); ++i)
+  {
+    s.outcome[log.eventRow[i]] = toString(s.primary->outcomes[i]);
+    s.altOutcome[log.eventRow[i]] = toString(s.alternative->outcomes[i]);
+  }
+  return s;
+}
+
+/** Counts, rates and scores of the summary (everything but the wall time). */
+void summarize(
+    const TFrameLog& log, const TScores& scores, std::size_t landmarks,
+    CRoiLandmarksApp::TSummary& sum)
+{
+  sum.durationS = log.durationS;
+  sum.cpuS = log.cpuS;
+  long matches = 0, falseMatches = 0;
+  for (const auto& r : log.results)
+  {
+    if (r.roi)
+      ++sum.framesWithRoi;
+    if (r.rejectedByHue)
+      ++sum.framesRejectedByHue;
+    if (r.status == ERoiStatus::Landmark)
+    {
+      ++sum.confirmedRois;
+      if (!r.newLandmark)
+        ++sum.recalls;
+    }
+    matches += r.matches;
+    falseMatches += r.falseMatches;
+  }
+  sum.frames = log.results.size();
+  sum.landmarks = landmarks;
+  if (sum.framesWithRoi)
+  {
+    sum.matchesPerFrame = double(matches) / sum.framesWithRoi;
+    sum.falseMatchesPerFrame = double(falseMatches) / sum.framesWithRoi;
+  }
+  sum.fps = sum.durationS > 0 ? sum.frames / sum.durationS : 0;
+  if (!scores.primary)
+    return;
+  const auto& p = *scores.primary;
+  const auto& a = *scores.alternative;
+  sum.truePositives = p.truePositives;
+  sum.falsePositives = p.falsePositives;
+  sum.falseNegatives = p.falseNegatives;
+  sum.unscored = p.unscored;
+  sum.precision = p.precision;
+  sum.recall = p.recall;
+  sum.altFalsePositives = a.falsePositives;
+  sum.altFalseNegatives = a.falseNegatives;
+  sum.altPrecision = a.precision;
+  sum.altRecall = a.recall;
+}
+
+void csvPoint(std::ostream& csv, const std::optional<mrpt::math::TPoint3D>& p)
+{
+  if (p)
+    csv << fmt(p->x) << ',' << fmt(p->y) << ',' << fmt(p->z);
+  else
+    csv << ",,";
+}
+
+void csvBox(std::ostream& csv, const std::optional<cv::Rect>& b)
+{
+  if (b)
+    csv << b->x << ',' << b->y << ',' << b->width << ',' << b->height;
+  else
+    csv << ",,,";
+}
+
+void csvRow(
+    std::ostream& csv, const TFrameResult& r, const std::string& outcome,
+    const std::string& altOutcome)
+{
+  csv << r.frame << ',' << fmt(r.timestamp, 6) << ',' << r.statusText() << ',' << r.landmarkId
+      << ',' << (r.newLandmark ? 1 : 0) << ',' << r.matches << ',' << r.falseMatches << ','
+      << fmt(r.seconds, 5) << ',' << r.features << ',' << r.roiFeatures << ',' << r.depthValid
+      << ',' << fmt(r.depthMean) << ',' << fmt(r.depthMedian) << ',';
+  csvBox(csv, r.roi);
+  csv << ',' << r.recallInliers << ',' << r.candidates << ',';
+  csvPoint(csv, r.roiPosition);
+  csv << ',';
+  csvBox(csv, r.landmarkBox);
+  csv << ',';
+  csvPoint(csv, r.landmarkPosition);
+  csv << ',' << r.rigidInliers << ',' << fmt(r.rigidRms) << ',' << fmt(r.cpuSeconds, 5) << ','
+      << fmt(r.secondsRoi, 5) << ',' << fmt(r.secondsFeatures, 5) << ',' << fmt(r.secondsConfirm, 5)
+      << ',' << fmt(r.secondsQuery, 5) << ',' << outcome << ',' << altOutcome << '\n';
+}
+
+std::string framesCsv(const TFrameLog& log, const TScores& scores)
+{
+  std::ostringstream csv;
+  csv << "frame,timestamp,status,landmark,new,matches,false_matches,seconds,features,"
+         "roi_features,depth_valid,depth_mean_m,depth_median_m,roi_x,roi_y,roi_w,roi_h,"
+         "recall_inliers,candidates,roi_pos_x,roi_pos_y,roi_pos_z,lm_x,lm_y,lm_w,lm_h,lm_pos_x,"
+         "lm_pos_y,lm_pos_z,rigid_pairs,rigid_rms_m,cpu_seconds,s_roi,s_features,s_confirm,s_query,"
+         "score,alt_score\n";
+  for (std::size_t i = 0; i < log.results.size(); ++i)
+    csvRow(csv, log.results[i], scores.outcome[i], scores.altOutcome[i]);
+  return csv.str();
+}
+
+nlohmann::json alternativeJson(const CRoiLandmarksApp::TSummary& sum, const TScores& scores)
+{
+  if (!scores.alternative)
+    return nullptr;
+  const auto& a = *scores.alternative;
+  return {{"recall_position", sum.altRecallPosition}, {"true_positives", a.truePositives},
+          {"false_positives", a.falsePositives},      {"false_negatives", a.falseNegatives},
+          {"precision", orNull(a.precision)},         {"recall", orNull(a.recall)}};
+}
+
+/** What the run was: input, extractor, ROI preset, ground truth. */
+nlohmann::json runJson(
+    const CRoiLandmarksApp::TArguments& args, const TPipelineOptions& options,
+    const std::string& sequence, const std::optional<std::string>& gtFile)
+{
+  nlohmann::json j;
+  j["input"] = args.input;
+  j["sequence"] = sequence;
+  j["feature"] = features::toString(options.features.feature_type);
+  j["max_features"] = options.features.max_features;
+  j["roi_preset"] = options.roi.preset;
+  j["verify_hue"] = options.roi.verify_hue;
+  j["ground_truth"] = gtFile ? nlohmann::json(*gtFile) : nlohmann::json(nullptr);
+  j["match_radius"] = options.scoring.match_radius;
+  return j;
+}
+
+nlohmann::json summaryJson(
+    nlohmann::json j, const CRoiLandmarksApp::TSummary& sum, const TScores& scores)
+{
+  j["frames"] = sum.frames;
+  j["frames_with_roi"] = sum.framesWithRoi;
+  j["frames_rejected_by_hue"] = sum.framesRejectedByHue;
+  j["confirmed_rois"] = sum.confirmedRois;
+  j["landmarks"] = sum.landmarks;
+  j["recalls"] = sum.recalls;
+  j["true_positives"] = orNull(sum.truePositives);
+  j["false_positives"] = orNull(sum.falsePositives);
+  j["false_negatives"] = orNull(sum.falseNegatives);
+  j["unscored"] = orNull(sum.unscored);
+  j["precision"] = orNull(sum.precision);
+  j["recall"] = orNull(sum.recall);
+  j["recall_position"] = sum.recallPosition;
+  j["alternative_scoring"] = alternativeJson(sum, scores);
+  j["matches_per_frame"] = sum.matchesPerFrame;
+  j["false_matches_per_frame"] = sum.falseMatchesPerFrame;
+  j["duration_s"] = sum.durationS;
+  j["fps"] = sum.fps;
+  // Calling thread only: OpenCV's worker threads (SIFT) are not included.
+  j["cpu_s_main_thread"] = sum.cpuS;
+  j["wall_s"] = sum.wallS;
+  j["fps_wall"] = sum.wallS > 0 ? sum.frames / sum.wallS : 0;
+  return j;
+}
+
+std::string kfSlamLine(const nlohmann::json& k)
+{
+  const auto m = [&](const char* key)
+  { return k.contains(key) && k[key].is_number() ? fmt(k[key].get<double>()) : "n/a"; };
+  return "kf-slam: " + std::to_string(k.value("landmarks", 0)) + " landmarks, " +
+         std::to_string(k.value("measurements", 0)) + " measurements; ATE RMSE " + m("ate_rmse") +
+         " m (odometry alone " + m("odometry_ate_rmse") + " m), RPE " + m("rpe_trans_rmse") +
+         " m / " + m("rpe_rot_rmse_deg") + " deg (odometry " + m("odometry_rpe_trans_rmse") +
+         " m / " + m("odometry_rpe_rot_rmse_deg") + " deg)";
+}
+
+std::string doneLine(const CRoiLandmarksApp::TSummary& sum, const TScores& scores)
+{
+  std::ostringstream done;
+  done << "done: " << sum.frames << " frames, " << sum.landmarks << " landmarks, " << sum.recalls
+       << " recalls";
+  if (scores.primary)
+  {
+    const auto& p = *scores.primary;
+    const auto& a = *scores.alternative;
+    done << ", TP " << p.truePositives << " FP " << p.falsePositives << " FN " << p.falseNegatives
+         << ", precision " << fmt(sum.precision.value_or(NAN), 3) << " recall "
+         << fmt(sum.recall.value_or(NAN), 3) << " (" << sum.recallPosition << "; "
+         << sum.altRecallPosition << ": TP " << a.truePositives << " FP " << a.falsePositives
+         << " FN " << a.falseNegatives << ")";
+  }
+  done << ", " << fmt(sum.fps, 1) << " fps (pipeline), " << fmt(sum.wallS, 1) << " s wall";
+  return done.str();
+}
+
+/** The frame loop: every frame through the observation processor, new
+ *  landmarks' patches saved, the annotated rawlog written. */
+TFrameLog processFrames(
+    io::CFrameSource& source, std::size_t maxFrames, CObservationProcessor& processor,
+    const mrpt::poses::CPose3D& sensorPose, const fs::path& patchesDir, TAnnotatedRawlog& rawlog,
+    kfslam::CKfSlamSession* kfSlam, const std::function<void(const std::string&)>& progress)
+{
+  TFrameLog log;
+  // Decoding a frame costs about as much as the ORB pipeline: a few ahead.
+  io::CFramePrefetcher<> frames(source, 4, {}, maxFrames);
+  while (auto item = frames.next())
+  {
+    const io::TRGBDFrame* frame = &item->frame;
+    auto out = processor.process(*frame);
+    const TFrameResult& r = out.result;
+    if (r.newLandmark)
+    {
+      const std::string png = (patchesDir / (frameName(r.frame) + ".png")).string();
+      if (!cv::imwrite(png, processor.tracker().database().landmark(r.landmarkId).patch))
+        throw std::runtime_error(png + ": cannot write");
+    }
+    if (rawlog.stream)
+    {
+      auto ar = mrpt::serialization::archiveFrom(*rawlog.stream);
+      ar << *makeScan(*frame, rawlog.imagesDir, sensorPose) << *out.observation;
+    }
+    if (kfSlam)
+      kfSlam->addFrame(*frame, *out.observation);
+    log.add(r);
+    if (log.results.size() % 50 == 0 && progress)
+      progress(
+          "frame " + std::to_string(log.results.size()) + "/" + std::to_string(source.size()) +
+          ": " + std::to_string(processor.tracker().database().size()) + " landmarks, " +
+          fmt(log.results.size() / std::max(log.durationS, 1e-9), 1) + " fps");
+  }
+  return log;
+}
 }  // namespace
 
 const std::vector<std::string>& CRoiLandmarksApp::outputFiles()
 {
   static const std::vector<std::string> names{
-      "frames.csv", "landmarks", "landmarks.db", "summary.json"};
+      "frames.csv",
+      "landmarks",
+      "landmarks.db",
+      "summary.json",
+      "kf-slam",
+      "kf-slam.rawlog",
+      "kf-slam.landmarks_gt.txt"};
   return names;
 }
 
@@ -245,258 +453,96 @@ CRoiLandmarksApp::CRoiLandmarksApp(TArguments arguments) : m_args(std::move(argu
     throw std::invalid_argument("no output folder given");
 }
 
+kfslam::CKfSlamSession::TSetup CRoiLandmarksApp::kfSlamSetup(const std::string& outputDir) const
+{
+  kfslam::CKfSlamSession::TSetup s;
+  s.options = m_options.kfSlam;
+  s.iniDir =
+      m_args.iniFile.empty() ? std::string() : fs::path(m_args.iniFile).parent_path().string();
+  s.sensorPose = m_options.observations.sensor_pose;
+  s.outputDir = outputDir;
+  if (m_args.feature)
+    s.feature = m_options.features.feature_type;
+  s.maxFeatures = m_args.maxFeatures;
+  return s;
+}
+
+void CRoiLandmarksApp::progress(const std::string& line) const
+{
+  if (m_args.progress)
+    m_args.progress(line);
+}
+
 CRoiLandmarksApp::TSummary CRoiLandmarksApp::run()
 {
   const auto wall0 = std::chrono::steady_clock::now();
-  auto progress = [&](const std::string& s)
-  {
-    if (m_args.progress)
-      m_args.progress(s);
-  };
-
   // Complete or absent: everything goes to a staging folder renamed at the end.
   const auto rawlogInFolder = m_args.outputRawlog
                                   ? pathInside(*m_args.outputRawlog, m_args.outputDir)
                                   : std::optional<fs::path>();
   common::COutputFolder folder(m_args.outputDir, outputFolderOptions(rawlogInFolder));
   const fs::path outDir(folder.path());
-  std::error_code ec;
   const fs::path patchesDir = outDir / "landmarks";
+  std::error_code ec;
   fs::create_directories(patchesDir, ec);
   if (ec)
     throw std::runtime_error(patchesDir.string() + ": cannot create folder");
 
   auto source = io::CFrameSource::open(m_args.input, m_args.camera);
   std::optional<CLandmarkScorer> scorer;
+  std::optional<io::TTrajectory> gt;
   const auto gtFile = source->groundTruthFile();
   if (gtFile && fs::is_regular_file(*gtFile))
-    scorer.emplace(m_options.scoring, io::loadTumTrajectory(*gtFile));
+  {
+    gt = io::loadTumTrajectory(*gtFile);
+    scorer.emplace(m_options.scoring, *gt);
+  }
   progress(
       "roi-landmarks: " + source->name() + ", " + std::to_string(source->size()) + " frames, " +
       features::toString(m_options.features.feature_type) + ", ROI preset " + m_options.roi.preset +
       (scorer ? ", ground truth " + *gtFile : ", no ground truth"));
 
-  // Annotated rawlog: written to a temporary name, renamed at the end.
-  std::unique_ptr<mrpt::io::CFileGZOutputStream> rawlog;
-  std::string rawlogTmp, imagesDir;
-  if (m_args.outputRawlog)
-  {
-    const fs::path rl = rawlogInFolder ? outDir / *rawlogInFolder : fs::path(*m_args.outputRawlog);
-    imagesDir = (rl.parent_path() / (rl.stem().string() + "_Images")).string();
-    if (rl.has_parent_path())
-      fs::create_directories(rl.parent_path(), ec);
-    fs::create_directories(imagesDir, ec);
-    if (ec)
-      throw std::runtime_error(imagesDir + ": cannot create folder");
-    rawlogTmp = rl.string() + ".tmp";
-    rawlog = std::make_unique<mrpt::io::CFileGZOutputStream>();
-    if (!rawlog->open(rawlogTmp))
-      throw std::runtime_error(*m_args.outputRawlog + ": cannot write");
-  }
-
+  TAnnotatedRawlog rawlog = openAnnotatedRawlog(
+      rawlogInFolder ? std::optional<std::string>((outDir / *rawlogInFolder).string())
+                     : m_args.outputRawlog,
+      m_args.outputRawlog.value_or(""));
+  auto kfSlam = m_args.kfSlam
+                    ? std::make_unique<kfslam::CKfSlamSession>(kfSlamSetup(outDir.string()))
+                    : nullptr;
   CObservationProcessor processor(m_options);
-  std::vector<TFrameResult> results;
-  std::vector<CLandmarkScorer::TEvent> events, pointEvents;
-  std::vector<std::size_t> eventRow;
-  TSummary sum;
-  {
-    CFramePrefetcher frames(*source, m_args.maxFrames);
-    while (auto frame = frames.next())
-    {
-      auto out = processor.process(*frame);
-      const TFrameResult& r = out.result;
-      sum.durationS += r.seconds;
-      sum.cpuS += r.cpuSeconds;
-      if (r.newLandmark)
-      {
-        const std::string png = (patchesDir / (frameName(r.frame) + ".png")).string();
-        if (!cv::imwrite(png, processor.tracker().database().landmark(r.landmarkId).patch))
-          throw std::runtime_error(png + ": cannot write");
-      }
-      if (r.status == ERoiStatus::Landmark)
-      {
-        events.push_back({r.frame, r.timestamp, r.landmarkId, r.newLandmark, r.roiPosition});
-        pointEvents.push_back(
-            {r.frame, r.timestamp, r.landmarkId, r.newLandmark, r.landmarkPosition});
-        eventRow.push_back(results.size());
-      }
-      if (rawlog)
-      {
-        auto ar = mrpt::serialization::archiveFrom(*rawlog);
-        ar << makeScan(*frame, imagesDir, m_options.observations.sensor_pose) << *out.observation;
-      }
-      results.push_back(r);
-      if (results.size() % 50 == 0)
-        progress(
-            "frame " + std::to_string(results.size()) + "/" + std::to_string(source->size()) +
-            ": " + std::to_string(processor.tracker().database().size()) + " landmarks, " +
-            fmt(results.size() / std::max(sum.durationS, 1e-9), 1) + " fps");
-    }
-  }
+  const TFrameLog log = processFrames(
+      *source, m_args.maxFrames, processor, m_options.observations.sensor_pose, patchesDir, rawlog,
+      kfSlam.get(), m_args.progress);
 
-  // Scores and counts.
   // The primary score uses [LandmarkScoring] recall_position; the other
   // definition is reported beside it (alternative_scoring).
   const bool pointPrimary = m_options.scoring.recall_position == "landmark_point";
+  TSummary sum;
   sum.recallPosition = m_options.scoring.recall_position;
   sum.altRecallPosition = pointPrimary ? "roi_median" : "landmark_point";
-  std::optional<CLandmarkScorer::TScore> score, altScore;
-  if (scorer)
-  {
-    score = scorer->score(pointPrimary ? pointEvents : events);
-    altScore = scorer->score(pointPrimary ? events : pointEvents);
-  }
-  std::vector<std::string> outcome(results.size()), altOutcome(results.size());
-  if (score)
-    for (std::size_t i = 0; i < events.size(); ++i)
-    {
-      outcome[eventRow[i]] = toString(score->outcomes[i]);
-      altOutcome[eventRow[i]] = toString(altScore->outcomes[i]);
-    }
+  const TScores scores = scoreEvents(log, scorer, pointPrimary);
+  summarize(log, scores, processor.tracker().database().size(), sum);
 
-  long matches = 0, falseMatches = 0;
-  for (const auto& r : results)
-  {
-    if (r.roi)
-      ++sum.framesWithRoi;
-    if (r.status == ERoiStatus::Landmark)
-    {
-      ++sum.confirmedRois;
-      if (!r.newLandmark)
-        ++sum.recalls;
-    }
-    matches += r.matches;
-    falseMatches += r.falseMatches;
-  }
-  sum.frames = results.size();
-  sum.landmarks = processor.tracker().database().size();
-  if (sum.framesWithRoi)
-  {
-    sum.matchesPerFrame = double(matches) / sum.framesWithRoi;
-    sum.falseMatchesPerFrame = double(falseMatches) / sum.framesWithRoi;
-  }
-  sum.fps = sum.durationS > 0 ? sum.frames / sum.durationS : 0;
-  if (score)
-  {
-    sum.truePositives = score->truePositives;
-    sum.falsePositives = score->falsePositives;
-    sum.falseNegatives = score->falseNegatives;
-    sum.unscored = score->unscored;
-    sum.precision = score->precision;
-    sum.recall = score->recall;
-    sum.altFalsePositives = altScore->falsePositives;
-    sum.altFalseNegatives = altScore->falseNegatives;
-    sum.altPrecision = altScore->precision;
-    sum.altRecall = altScore->recall;
-  }
-
-  // frames.csv
-  std::ostringstream csv;
-  csv << "frame,timestamp,status,landmark,new,matches,false_matches,seconds,features,"
-         "roi_features,depth_valid,depth_mean_m,depth_median_m,roi_x,roi_y,roi_w,roi_h,"
-         "recall_inliers,candidates,roi_pos_x,roi_pos_y,roi_pos_z,lm_x,lm_y,lm_w,lm_h,lm_pos_x,"
-         "lm_pos_y,lm_pos_z,rigid_pairs,rigid_rms_m,cpu_seconds,s_roi,s_features,s_confirm,s_query,"
-         "score,alt_score\n";
-  for (std::size_t i = 0; i < results.size(); ++i)
-  {
-    const auto& r = results[i];
-    csv << r.frame << ',' << fmt(r.timestamp, 6) << ',' << r.statusText() << ',' << r.landmarkId
-        << ',' << (r.newLandmark ? 1 : 0) << ',' << r.matches << ',' << r.falseMatches << ','
-        << fmt(r.seconds, 5) << ',' << r.features << ',' << r.roiFeatures << ',' << r.depthValid
-        << ',' << fmt(r.depthMean) << ',' << fmt(r.depthMedian) << ',';
-    if (r.roi)
-      csv << r.roi->x << ',' << r.roi->y << ',' << r.roi->width << ',' << r.roi->height;
-    else
-      csv << ",,,";
-    csv << ',' << r.recallInliers << ',' << r.candidates << ',';
-    auto point = [&](const std::optional<mrpt::math::TPoint3D>& p)
-    {
-      if (p)
-        csv << fmt(p->x) << ',' << fmt(p->y) << ',' << fmt(p->z);
-      else
-        csv << ",,";
-    };
-    point(r.roiPosition);
-    csv << ',';
-    if (r.landmarkBox)
-      csv << r.landmarkBox->x << ',' << r.landmarkBox->y << ',' << r.landmarkBox->width << ','
-          << r.landmarkBox->height;
-    else
-      csv << ",,,";
-    csv << ',';
-    point(r.landmarkPosition);
-    csv << ',' << r.rigidInliers << ',' << fmt(r.rigidRms) << ',' << fmt(r.cpuSeconds, 5) << ','
-        << fmt(r.secondsRoi, 5) << ',' << fmt(r.secondsFeatures, 5) << ','
-        << fmt(r.secondsConfirm, 5) << ',' << fmt(r.secondsQuery, 5) << ',' << outcome[i] << ','
-        << altOutcome[i] << '\n';
-  }
-  writeTextAtomically((outDir / "frames.csv").string(), csv.str());
-
+  common::writeFileAtomically((outDir / "frames.csv").string(), framesCsv(log, scores));
   processor.tracker().database().save((outDir / "landmarks.db").string());
+  commitAnnotatedRawlog(rawlog);
 
-  if (rawlog)
+  if (kfSlam)
   {
-    rawlog->close();
-    rawlog.reset();
-    fs::rename(rawlogTmp, rawlogTmp.substr(0, rawlogTmp.size() - 4), ec);
-    if (ec)
-      throw std::runtime_error(*m_args.outputRawlog + ": cannot write: " + ec.message());
+    progress(
+        "roi-landmarks: running MRPT's EKF-SLAM (CRangeBearingKFSLAM) on " +
+        (fs::path(m_args.outputDir) / fs::path(kfSlam->rawlogFile()).filename()).string());
+    sum.kfSlam = kfSlam->finish(gt);
+    progress(kfSlamLine(sum.kfSlam));
   }
-
   sum.wallS = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
-  nlohmann::json j;
-  j["input"] = m_args.input;
-  j["sequence"] = source->name();
-  j["feature"] = features::toString(m_options.features.feature_type);
-  j["max_features"] = m_options.features.max_features;
-  j["roi_preset"] = m_options.roi.preset;
-  j["ground_truth"] = scorer ? nlohmann::json(*gtFile) : nlohmann::json(nullptr);
-  j["match_radius"] = m_options.scoring.match_radius;
-  j["frames"] = sum.frames;
-  j["frames_with_roi"] = sum.framesWithRoi;
-  j["confirmed_rois"] = sum.confirmedRois;
-  j["landmarks"] = sum.landmarks;
-  j["recalls"] = sum.recalls;
-  j["true_positives"] = orNull(sum.truePositives);
-  j["false_positives"] = orNull(sum.falsePositives);
-  j["false_negatives"] = orNull(sum.falseNegatives);
-  j["unscored"] = orNull(sum.unscored);
-  j["precision"] = orNull(sum.precision);
-  j["recall"] = orNull(sum.recall);
-  j["recall_position"] = sum.recallPosition;
-  if (altScore)
-  {
-    j["alternative_scoring"] = {{"recall_position", sum.altRecallPosition},
-                                {"true_positives", altScore->truePositives},
-                                {"false_positives", altScore->falsePositives},
-                                {"false_negatives", altScore->falseNegatives},
-                                {"precision", orNull(altScore->precision)},
-                                {"recall", orNull(altScore->recall)}};
-  }
-  else
-    j["alternative_scoring"] = nullptr;
-  j["matches_per_frame"] = sum.matchesPerFrame;
-  j["false_matches_per_frame"] = sum.falseMatchesPerFrame;
-  j["duration_s"] = sum.durationS;
-  j["fps"] = sum.fps;
-  // Calling thread only: OpenCV's worker threads (SIFT) are not included.
-  j["cpu_s_main_thread"] = sum.cpuS;
-  j["wall_s"] = sum.wallS;
-  j["fps_wall"] = sum.wallS > 0 ? sum.frames / sum.wallS : 0;
-  writeTextAtomically((outDir / "summary.json").string(), j.dump(2) + "\n");
+  auto j = summaryJson(runJson(m_args, m_options, source->name(), gtFile), sum, scores);
+  if (kfSlam)
+    j["kf_slam"] = sum.kfSlam;
+  common::writeFileAtomically((outDir / "summary.json").string(), j.dump(2) + "\n");
   folder.commit();
-
-  std::ostringstream done;
-  done << "done: " << sum.frames << " frames, " << sum.landmarks << " landmarks, " << sum.recalls
-       << " recalls";
-  if (score)
-    done << ", TP " << score->truePositives << " FP " << score->falsePositives << " FN "
-         << score->falseNegatives << ", precision " << fmt(sum.precision.value_or(NAN), 3)
-         << " recall " << fmt(sum.recall.value_or(NAN), 3) << " (" << sum.recallPosition << "; "
-         << sum.altRecallPosition << ": TP " << altScore->truePositives << " FP "
-         << altScore->falsePositives << " FN " << altScore->falseNegatives << ")";
-  done << ", " << fmt(sum.fps, 1) << " fps (pipeline), " << fmt(sum.wallS, 1) << " s wall";
-  progress(done.str());
+  progress(doneLine(sum, scores));
   return sum;
 }
+
 }  // namespace roislam::landmarks

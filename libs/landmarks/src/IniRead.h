@@ -1,31 +1,23 @@
-/* Private helpers: strict reading of ini values (MRPT's read_double accepts
- * "abc" as 0); errors name the section and key. */
+/* Private: the landmarks' TOptions loaders read their values strictly with
+ * common's readers (common/IniRead.h); errors name the section and key. */
 #pragma once
 
-#include <mrpt/config/CConfigFileBase.h>
+#include <roislam/common/IniErrors.h>
+#include <roislam/common/IniRead.h>
 
 #include <string>
 
 namespace roislam::landmarks::detail
 {
-[[noreturn]] void throwBadValue(
-    const std::string& section, const std::string& key, const std::string& what);
+using common::readBool;
+using common::readDouble;
+using common::readInt;
+using common::readString;
+using common::require;
 
-double readDouble(
-    const mrpt::config::CConfigFileBase& cfg, const std::string& section, const std::string& key,
-    double defaultValue);
-int readInt(
-    const mrpt::config::CConfigFileBase& cfg, const std::string& section, const std::string& key,
-    int defaultValue);
-bool readBool(
-    const mrpt::config::CConfigFileBase& cfg, const std::string& section, const std::string& key,
-    bool defaultValue);
-std::string readString(
-    const mrpt::config::CConfigFileBase& cfg, const std::string& section, const std::string& key,
-    const std::string& defaultValue);
-
-/** Throws "[section] key: must be <what> (got v)" unless ok. */
-void require(
-    bool ok, const std::string& section, const std::string& key, double value,
-    const std::string& what);
+[[noreturn]] inline void throwBadValue(
+    const std::string& section, const std::string& key, const std::string& what)
+{
+  common::throwBadIniKey(section, key, what);
+}
 }  // namespace roislam::landmarks::detail

@@ -64,6 +64,7 @@ void TPipelineOptions::load(const mrpt::config::CConfigFileBase& cfg, const std:
   loadSection(cfg, "RoiLandmarks", tracker, {}, fileLabel);
   loadSection(cfg, "LandmarkScoring", scoring, {}, fileLabel);
   loadSection(cfg, "ObservationProcessor", observations, {}, fileLabel);
+  loadSection(cfg, "KfSlam", kfSlam, {}, fileLabel);
 }
 
 void TPipelineOptions::loadFromFile(const std::string& file)
@@ -82,5 +83,6 @@ void TPipelineOptions::save(mrpt::config::CConfigFileBase& cfg) const
   tracker.saveToConfigFile(cfg, "RoiLandmarks");
   scoring.saveToConfigFile(cfg, "LandmarkScoring");
   observations.saveToConfigFile(cfg, "ObservationProcessor");
+  kfSlam.saveToConfigFile(cfg, "KfSlam");
 }
 }  // namespace roislam::landmarks

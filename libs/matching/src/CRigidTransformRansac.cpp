@@ -2,6 +2,7 @@
 
 #include <mrpt/config/CConfigFileBase.h>
 #include <roislam/common/IniErrors.h>
+#include <roislam/geometry/RigidAlignment.h>
 
 #include <Eigen/Dense>
 #include <algorithm>
@@ -24,6 +25,8 @@ void check(const CRigidTransformRansac::TOptions& o, const std::string& s)
     common::throwBadIniKey(s, "confidence", "must be in (0, 1)");
   if (o.min_inliers < 3)
     common::throwBadIniKey(s, "min_inliers", "must be >= 3");
+  if (!(o.min_sample_spread >= 0))
+    common::throwBadIniKey(s, "min_sample_spread", "must be >= 0");
 }
 
 inline Eigen::Vector3d toEigen(const mrpt::math::TPoint3D& p)
@@ -31,48 +34,16 @@ inline Eigen::Vector3d toEigen(const mrpt::math::TPoint3D& p)
   return {p.x, p.y, p.z};
 }
 
-struct TRigid
+/** The least-squares motion over the pairs at idx, or nullopt when their
+ *  source points are collinear (rotation undetermined). */
+std::optional<geometry::TRigid> refit(
+    const std::vector<Eigen::Vector3d>& a, const std::vector<Eigen::Vector3d>& b,
+    const std::vector<std::size_t>& idx)
 {
-  Eigen::Matrix3d R = Eigen::Matrix3d::Identity();
-  Eigen::Vector3d t = Eigen::Vector3d::Zero();
-};
-
-// Umeyama/Horn closed form without scale over pairs (a[i] ~= R b[i] + t).
-// Returns false when the cross-covariance is rank-deficient (collinear points).
-template <typename IndexFn>
-bool fitRigid(
-    const std::vector<Eigen::Vector3d>& a, const std::vector<Eigen::Vector3d>& b, std::size_t n,
-    IndexFn idx, TRigid& out)
-{
-  if (n < 3)
-    return false;
-  Eigen::Vector3d ca = Eigen::Vector3d::Zero(), cb = Eigen::Vector3d::Zero();
-  for (std::size_t k = 0; k < n; ++k)
-  {
-    ca += a[idx(k)];
-    cb += b[idx(k)];
-  }
-  ca /= static_cast<double>(n);
-  cb /= static_cast<double>(n);
-  Eigen::Matrix3d S = Eigen::Matrix3d::Zero();
-  for (std::size_t k = 0; k < n; ++k)
-    S += (a[idx(k)] - ca) * (b[idx(k)] - cb).transpose();
-  Eigen::JacobiSVD<Eigen::Matrix3d> svd(S, Eigen::ComputeFullU | Eigen::ComputeFullV);
-  const Eigen::Vector3d sv = svd.singularValues();
-  // Rank < 2 means the points are (nearly) collinear: rotation undetermined.
-  if (!(sv(1) > 1e-9 * std::max(1.0, sv(0))))
-    return false;
-  Eigen::Matrix3d D = Eigen::Matrix3d::Identity();
-  if ((svd.matrixU() * svd.matrixV().transpose()).determinant() < 0)
-    D(2, 2) = -1;
-  out.R = svd.matrixU() * D * svd.matrixV().transpose();
-  out.t = ca - out.R * cb;
-  return true;
-}
-
-mrpt::poses::CPose3D toPose(const TRigid& T)
-{
-  return mrpt::poses::CPose3D::FromRotationAndTranslation(T.R, T.t);
+  const auto [A, B] = geometry::gatherPairs(a, b, idx);
+  if (geometry::collinear(B))
+    return std::nullopt;
+  return geometry::alignRigid(A, B);
 }
 }  // namespace
 
@@ -87,6 +58,7 @@ void CRigidTransformRansac::TOptions::loadFromConfigFile(
   if (sd < 0)
     common::throwBadIniKey(s, "seed", "must be >= 0");
   seed = static_cast<std::uint32_t>(sd);
+  min_sample_spread = c.read_double(s, "min_sample_spread", min_sample_spread);
   check(*this, s);
 }
 
@@ -98,6 +70,7 @@ void CRigidTransformRansac::TOptions::saveToConfigFile(
   c.write(s, "confidence", confidence);
   c.write(s, "min_inliers", min_inliers);
   c.write(s, "seed", static_cast<int>(seed));
+  c.write(s, "min_sample_spread", min_sample_spread);
 }
 
 CRigidTransformRansac::CRigidTransformRansac() : CRigidTransformRansac(TOptions()) {}
@@ -105,38 +78,6 @@ CRigidTransformRansac::CRigidTransformRansac() : CRigidTransformRansac(TOptions(
 CRigidTransformRansac::CRigidTransformRansac(const TOptions& options) : m_options(options)
 {
   check(m_options, "RigidRansac");
-}
-
-std::optional<mrpt::poses::CPose3D> CRigidTransformRansac::fitLeastSquares(
-    const std::vector<mrpt::math::TPoint3D>& target,
-    const std::vector<mrpt::math::TPoint3D>& source, const std::vector<std::size_t>& indices)
-{
-  if (target.size() != source.size())
-    throw std::invalid_argument("CRigidTransformRansac::fitLeastSquares: size mismatch");
-  std::vector<Eigen::Vector3d> a, b;
-  a.reserve(target.size());
-  b.reserve(source.size());
-  for (std::size_t i = 0; i < target.size(); ++i)
-  {
-    a.push_back(toEigen(target[i]));
-    b.push_back(toEigen(source[i]));
-  }
-  TRigid T;
-  bool ok = false;
-  if (indices.empty())
-    ok = fitRigid(
-        a, b, a.size(), [](std::size_t k) { return k; }, T);
-  else
-  {
-    for (auto i : indices)
-      if (i >= a.size())
-        throw std::out_of_range("CRigidTransformRansac::fitLeastSquares: index out of range");
-    ok = fitRigid(
-        a, b, indices.size(), [&](std::size_t k) { return indices[k]; }, T);
-  }
-  if (!ok)
-    return std::nullopt;
-  return toPose(T);
 }
 
 std::optional<TRigidRansacResult> CRigidTransformRansac::estimate(
@@ -158,8 +99,9 @@ std::optional<TRigidRansacResult> CRigidTransformRansac::estimate(
   }
   const double thr = m_options.threshold_m;
   const double thr2 = thr * thr;
+  const double minSpread = m_options.min_sample_spread * thr;
 
-  auto countInliers = [&](const TRigid& T, std::vector<std::size_t>* out, double* sumSq)
+  auto countInliers = [&](const geometry::TRigid& T, std::vector<std::size_t>* out, double* sumSq)
   {
     std::size_t c = 0;
     double s = 0;
@@ -183,7 +125,7 @@ std::optional<TRigidRansacResult> CRigidTransformRansac::estimate(
   std::uniform_int_distribution<std::size_t> pick(0, n - 1);
   std::size_t bestCount = 0;
   double bestSumSq = std::numeric_limits<double>::max();
-  TRigid best;
+  geometry::TRigid best;
   int needed = m_options.max_iterations;
   int it = 0;
   const double logFail = std::log(1.0 - m_options.confidence);
@@ -203,15 +145,20 @@ std::optional<TRigidRansacResult> CRigidTransformRansac::estimate(
     {
       const int q = (p + 1) % 3;
       const double da = (a[s[p]] - a[s[q]]).norm(), db = (b[s[p]] - b[s[q]]).norm();
-      if (std::abs(da - db) > 2 * thr || db < 2 * thr)
+      if (std::abs(da - db) > 2 * thr || db < minSpread)
         consistent = false;
     }
     if (!consistent)
       continue;
-    TRigid T;
-    if (!fitRigid(
-            a, b, 3, [&](std::size_t k) { return s[k]; }, T))
+    Eigen::Matrix3d A, B;
+    for (int k = 0; k < 3; ++k)
+    {
+      A.col(k) = a[s[k]];
+      B.col(k) = b[s[k]];
+    }
+    if (geometry::collinear(B))
       continue;
+    const geometry::TRigid T = geometry::alignRigid(A, B);
     double sumSq = 0;
     const std::size_t c = countInliers(T, nullptr, &sumSq);
     if (c > bestCount || (c == bestCount && sumSq < bestSumSq))
@@ -234,20 +181,19 @@ std::optional<TRigidRansacResult> CRigidTransformRansac::estimate(
 
   // Least-squares refit on the inliers, repeated while the inlier set grows.
   TRigidRansacResult res;
-  TRigid T = best;
+  geometry::TRigid T = best;
   std::vector<std::size_t> inl;
   countInliers(T, &inl, nullptr);
   for (int round = 0; round < 3; ++round)
   {
-    TRigid refit;
-    if (!fitRigid(
-            a, b, inl.size(), [&](std::size_t k) { return inl[k]; }, refit))
+    const auto next = refit(a, b, inl);
+    if (!next)
       break;
     std::vector<std::size_t> inl2;
-    countInliers(refit, &inl2, nullptr);
+    countInliers(*next, &inl2, nullptr);
     if (inl2.size() < inl.size())
       break;
-    T = refit;
+    T = *next;
     const bool same = inl2 == inl;
     inl.swap(inl2);
     if (same)
@@ -258,7 +204,7 @@ std::optional<TRigidRansacResult> CRigidTransformRansac::estimate(
   double sumSq = 0;
   for (auto i : inl)
     sumSq += (T.R * b[i] + T.t - a[i]).squaredNorm();
-  res.transform = toPose(T);
+  res.transform = T.toPose();
   res.inliers = std::move(inl);
   res.rmse = std::sqrt(sumSq / static_cast<double>(res.inliers.size()));
   res.iterations = it;

@@ -23,6 +23,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "roislam/io/TumAccelerometer.h"
 #include "roislam/io/TumTrajectory.h"
 #include "roislam/sim/CKinectNoiseModel.h"
 
@@ -189,6 +190,21 @@ mrpt::poses::CPose3D CRgbdSimulator::groundTruthPose(std::size_t i) const
   return m_path.opticalPoseAt(static_cast<double>(i) / m_opts.fps);
 }
 
+mrpt::math::TVector3D CRgbdSimulator::accelerometerReading(std::size_t i) const
+{
+  // Second central difference of the (smooth, analytic) path.
+  const double t = static_cast<double>(i) / m_opts.fps, h = 1e-3;
+  const auto p0 = m_path.opticalPoseAt(t - h).translation();
+  const auto p1 = m_path.opticalPoseAt(t).translation();
+  const auto p2 = m_path.opticalPoseAt(t + h).translation();
+  const mrpt::math::TVector3D accel = (p2 - p1 * 2.0 + p0) * (1.0 / (h * h));
+  // An accelerometer at rest reads +g upwards (the specific force).
+  const mrpt::math::TVector3D specificWorld = accel + mrpt::math::TVector3D(0, 0, 9.81);
+  const mrpt::math::TVector3D optical = m_path.opticalPoseAt(t).inverseRotateVector(specificWorld);
+  // The axis change is a half turn about z, its own inverse.
+  return io::accelerometerToOptical(optical);
+}
+
 CRgbdSimulator::TFrame CRgbdSimulator::renderFrame(std::size_t i)
 {
   if (i >= m_opts.frames)
@@ -317,6 +333,9 @@ CRgbdSimulator::TWriteStats CRgbdSimulator::writeSequence(const std::string& out
     rgbTxt << "# color images\n# file: '" << desc << "'\n# timestamp filename\n";
     depthTxt << "# depth maps\n# file: '" << desc << "'\n# timestamp filename\n";
     roislam::io::TTrajectory gt;
+    roislam::io::TAccelerometerLog accelerometer;
+    // Its own noise stream, so the images do not change with it.
+    mrpt::random::CRandomGenerator accelRng(m_opts.seed * 2246822519u + 0x165667b1u);
     cv::Mat depth16;
     for (std::size_t i = 0; i < m_opts.frames; ++i)
     {
@@ -332,6 +351,12 @@ CRgbdSimulator::TWriteStats CRgbdSimulator::writeSequence(const std::string& out
       rgbTxt << stampName(f.timestamp) << ' ' << rgbName << '\n';
       depthTxt << stampName(f.depthTimestamp) << ' ' << depthName << '\n';
       gt.push_back({f.timestamp, f.pose});
+      auto reading = accelerometerReading(i);
+      if (m_opts.noise)
+        reading += mrpt::math::TVector3D(
+            accelRng.drawGaussian1D(0, 0.05), accelRng.drawGaussian1D(0, 0.05),
+            accelRng.drawGaussian1D(0, 0.05));
+      accelerometer.push_back({f.timestamp, reading});
       st.renderSeconds += std::chrono::duration<double>(r1 - r0).count();
       st.writeSeconds += std::chrono::duration<double>(Clock::now() - r1).count();
       MRPT_LOG_DEBUG_STREAM("frame " << i << " written");
@@ -342,6 +367,9 @@ CRgbdSimulator::TWriteStats CRgbdSimulator::writeSequence(const std::string& out
     roislam::io::saveTumTrajectory(
         (tmp / "groundtruth.txt").string(), gt,
         "ground truth of " + desc + ": colour optical centre in the world");
+    roislam::io::saveTumAccelerometer(
+        (tmp / "accelerometer.txt").string(), accelerometer,
+        "accelerometer data of " + desc + " (TUM Kinect axes)");
 
     mrpt::config::CConfigFileMemory camCfg;
     camera().saveToConfigFile("CAMERA_PARAMS", camCfg);

@@ -1,12 +1,15 @@
 // CRgbdSimulator::TOptions: the [RgbdSimulator] ini section, read strictly
 // (every value must parse completely, unknown keys are errors), and checked.
 #include <mrpt/config/CConfigFileBase.h>
+#include <mrpt/system/string_utils.h>
+#include <roislam/common/IniRead.h>
 
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
 #include <iomanip>
 #include <limits>
+#include <optional>
 #include <set>
 #include <sstream>
 #include <stdexcept>
@@ -19,14 +22,6 @@ namespace roislam::sim
 {
 namespace
 {
-std::string trim(const std::string& s)
-{
-  const auto b = s.find_first_not_of(" \t\r\n");
-  if (b == std::string::npos)
-    return "";
-  return s.substr(b, s.find_last_not_of(" \t\r\n") - b + 1);
-}
-
 std::string fmtDouble(double v)
 {
   std::ostringstream o;
@@ -49,7 +44,7 @@ class CKeyReader
     m_known.insert(key);
     if (!m_cfg.keyExists(m_sec, key))
       return;
-    const std::string s = trim(m_cfg.read_string(m_sec, key, ""));
+    const std::string s = mrpt::system::trim(m_cfg.read_string(m_sec, key, ""));
     if (!parse(s, value))
       throw std::invalid_argument(
           "[" + m_sec + "] " + key + ": cannot parse '" + s + "' as " + typeName(value));
@@ -65,33 +60,21 @@ class CKeyReader
   }
 
  private:
-  static bool parse(const std::string& s, double& v)
+  // The text rules are common's (common/IniRead.h); the policy (a present
+  // key must hold a value) is this reader's.
+  template <typename T>
+  static bool assign(const std::optional<T>& parsed, T& v)
   {
-    if (s.empty())
-      return false;
-    char* end = nullptr;
-    v = std::strtod(s.c_str(), &end);
-    return *end == '\0' && std::isfinite(v);
+    if (parsed)
+      v = *parsed;
+    return parsed.has_value();
   }
+  static bool parse(const std::string& s, double& v) { return assign(common::parseDouble(s), v); }
   static bool parse(const std::string& s, unsigned& v)
   {
-    if (s.empty() || s[0] == '-')
-      return false;
-    char* end = nullptr;
-    const unsigned long long x = std::strtoull(s.c_str(), &end, 10);
-    if (*end != '\0' || x > std::numeric_limits<uint32_t>::max())
-      return false;
-    v = static_cast<unsigned>(x);
-    return true;
+    return assign(common::parseUnsigned(s), v);
   }
-  static bool parse(const std::string& s, bool& v)
-  {
-    if (s == "true" || s == "1" || s == "yes" || s == "on")
-      return v = true, true;
-    if (s == "false" || s == "0" || s == "no" || s == "off")
-      return v = false, true;
-    return false;
-  }
+  static bool parse(const std::string& s, bool& v) { return assign(common::parseBool(s), v); }
   static bool parse(const std::string& s, std::string& v)
   {
     v = s;

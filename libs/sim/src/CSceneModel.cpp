@@ -166,19 +166,21 @@ CSceneModel::TSceneType CSceneModel::sceneTypeFromString(const std::string& s)
   throw std::invalid_argument("unknown scene '" + s + "' (expected textured|featureless)");
 }
 
-CSceneModel CSceneModel::build(TSceneType type, uint32_t textureSeed, double texelsPerMetre)
+namespace
 {
-  if (!(texelsPerMetre >= 50 && texelsPerMetre <= 3000))
-    throw std::invalid_argument("texels per metre must be in [50, 3000]");
-  CSceneModel m;
-  // Room interior and furniture (metres). The desk stands against the front wall.
-  const double x0 = -1.2, x1 = 2.4, y0 = -1.6, y1 = 1.6, zTop = 2.6;
-  const double deskX0 = 1.6, deskY = 1.0, deskH = 0.74;
-  const double overlap = 0.01;  // faces reach into neighbours: no cracks at corners
-  m.m_roomMin = {x0, y0, 0};
-  m.m_roomMax = {x1, y1, zTop};
+/** The room's interior and the desk, metres. */
+struct TRoomSize
+{
+  double x0 = -1.2, x1 = 2.4, y0 = -1.6, y1 = 1.6, zTop = 2.6;
+  double deskX0 = 1.6, deskY = 1.0, deskH = 0.74;
+  /** Faces reach into their neighbours: no cracks at corners. */
+  double overlap = 0.01;
+};
 
-  CRoomBuilder b(type, textureSeed, texelsPerMetre);
+/** Floor, ceiling and the four walls with their posters and pages. */
+void addRoomSurfaces(CRoomBuilder& b, const TRoomSize& r)
+{
+  const double x0 = r.x0, x1 = r.x1, y0 = r.y0, y1 = r.y1, zTop = r.zTop, overlap = r.overlap;
   auto& rng = b.rng();
   const bool tx = b.textured();
   const double d1 = b.pxPerMetre(1.0);
@@ -253,8 +255,14 @@ CSceneModel CSceneModel::build(TSceneType type, uint32_t textureSeed, double tex
       place(t, 0.5 * d1, 1.2, 0.8, makePoster(rng, metres(0.8, 0.6, 0.5 * d1)));
     b.add("wall_back", {x0, 0, zTop / 2}, {1, 0, 0}, {0, 0, 1}, w, h, t);
   }
+}
 
-  // Desk: a solid block against the front wall, wooden, with papers on top.
+/** The desk: a solid wooden block against the front wall, papers on top. */
+void addDesk(CRoomBuilder& b, const TRoomSize& r)
+{
+  const double x1 = r.x1, deskX0 = r.deskX0, deskY = r.deskY, deskH = r.deskH;
+  auto& rng = b.rng();
+  const bool tx = b.textured();
   const double dDesk = 1.5;
   const double dk = b.pxPerMetre(dDesk);
   b.addBox(
@@ -272,8 +280,13 @@ CSceneModel CSceneModel::build(TSceneType type, uint32_t textureSeed, double tex
         }
         return t;
       });
+}
 
-  // Desk objects, densest textures (seen from about 1 m).
+/** The objects on the desk, with the densest textures (seen from about 1 m). */
+void addDeskObjects(CRoomBuilder& b, double deskH)
+{
+  auto& rng = b.rng();
+  const bool tx = b.textured();
   const double dObj = 2.5;
   const double dob = b.pxPerMetre(dObj);
   b.addBox(
@@ -339,7 +352,22 @@ CSceneModel CSceneModel::build(TSceneType type, uint32_t textureSeed, double tex
         }
         return makeNoiseTexture(rng, s, {50, 50, 50}, 20, 2);
       });
+}
+}  // namespace
 
+CSceneModel CSceneModel::build(TSceneType type, uint32_t textureSeed, double texelsPerMetre)
+{
+  if (!(texelsPerMetre >= 50 && texelsPerMetre <= 3000))
+    throw std::invalid_argument("texels per metre must be in [50, 3000]");
+  CSceneModel m;
+  const TRoomSize r;
+  m.m_roomMin = {r.x0, r.y0, 0};
+  m.m_roomMax = {r.x1, r.y1, r.zTop};
+  // In this order: the texture generator's draws follow it.
+  CRoomBuilder b(type, textureSeed, texelsPerMetre);
+  addRoomSurfaces(b, r);
+  addDesk(b, r);
+  addDeskObjects(b, r.deskH);
   m.m_rects = b.take();
   return m;
 }

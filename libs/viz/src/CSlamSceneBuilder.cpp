@@ -1,7 +1,9 @@
 #include <mrpt/opengl/CGridPlaneXY.h>
+#include <mrpt/opengl/CPointCloud.h>
 #include <mrpt/opengl/CPointCloudColoured.h>
 #include <mrpt/opengl/CSetOfLines.h>
 #include <roislam/viz/CSlamSceneBuilder.h>
+#include <roislam/viz/SceneBounds.h>
 
 #include <algorithm>
 #include <cmath>
@@ -25,55 +27,83 @@ mrpt::opengl::CSetOfLines::Ptr makePolyline(
         points[i - 1].x, points[i - 1].y, points[i - 1].z, points[i].x, points[i].y, points[i].z);
   return lines;
 }
+
+mrpt::opengl::CPointCloudColoured::Ptr makeCloud(
+    const mrpt::maps::CColouredPointsMap& map, float pointSize, double maxHeight)
+{
+  auto cloud = mrpt::opengl::CPointCloudColoured::Create();
+  cloud->setName("map_cloud");
+  if (std::isinf(maxHeight))
+    cloud->loadFromPointsMap(&map);
+  else
+  {
+    mrpt::maps::CColouredPointsMap cut;
+    for (std::size_t i = 0; i < map.size(); ++i)
+    {
+      float x, y, z, r, g, b;
+      map.getPointRGB(i, x, y, z, r, g, b);
+      if (z <= maxHeight)
+        cut.insertPointRGB(x, y, z, r, g, b);
+    }
+    cloud->loadFromPointsMap(&cut);
+  }
+  cloud->setPointSize(pointSize);
+  return cloud;
+}
 }  // namespace
+
+double CSlamSceneBuilder::gridSpacing(const TSceneContent& content) const
+{
+  if (m_options.gridSpacing > 0)
+    return m_options.gridSpacing;
+  const auto bb = robustBounds(content);
+  if (!bb)
+    return 1.0;
+  return niceGridSpacing(std::max(bb->max.x - bb->min.x, bb->max.y - bb->min.y));
+}
 
 mrpt::opengl::COpenGLScene::Ptr CSlamSceneBuilder::build(const TSceneContent& content) const
 {
   auto scene = mrpt::opengl::COpenGLScene::Create();
-  // Bounding box of everything shown, for the grid.
-  double lo[3] = {1e30, 1e30, 1e30}, hi[3] = {-1e30, -1e30, -1e30};
-  auto grow = [&](double x, double y, double z)
-  {
-    const double p[3] = {x, y, z};
-    for (int k = 0; k < 3; ++k)
-    {
-      lo[k] = std::min(lo[k], p[k]);
-      hi[k] = std::max(hi[k], p[k]);
-    }
-  };
-
   if (content.cloud.size() > 0)
-  {
-    auto cloud = mrpt::opengl::CPointCloudColoured::Create();
-    cloud->setName("map_cloud");
-    cloud->loadFromPointsMap(&content.cloud);
-    cloud->setPointSize(m_options.pointSize);
-    scene->insert(cloud);
-    const auto bb = content.cloud.boundingBox();
-    grow(bb.min.x, bb.min.y, bb.min.z);
-    grow(bb.max.x, bb.max.y, bb.max.z);
-  }
+    scene->insert(makeCloud(content.cloud, m_options.pointSize, m_options.maxPointHeight));
   if (content.mapObject)
   {
     content.mapObject->setName("map_object");
     scene->insert(content.mapObject);
   }
-  if (content.groundTruth.size() > 1)
-    scene->insert(makePolyline(
-        content.groundTruth, mrpt::img::TColor(0, 160, 0), m_options.trajectoryWidth,
-        "ground_truth"));
-  if (content.trajectory.size() > 1)
-    scene->insert(makePolyline(
-        content.trajectory, mrpt::img::TColor(0, 0, 220), m_options.trajectoryWidth, "trajectory"));
-  for (const auto& p : content.trajectory)
-    grow(p.x, p.y, p.z);
-  for (const auto& p : content.groundTruth)
-    grow(p.x, p.y, p.z);
-
-  if (m_options.showGrid && lo[0] <= hi[0])
+  if (m_options.showTrajectories)
   {
+    if (content.groundTruth.size() > 1)
+      scene->insert(makePolyline(
+          content.groundTruth, mrpt::img::TColor(0, 160, 0), m_options.trajectoryWidth,
+          "ground_truth"));
+    if (content.trajectory.size() > 1)
+      scene->insert(makePolyline(
+          content.trajectory, mrpt::img::TColor(0, 60, 220), m_options.trajectoryWidth,
+          "trajectory"));
+    if (!content.keyframes.empty())
+    {
+      auto kf = mrpt::opengl::CPointCloud::Create();
+      kf->setName("keyframes");
+      for (const auto& p : content.keyframes)
+        kf->insertPoint(p.x, p.y, p.z);
+      kf->setColor_u8(mrpt::img::TColor(0, 30, 120));
+      kf->setPointSize(m_options.keyframeSize);
+      scene->insert(kf);
+    }
+  }
+
+  const auto bb = robustBounds(content);
+  if (m_options.showGrid && bb)
+  {
+    const double s = gridSpacing(content);
     auto grid = mrpt::opengl::CGridPlaneXY::Create(
-        std::floor(lo[0]), std::ceil(hi[0]), std::floor(lo[1]), std::ceil(hi[1]), lo[2], 1.0f);
+        static_cast<float>(s * std::floor(bb->min.x / s)),
+        static_cast<float>(s * std::ceil(bb->max.x / s)),
+        static_cast<float>(s * std::floor(bb->min.y / s)),
+        static_cast<float>(s * std::ceil(bb->max.y / s)), static_cast<float>(bb->min.z),
+        static_cast<float>(s));
     grid->setName("grid");
     grid->setColor_u8(mrpt::img::TColor(180, 180, 180));
     scene->insert(grid);

@@ -1,12 +1,18 @@
 /* The experiment plan of roi-bench: the runs of Tests 1-3 (the dissertation's
- * evaluation, /work/shared/MISSION.md) for a set of sequences, each with its
- * folder and exact command line. Test 1: roi-landmarks per sequence x feature.
- * Test 2: roi-graphslam per sequence x mode x feature, capped features. Test 3:
- * the test-3 feature capped low, traditional vs big ROI. ROI modes of Tests 2-3
- * run once per variant (strict = dissertation, fallback = ours).
+ * evaluation, /work/shared/MISSION.md) and the optional Test 4 for a set of
+ * sequences, each with its folder and exact command line. Test 1:
+ * roi-landmarks per sequence x feature, once plain and once per Test-1
+ * variant (default "hue": [RoiDetector] verify_hue = true). Test 2:
+ * roi-graphslam per sequence x mode x feature, capped features. Test 3: the
+ * test-3 feature capped low, traditional vs big ROI. ROI modes of Tests 2-3
+ * run once per variant (strict = dissertation, fallback = ours). Test 4 (not
+ * in the default list): EKF-SLAM on ROI landmarks, per sequence x feature
+ * roi-landmarks --kf-slam (its summary also holds the odometry alone) and
+ * roi-graphslam with the same front end (roi_big.ini, whose [FrontEnd]
+ * [KfSlam] front_end_ini names), for the three-way comparison.
  *
  * ini section [Bench] (TOptions):
- *   tests               list of 1,2,3   1,2,3          tests to plan
+ *   tests               list of 1..4    1,2,3          tests to plan
  *   features            list            surf,sift,orb  extractors
  *   modes               list            traditional,roi_small,roi_big (test 2)
  *   test1_max_features  int >= 0        0              0 = app default (not passed)
@@ -15,7 +21,8 @@
  *   test3_feature       string          surf
  *   test3_modes         list            traditional,roi_big
  *   snapshots           bool            false          false passes --no-snapshot
- * Variants are set in code or by roi-bench --variant (not from the ini).
+ * Variants (variants: Tests 2-3; test1_variants: Test 1) are set in code or
+ * by roi-bench --variant / --no-default-variants (not from the ini).
  */
 #pragma once
 
@@ -46,6 +53,7 @@ class CExperimentPlan
     std::vector<std::string> test3_modes{"traditional", "roi_big"};
     bool snapshots = false;
     std::vector<TVariant> variants = defaultVariants();
+    std::vector<TVariant> test1_variants = defaultTest1Variants();
 
     /** Throws std::invalid_argument "[<section>] <key>: ..." on a bad value. */
     void validate(const std::string& section = "Bench") const;
@@ -77,7 +85,7 @@ class CExperimentPlan
    *  any sequence. */
   static std::vector<TSequence> discoverSequences(const std::vector<std::string>& dirs);
 
-  /** Parses "1,2,3" into a set; throws std::invalid_argument on other values. */
+  /** Parses "1,2,3,4" into a set; throws std::invalid_argument on other values. */
   static std::set<int> parseTests(const std::string& text);
 
   const TOptions& options() const { return m_options; }
@@ -88,5 +96,11 @@ class CExperimentPlan
   TBenchRun makeRun(
       int test, const TSequence& seq, const std::string& mode, const std::string& feature,
       int maxFeatures, const TVariant* variant) const;
+  /** Test 4: kind "kf_slam" (roi-landmarks --kf-slam) or "graph_slam"
+   *  (roi-graphslam, big ROI, the EKF's front end). */
+  TBenchRun makeTest4Run(
+      const TSequence& seq, const std::string& kind, const std::string& feature) const;
+  /** The folder, output and executable of a run whose id is set. */
+  void placeRun(TBenchRun& r) const;
 };
 }  // namespace roislam::bench

@@ -1,6 +1,7 @@
 /* Writes report.md: the dissertation's tables (Test 1 per-sequence landmarks,
- * precision/recall per extractor; Test 2 mean +- std of ATE / RPE per version
- * x extractor, durations, per-sequence table; Test 3; speed) from run records,
+ * precision/recall per extractor, with and without hue verification; Test 2
+ * mean +- std of ATE / RPE per version x extractor, durations, per-sequence
+ * table; Test 3; Test 4, EKF-SLAM vs odometry vs graph SLAM; speed) from run records,
  * each figure next to the dissertation's. Failed runs appear as failures,
  * never dropped. Called by CBenchApp after the runs.
  */
@@ -9,7 +10,9 @@
 #include <roislam/bench/CDissertationReference.h>
 #include <roislam/bench/TRunRecord.h>
 
+#include <functional>
 #include <optional>
+#include <ostream>
 #include <string>
 #include <vector>
 
@@ -43,6 +46,30 @@ class CReportWriter
   static std::string versionLabel(const TRunRecord& rec);
 
  private:
+  using TRecordList = std::vector<const TRunRecord*>;
+  using TGetter = std::function<std::optional<double>(const TRunRecord&)>;
+  /** The dissertation's cell for (mode, feature), "—" when it has none. */
+  using TReference = std::function<std::string(const std::string&, const std::string&)>;
+
+  void renderIntroduction(std::ostream& md, const std::vector<TRunRecord>& records) const;
+  void renderSequences(std::ostream& md, const TRecordList& all) const;
+  void renderTest1Landmarks(std::ostream& md, const TRecordList& t1) const;
+  void renderTest1Matches(std::ostream& md, const TRecordList& t1) const;
+  void renderTest1Reidentification(std::ostream& md, const TRecordList& t1) const;
+  /** Test 1 with and without the hue variant, side by side. */
+  void renderHueVerification(std::ostream& md, const TRecordList& t1) const;
+  /** Test 4: EKF-SLAM, odometry alone and graph SLAM per sequence and extractor. */
+  void renderTest4(std::ostream& md, const TRecordList& t4) const;
+  void renderTest2(std::ostream& md, const TRecordList& t2) const;
+  /** One metric: a row per version, per extractor our cell and ref's. */
+  void renderVersionTable(
+      std::ostream& md, const TRecordList& t2, const std::string& title,
+      const std::string& refLabel, int decimals, const TGetter& get, const TReference& ref) const;
+  void renderTest2PerSequence(std::ostream& md, const TRecordList& t2) const;
+  void renderTest3(std::ostream& md, const TRecordList& t3) const;
+  void renderSpeed(std::ostream& md, const TRecordList& t2) const;
+  void renderFailures(std::ostream& md, const std::vector<TRunRecord>& records) const;
+
   TOptions m_options;
   CDissertationReference m_ref;
 };

@@ -6,6 +6,8 @@
  */
 #pragma once
 
+#include <roislam/common/TextFiles.h>
+
 #include <optional>
 #include <string>
 #include <vector>
@@ -46,9 +48,7 @@ std::string selfExecutablePath();
 
 /** The last `lines` lines of a text file ("" when it does not exist). */
 std::string fileTail(const std::string& file, std::size_t lines);
-/** Writes `content` to `file` through a temporary name renamed on success;
- *  throws std::runtime_error naming the file on failure. */
-void writeFileAtomically(const std::string& file, const std::string& content);
-/** Whole content of a file; throws std::runtime_error "<file>: cannot open". */
-std::string readFile(const std::string& file);
+/** Whole text files (roislam/common/TextFiles.h). */
+using common::readFile;
+using common::writeFileAtomically;
 }  // namespace roislam::bench

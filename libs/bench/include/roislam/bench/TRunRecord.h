@@ -29,7 +29,8 @@ struct TRunRecord
   std::string stderrTail;
   nlohmann::json summary;  //!< the app's summary.json, null when absent
 
-  /** A numeric summary field, nullopt when missing, null or not a number. */
+  /** A numeric summary field ("a.b": field b of object a), nullopt when
+   *  missing, null or not a number. */
   std::optional<double> number(const std::string& key) const;
 
   nlohmann::json toJson() const;

@@ -32,6 +32,10 @@ struct TVariant
  *  (fallback with N features in the ROI). */
 std::vector<TVariant> defaultVariants();
 
+/** Test 1's: "hue" ([RoiDetector] verify_hue = true: the ROI verified by the
+ *  hue detector, the dissertation's proposal). */
+std::vector<TVariant> defaultTest1Variants();
+
 /** iniText with each override set: an existing key in its section is replaced,
  *  a missing key is appended to its section, a missing section is appended.
  *  Comments and the other lines are kept. */

@@ -13,10 +13,15 @@
 
 namespace roislam::common
 {
-/** The keys that options.saveToConfigFile() writes into one section, i.e. the
- *  keys that options.loadFromConfigFile() understands (for TOptions whose save
- *  and load are symmetric, as STYLE.md asks). */
-std::vector<std::string> knownIniKeys(const mrpt::config::CLoadableOptions& options);
+/** The keys that options.saveToConfigFile(cfg, section) writes into
+ *  keysSection (default: section itself), i.e. the keys that
+ *  options.loadFromConfigFile(cfg, section) understands there (for TOptions
+ *  whose save and load are symmetric, as STYLE.md asks). keysSection names
+ *  another section for options that save sub-components under fixed section
+ *  names (the front end's [RoiDetector], [FeatureExtractor], ...). */
+std::vector<std::string> knownIniKeys(
+    const mrpt::config::CLoadableOptions& options, const std::string& section = "Options",
+    const std::string& keysSection = "");
 
 /** Throws std::runtime_error "ini <fileLabel>: [<section>] unknown key '<key>'"
  *  for the first key of `section` in cfg that is not in knownKeys (case

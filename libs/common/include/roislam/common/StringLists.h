@@ -8,7 +8,8 @@
 
 namespace roislam::common
 {
-/** Splits on ',', trims blanks and tabs, drops empty items. */
+/** Splits on ',', trims blanks and tabs, drops empty items
+ *  (mrpt::system::tokenize and trim). */
 std::vector<std::string> splitList(const std::string& text);
 
 /** Joins with ',' (no blanks): the inverse of splitList for clean items. */

@@ -1,7 +1,8 @@
 /* The roi-eval application as a library class (apps stay thin): loads a
  * ground-truth and an estimated TUM trajectory, evaluates them with
  * CTrajectoryEvaluator, prints a table or JSON, and optionally writes the
- * aligned estimate (TUM format) and a PNG plot (CTrajectoryPlot).
+ * aligned estimate (TUM format), a PNG plot of the trajectories
+ * (CTrajectoryPlot) and one of the errors over time (CErrorPlot).
  */
 #pragma once
 
@@ -21,9 +22,10 @@ class CEvalApp
     std::string groundTruthFile;
     std::string estimateFile;
     CTrajectoryEvaluator::TOptions evaluation;
-    bool json = false;        //!< one JSON object (toJson()) instead of a table
-    std::string plotFile;     //!< PNG to write, or empty
-    std::string alignedFile;  //!< aligned estimate (TUM) to write, or empty
+    bool json = false;          //!< one JSON object (toJson()) instead of a table
+    std::string plotFile;       //!< PNG to write, or empty
+    std::string errorPlotFile;  //!< PNG of the errors over time, or empty
+    std::string alignedFile;    //!< aligned estimate (TUM) to write, or empty
     /** Skip lines with a NaN or a zero quaternion (the benchmark scripts'
      *  behaviour) instead of rejecting the file. */
     bool skipInvalid = false;

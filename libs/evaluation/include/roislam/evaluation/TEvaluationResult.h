@@ -11,6 +11,7 @@
 
 #include <cstddef>
 #include <nlohmann/json.hpp>
+#include <vector>
 
 namespace roislam::evaluation
 {
@@ -19,10 +20,18 @@ namespace roislam::evaluation
  *  two middle values of an even count (numpy.median). */
 struct TAteResult
 {
+  /** One associated pose: the estimate's stamp and its error after alignment (m). */
+  struct TSample
+  {
+    double timestamp = 0, error = 0;
+  };
+
   double rmse = 0, mean = 0, median = 0, std = 0, min = 0, max = 0;
   std::size_t pairs = 0;  //!< associated (ground truth, estimate) pairs
   /** The rigid transform applied to the estimate: aligned = alignment (+) estimate. */
   mrpt::poses::CPose3D alignment;
+  /** Every associated pose's error, sorted by stamp (the error-over-time plot). */
+  std::vector<TSample> samples;
 };
 
 /** Relative pose errors over pose pairs `delta` apart. Translation in metres,
@@ -30,11 +39,19 @@ struct TAteResult
  *  by mistake; here every rotational figure is in degrees). */
 struct TRpeResult
 {
+  /** One compared pose pair, at the stamp of its first estimated pose. */
+  struct TSample
+  {
+    double timestamp = 0, trans = 0, rot_deg = 0;  //!< m, deg
+  };
+
   double trans_rmse = 0, trans_mean = 0, trans_median = 0, trans_std = 0, trans_min = 0,
          trans_max = 0;
   double rot_rmse_deg = 0, rot_mean_deg = 0, rot_median_deg = 0, rot_std_deg = 0, rot_min_deg = 0,
          rot_max_deg = 0;
   std::size_t pairs = 0;  //!< compared pose pairs
+  /** Every compared pair's error, sorted by stamp (the RPE-over-time plot). */
+  std::vector<TSample> samples;
 };
 
 struct TEvaluationResult

@@ -63,6 +63,24 @@ class CFeatureExtractor
    *  the set unchanged. */
   TFeatureSet capWithRegion(const TFeatureSet& strongestFirst, const cv::Rect& region) const;
 
+  /** Features whose keypoint lies inside `region` (clamped to the image),
+   *  in image coordinates, strongest first, at most `cap` (0 = all). The
+   *  detector runs on `region` padded by supportPx() on each side (clamped):
+   *  the pixels a keypoint's detection and descriptor read around it, so
+   *  that its border rules do not empty the region's rim. Its work scales
+   *  with that padded area, returned in describedPixels. The crop, rather
+   *  than a mask, is what makes it cheap: OpenCV's detectors build their
+   *  whole-image pyramid and run FAST/DoG everywhere whatever the mask. */
+  TFeatureSet extractIn(
+      const cv::Mat& image, const cv::Rect& region, int cap,
+      std::size_t* describedPixels = nullptr) const;
+
+  /** Pixels around a keypoint, at the finest scale, that detection and
+   *  description read (ORB: its edge threshold and patch, 31; SIFT: its
+   *  border of 5 px per octave at the first octaves and descriptor window;
+   *  SURF: half the filter size of the first octaves). */
+  int supportPx() const;
+
   const TOptions& options() const { return m_options; }
 
  private:
@@ -70,5 +88,7 @@ class CFeatureExtractor
   cv::Ptr<cv::Feature2D> m_detector;
   /** Same detector without the cap (extractAll). */
   cv::Ptr<cv::Feature2D> m_uncapped;
+  /** A detector of this type keeping at most `cap` features (0 = all). */
+  cv::Ptr<cv::Feature2D> detectorWithCap(int cap) const;
 };
 }  // namespace roislam::features

@@ -41,4 +41,7 @@ struct TFeatureSet
   /** The features at the given indices, in that order. */
   TFeatureSet select(const std::vector<int>& indices) const;
 };
+
+/** a's features followed by b's (same type; an empty set takes the other's). */
+TFeatureSet concat(const TFeatureSet& a, const TFeatureSet& b);
 }  // namespace roislam::features

@@ -1,22 +1,28 @@
 /* The SLAM front end: frame-to-keyframe RGB-D visual odometry.
  *
- * Per frame: features extracted ONCE on the whole image (CFeatureExtractor);
- * in ROI modes the ROI (CRoiDetector) selects its subset; keypoints are
- * undistorted and lifted to 3-D with the registered depth image (invalid depth
- * skipped); matched (CFeatureMatcher) against the last keyframe (then, if that
- * fails, up to recent_keyframes older ones); 3-D RANSAC (CRigidTransformRansac)
- * followed by a Gauss-Newton refinement of the symmetric reprojection error
- * over the inliers, whose Hessian gives the information matrix.
- * When features fail: depth-only projective point-to-plane ICP against the
- * reference keyframe, then constant velocity, so tracking never stops
- * (except strict_roi, see below). A new keyframe is made when the motion since
- * the last keyframe exceeds the thresholds, the feature inliers drop, or the
- * frame could only be registered against an older keyframe; it brings
- * constraints to the recent keyframes for the pose graph (keyframe id == its
- * position in keyframes(), so the back end can use it as node id).
+ * Per frame, in stages (README "One frame's path"): prepare() checks the
+ * frame, converts it to grey and, in ROI modes, detects the ROI (stage 1; it
+ * may run on another thread, ahead); process() extracts features ONCE on the
+ * whole image (CFeatureExtractor), the ROI selecting its subset in ROI modes;
+ * lifts keypoints to 3-D with the registered depth image (undistorted,
+ * invalid depth skipped, corrected for the rolling shutter); matches them
+ * (CFeatureMatcher) against the last keyframe (then, if that fails, up to
+ * recent_keyframes older ones); registers them by 3-D RANSAC
+ * (CRigidTransformRansac) and a Gauss-Newton refinement of the symmetric
+ * reprojection error over the inliers, whose Hessian gives the information
+ * matrix. When features fail: depth-only projective point-to-plane ICP
+ * against the reference keyframe, then constant velocity, so tracking never
+ * stops (except strict_roi, see below). A new keyframe is made when the
+ * motion since the last keyframe exceeds the thresholds, the feature inliers
+ * drop, or the frame could only be registered against an older keyframe; it
+ * brings constraints to the recent keyframes for the pose graph (keyframe id
+ * == its position in keyframes(), so the back end can use it as node id) and
+ * its ROI (in traditional mode detected for keyframes only), the back end's
+ * landmark. The back end's optimised poses come back through
+ * correctKeyframePoses().
  *
  * Called by the graph-SLAM back end (roislam::graphslam) and apps, one frame
- * at a time, in order. Not thread-safe.
+ * at a time, in order. Not thread-safe, except prepare().
  *
  * strict_roi (ROI modes only) reproduces the dissertation: no full-image
  * fallback, no depth ICP and no constant velocity. A frame whose ROI has fewer
@@ -57,6 +63,32 @@
  *                             image plus the N strongest inside the ROI are
  *                             kept: the dissertation's "N features in the ROI"
  *                             (it matters with small N, Test 3's 50).
+ *  - roi_extraction           region|image (image): non-strict ROI modes,
+ *                             where stage 2 runs. region: only in the
+ *                             tracking region (the ROI grown as below, plus
+ *                             the detector's support margin), extended to the
+ *                             rest of the image lazily, at most once, when the
+ *                             frame needs it (no ROI, too few region
+ *                             features, its registration fails or is weak,
+ *                             it becomes a keyframe): so the work scales with
+ *                             the region, not the image (TDescribedWork).
+ *                             The region gets max_features, the rest of the
+ *                             image max_features x its share of the image.
+ *                             image: the whole image once, the ROI selecting
+ *                             its subset (strict_roi always works so). image
+ *                             stays the default until region is as accurate
+ *                             (fr1/rpy, 600 features, shipped configs: big ROI
+ *                             ATE ORB 0.0155 / SIFT 0.0106 m with region,
+ *                             0.0130 / 0.0097 with image; README "ROI that
+ *                             pays")
+ *  - roi_min_area_fraction    [0, 1] (0.15): the tracking region is the ROI
+ *                             grown about its centre to at least this share
+ *                             of the image ...
+ *  - roi_min_aspect           [0, 1] (0.5): ... and to a short side of at
+ *                             least this share of its long side: the
+ *                             dissertation's largest component is often a
+ *                             thin strip (180 x 36 px on fr1), whose features
+ *                             leave the pose poorly determined across it
  *  - min_inliers              int >= 3 (15): fewer inliers -> features failed
  *  - keyframe_translation_m   [m] > 0 (0.10): new keyframe beyond this distance
  *  - keyframe_rotation_deg    [deg] > 0 (10): ... or beyond this rotation angle
@@ -123,11 +155,13 @@
 #include <roislam/features/CFeatureExtractor.h>
 #include <roislam/frontend/TFrameResult.h>
 #include <roislam/frontend/TKeyframe.h>
+#include <roislam/frontend/TPreparedFrame.h>
 #include <roislam/io/TRGBDFrame.h>
 #include <roislam/matching/CFeatureMatcher.h>
 #include <roislam/roi/CRoiDetector.h>
 
 #include <deque>
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
@@ -170,6 +204,9 @@ class CRgbdOdometry : public mrpt::system::COutputLogger
     double max_roi_sigma_m = 0.005;
     double max_roi_sigma_deg = 0;
     std::string roi_feature_cap = "image";
+    std::string roi_extraction = "image";
+    double roi_min_area_fraction = 0.15;
+    double roi_min_aspect = 0.5;
     int min_inliers = 15;
     double keyframe_translation_m = 0.10;
     double keyframe_rotation_deg = 10.0;
@@ -222,6 +259,10 @@ class CRgbdOdometry : public mrpt::system::COutputLogger
     std::size_t noRoi = 0;
     /** Feature-tracked frames also combined with depth ICP (icp_refine_sigma_m). */
     std::size_t icpRefined = 0;
+    /** Frames by what stage 2 described (TDescribedWork::extension). */
+    std::map<EExtension, std::size_t> extensions;
+    /** Sum over frames of the described-pixel fraction. */
+    double describedFractionSum = 0;
   };
 
   CRgbdOdometry();
@@ -233,30 +274,23 @@ class CRgbdOdometry : public mrpt::system::COutputLogger
    *  first camera frame). Call before the first process() (or after reset()). */
   void setInitialPose(const mrpt::poses::CPose3D& pose) { m_initialPose = pose; }
 
-  /** A ROI detected ahead of process() for one frame (detectRoiAhead). */
-  struct TRoiHint
-  {
-    std::size_t frameIndex = 0;
-    double timestamp = 0;
-    std::optional<roi::TRoi> roi;
-    double ms = 0;
-    /** The frame's grey image, converted once for the detector and reused
-     *  by process() (empty when the frame was grey already). */
-    cv::Mat grey;
-  };
+  /** Stage 1 and the checks, for a frame that process() will receive later:
+   *  throws std::invalid_argument unless rgb is CV_8UC3 and depth CV_32FC1
+   *  of the same size as rgb and the camera; converts to grey and, in ROI
+   *  modes, detects the ROI. Const and safe to call from another thread
+   *  while process() runs (CSlamPipeline calls it on the thread that decodes
+   *  the next frame). */
+  TPreparedFrame prepare(const io::TRGBDFrame& frame) const;
 
-  /** Stage 1 for a frame that process() will receive later; const and safe to
-   *  call from another thread while process() runs (e.g. the thread that
-   *  decodes the next frame), so that in ROI modes the ROI costs the tracking
-   *  thread nothing even when feature extraction uses every core. */
-  TRoiHint detectRoiAhead(const io::TRGBDFrame& frame) const;
-
-  /** Tracks one frame (frames in time order; rgb CV_8UC3, depth CV_32F metres,
-   *  same size; else std::invalid_argument). A hint for this very frame
-   *  (same index and timestamp) replaces the ROI detection; others are
-   *  ignored. */
-  TFrameResult process(
-      const io::TRGBDFrame& frame, const std::optional<TRoiHint>& roiHint = std::nullopt);
+  /** Tracks one prepared frame (frames in time order). The stages, in
+   *  order (each in its own file, see the README's stage map):
+   *  extract features -> lift them to 3-D -> track against the recent
+   *  keyframes -> refine (rolling shutter, depth ICP) -> pose (or the
+   *  depth-only / constant-velocity fallbacks) -> keyframe decision ->
+   *  new keyframe with its constraints. */
+  TFrameResult process(const TPreparedFrame& frame);
+  /** prepare() then process(), on this thread. */
+  TFrameResult process(const io::TRGBDFrame& frame) { return process(prepare(frame)); }
 
   /** All keyframes so far; keyframes()[id].id == id. References are
    *  invalidated by process() (the container may grow). */
@@ -266,13 +300,15 @@ class CRgbdOdometry : public mrpt::system::COutputLogger
 
   /** Registers keyframe B against keyframe A from their stored features
    *  (matching + 3-D RANSAC + refinement): pose(B) = pose(A) (+) result.pose.
-   *  nullopt when too few inliers. For loop-closure verification by the back
-   *  end. Throws std::out_of_range on a bad id. */
+   *  nullopt when too few inliers. A const query, for loop-closure
+   *  verification by the back end. Throws std::out_of_range on a bad id. */
   std::optional<TRelativePoseEstimate> registerKeyframes(std::size_t idA, std::size_t idB) const;
 
-  /** The back end pushes an optimised keyframe pose; tracking continues from
-   *  it (later frames are composed onto the corrected reference keyframe). */
-  void setKeyframePose(std::size_t id, const mrpt::poses::CPose3D& pose);
+  /** The back end's correction, the one way its results reach the front end:
+   *  optimised world poses of keyframes (by id; ids the front end does not
+   *  have are ignored). Tracking continues from them (later frames are
+   *  composed onto the corrected reference keyframe). */
+  void correctKeyframePoses(const std::map<std::size_t, mrpt::poses::CPose3D>& poses);
 
   /** Forgets all keyframes and state (initial pose kept). */
   void reset();
@@ -282,6 +318,32 @@ class CRgbdOdometry : public mrpt::system::COutputLogger
 
  private:
   struct TImpl;
+  struct TFrameWork;
+  // The stages of process(), in order (files StageExtract.cpp, StageTrack.cpp,
+  // StageRefine.cpp, StageKeyframe.cpp).
+  void extractFeatures(TFrameWork& w) const;
+  void liftFeatures(TFrameWork& w) const;
+  /** ROI-only frames: describes the rest of the image too (once; nothing
+   *  already described again), lifts it and rebuilds the whole-image set. */
+  void extendToImage(TFrameWork& w, EExtension reason) const;
+  /** Non-strict ROI mode with roi_extraction = region. */
+  bool describesRegions() const;
+  void startMap(TFrameWork& w);
+  void predictMotion(TFrameWork& w) const;
+  void trackFeatures(TFrameWork& w);
+  /** Registers query against the recent keyframes, newest first (w.reg,
+   *  w.ref, the match count). */
+  void registerWithRecent(const TKeyframe& query, TFrameWork& w) const;
+  void refineRollingShutter(TFrameWork& w);
+  void refineWithDepth(TFrameWork& w) const;
+  /** Pose from the registration, or from the fallbacks; false when Lost. */
+  bool resolvePose(TFrameWork& w);
+  bool needsKeyframe(const TFrameWork& w) const;
+  void makeKeyframeConstraints(TFrameWork& w);
+  void insertKeyframe(TFrameWork& w, const mrpt::poses::CPose3D& pose);
+  /** Remembers the frame as the last tracked one, counts it, times it. */
+  TFrameResult finish(TFrameWork& w);
+
   TOptions m_options;
   mrpt::poses::CPose3D m_initialPose;
   std::deque<TKeyframe> m_keyframes;

@@ -86,6 +86,52 @@ struct TRelativePoseEstimate
   double rmse_px = 0;
 };
 
+/** Why a ROI-mode frame's features were extended beyond its tracking region
+ *  (each frame at most once), or that stage 2 ran on the whole image. */
+enum class EExtension
+{
+  /** ROI-only frame: features described in the tracking region alone. */
+  None,
+  /** The whole image at once: traditional mode, strict_roi, or
+   *  roi_extraction = image. */
+  WholeImage,
+  /** No ROI was detected. */
+  NoRoi,
+  /** The region had fewer than min_roi_features features with depth. */
+  FewRoiFeatures,
+  /** The region's features did not register against any recent keyframe. */
+  RoiFailed,
+  /** They registered, but left the pose poorly determined (max_roi_sigma_m,
+   *  max_roi_sigma_deg, min_roi_inliers). */
+  RoiWeak,
+  /** The frame became a keyframe (keyframes store the whole image's
+   *  features, for later frames and loop closures). */
+  Keyframe
+};
+
+/** "none" | "whole_image" | "no_roi" | "few_roi_features" | "roi_failed" |
+ *  "roi_weak" | "keyframe". */
+std::string toString(EExtension e);
+
+/** What stage 2 described for one frame: its cost scales with these. */
+struct TDescribedWork
+{
+  /** The tracking region (the ROI grown to track with); empty when none. */
+  cv::Rect region;
+  /** Pixels the detector ran on for the region (region + support margin),
+   *  and the features it kept there. */
+  std::size_t regionPixels = 0, regionFeatures = 0;
+  /** The same for the rest of the image (or the whole image). */
+  std::size_t extensionPixels = 0, extensionFeatures = 0;
+  EExtension extension = EExtension::None;
+  /** Described pixels over the image's pixels (> 1 possible: margins). */
+  double describedFraction(const cv::Size& image) const
+  {
+    return image.area() > 0 ? static_cast<double>(regionPixels + extensionPixels) / image.area()
+                            : 0.0;
+  }
+};
+
 /** Per-stage wall-clock times of one process() call, milliseconds. */
 struct TStageTimes
 {
@@ -96,7 +142,9 @@ struct TStageTimes
   double ransac_ms = 0;    //!< 3-D RANSAC + refinement
   double icp_ms = 0;       //!< depth ICP fallback (and ICP maps of new keyframes)
   double keyframe_ms = 0;  //!< new keyframe: constraints to recent keyframes
-  double total_ms = 0;     //!< whole process() call
+  /** All front-end work for the frame: prepare() (grey image, stage 1),
+   *  wherever it ran, and the whole process() call; decoding excluded. */
+  double total_ms = 0;
 };
 
 /** Everything CRgbdOdometry::process() reports about one frame. */
@@ -137,8 +185,13 @@ struct TFrameResult
   std::size_t trackingFeatures = 0;   //!< the set actually matched
   std::size_t matches = 0;            //!< ratio-test matches to the reference
   std::size_t inliers = 0;            //!< after RANSAC + refinement (ICP: pairs)
-  /** The ROI found in this frame (ROI modes only). */
+  /** The ROI found in this frame: ROI modes, and keyframes of the
+   *  traditional mode (their ROI is the back end's landmark). */
   std::optional<cv::Rect> roi;
+  /** What stage 2 described (ROI modes: region, extension and why). */
+  TDescribedWork work;
+  /** Image size (for work.describedFraction()). */
+  cv::Size imageSize;
 
   TStageTimes times;
 };

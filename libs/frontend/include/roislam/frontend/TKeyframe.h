@@ -25,7 +25,7 @@ struct TKeyframe
   /** TRGBDFrame::index and ::timestamp of the frame. */
   std::size_t frameIndex = 0;
   double timestamp = 0;
-  /** World pose; replaced by setKeyframePose() when the back end optimises. */
+  /** World pose; replaced by correctKeyframePoses() when the back end optimises. */
   mrpt::poses::CPose3D pose;
 
   /** Features stored for matching, only those with valid depth: the whole
@@ -46,5 +46,10 @@ struct TKeyframe
   std::optional<cv::Rect> roi;
   /** ROI mode only: the frame itself was tracked with whole-image features. */
   bool fullImageFallback = false;
+  /** ROI modes (roi_extraction = region): the tracking region of the frame,
+   *  which the next frames follow (empty when none), and the median depth of
+   *  its features, metres. */
+  cv::Rect region;
+  double regionDepth = 0;
 };
 }  // namespace roislam::frontend

@@ -21,7 +21,7 @@ namespace roislam::graphslam
 class CKeyframeERD : public mrpt::graphslam::deciders::CEdgeRegistrationDecider<TGraph>
 {
  public:
-  /** What processNewKeyframe() added. */
+  /** What registerKeyframe() added. */
   struct TEdgeReport
   {
     std::size_t recentEdges = 0;
@@ -35,13 +35,17 @@ class CKeyframeERD : public mrpt::graphslam::deciders::CEdgeRegistrationDecider<
   void setContext(std::shared_ptr<CSlamContext> context);
   std::shared_ptr<CSlamContext> context() const;
 
-  /** Adds the edges of the node the NRD registered in this step, if any. */
+  /** Inside MRPT's engine: adds the edges of the node the NRD registered in
+   *  this step, if any (the context's lastFrame()). */
   bool updateState(
       mrpt::obs::CActionCollection::Ptr action, mrpt::obs::CSensoryFrame::Ptr observations,
       mrpt::obs::CObservation::Ptr observation) override;
 
-  /** Adds the edges of keyframe node `id` (must be in the graph). */
-  TEdgeReport processNewKeyframe(std::size_t id);
+  /** Adds the edges of a front-end result that made a new keyframe whose
+   *  node is in the graph (CKeyframeNRD::registerFrame): the front end's
+   *  constraints from the other recent keyframes, then verified loop
+   *  closures. Nothing for other results. */
+  TEdgeReport registerKeyframe(const frontend::TFrameResult& result);
 
   void setGraphPtr(TGraph* graph) override;
   void loadParams(const std::string& iniFile) override {}
@@ -59,6 +63,8 @@ class CKeyframeERD : public mrpt::graphslam::deciders::CEdgeRegistrationDecider<
 
  private:
   CSlamContext& ctx();
+  /** Verifies the candidates of keyframe `id` and adds the accepted closures. */
+  void addLoopClosures(std::size_t id, TEdgeReport& rep);
   std::shared_ptr<CSlamContext> m_context;
   std::map<std::string, int> m_stats;
 };

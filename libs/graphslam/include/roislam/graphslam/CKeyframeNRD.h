@@ -4,9 +4,10 @@
  * when it becomes a keyframe the node and the odometry edge from its reference
  * keyframe are added. MRPT 2.5 has no 3-D visual NRD; this is ours, usable
  * inside mrpt::graphslam::CGraphSlamEngine (registered by name in
- * CRoislamOptionsChecker) or driven directly through processFrame() by
- * CRoiGraphSlamApp. The first registration adds the root (keyframe 0) and
- * keyframe 1, as the engine requires.
+ * CRoislamOptionsChecker: updateState() runs the front end on the
+ * observation) or fed front-end results through registerFrame() by
+ * CSlamPipeline, which runs the front end itself. The first registration adds
+ * the root (keyframe 0) and keyframe 1, as the engine requires.
  *
  * No ini keys of its own: loadParams(file) loads the whole configuration
  * (CSlamContext::loadConfig) into a new shared context for this graph, when
@@ -38,9 +39,10 @@ class CKeyframeNRD : public mrpt::graphslam::deciders::CNodeRegistrationDecider<
       mrpt::obs::CActionCollection::Ptr action, mrpt::obs::CSensoryFrame::Ptr observations,
       mrpt::obs::CObservation::Ptr observation) override;
 
-  /** Tracks one frame; returns true when a node was registered (true also
-   *  for the first registration, which adds two). */
-  bool processFrame(const io::TRGBDFrame& frame);
+  /** Registers the node of a front-end result that made a new keyframe
+   *  (and its odometry edge); returns true when a node was registered (true
+   *  also for the first registration, which adds two). */
+  bool registerFrame(const frontend::TFrameResult& result);
 
   void setGraphPtr(TGraph* graph) override;
   void loadParams(const std::string& iniFile) override;

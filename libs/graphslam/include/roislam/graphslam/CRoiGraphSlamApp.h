@@ -12,10 +12,18 @@
  *                    keyframe's optimised pose (+) its pose relative to it
  *  - graph.graph     the optimised keyframe graph (MRPT text format, graph-slam)
  *  - map.bt          OctoMap (5 cm) of the keyframes' decimated clouds
- *  - scene.3Dscene   map cloud + trajectory (+ aligned ground truth), SceneViewer3D
- *  - snapshot.png    offscreen render of that scene (unless disabled)
+ *  - scene.3Dscene   map cloud + trajectory with keyframes (+ ground truth), SceneViewer3D
+ *  - snapshot.png    offscreen picture of that scene: 3-D and top views, legend
+ *                    (unless disabled)
+ *  - ate.png         with ground truth: top view and height over time (CTrajectoryPlot)
+ *  - errors.png      with ground truth: ATE and RPE over time (CErrorPlot)
  *  - frames.csv      per frame: tracking method, counts, ROI, per-stage ms
- *  - summary.json    counts, speed, memory, ATE/RPE when ground truth is known
+ *  - summary.json    counts, speed, memory, ATE/RPE when ground truth is known,
+ *                    display_frame (CGravityFrame::TResult::toJson())
+ * trajectory.txt and graph.graph are in the estimate's own frame (the first
+ * camera's optical frame, TUM convention: as estimated); map.bt,
+ * scene.3Dscene and snapshot.png are gravity-up (z up) in the frame
+ * summary.json's display_frame names (CSlamOutputWriter, CGravityFrame).
  * Map and snapshot are built after the timed run (wall_s/fps exclude them;
  * map_s and snapshot_s report them). Called by apps/roi-graphslam and tests.
  */

@@ -71,7 +71,7 @@
 #include <roislam/frontend/CRgbdOdometry.h>
 #include <roislam/io/TRGBDFrame.h>
 #include <roislam/landmarks/CLandmarkDatabase.h>
-#include <roislam/roi/CRoiDetector.h>
+#include <roislam/landmarks/CObservationProcessor.h>
 
 #include <cstddef>
 #include <map>
@@ -168,28 +168,30 @@ class CSlamContext
 
   frontend::CRgbdOdometry& odometry() { return m_odometry; }
   const frontend::CRgbdOdometry& odometry() const { return m_odometry; }
-  const landmarks::CLandmarkDatabase& database() const { return m_database; }
+  const landmarks::CLandmarkDatabase& database() const { return m_landmarks.tracker().database(); }
   const TConfig& config() const { return m_config; }
 
-  /** A ROI detected ahead (CRgbdOdometry::detectRoiAhead) for the frame the
-   *  next trackFrame() receives; used once, ignored if for another frame. */
-  void setRoiHint(std::optional<frontend::CRgbdOdometry::TRoiHint> hint)
-  {
-    m_roiHint = std::move(hint);
-  }
+  /** Keeps what the back end needs of a front-end result: a new keyframe's
+   *  map cloud (from the frame's depth and colour), and the result itself as
+   *  lastFrame(). Called once per frame by whoever ran the front end
+   *  (CSlamPipeline, or CKeyframeNRD inside MRPT's engine). */
+  void recordFrame(const frontend::TFrameResult& result, const io::TRGBDFrame& frame);
+  /** The result recordFrame() saw last: inside MRPT's engine, the hand-off
+   *  from CKeyframeNRD to CKeyframeERD within one step (nullopt before the
+   *  first). */
+  const std::optional<frontend::TFrameResult>& lastFrame() const { return m_last; }
 
-  /** Tracks one frame with the front end and remembers the result; a new
-   *  keyframe also gets its map cloud and ROI. Called by CKeyframeNRD. */
-  const frontend::TFrameResult& trackFrame(const io::TRGBDFrame& frame);
-  /** The result of the last trackFrame() (nullopt before the first). */
-  const std::optional<frontend::TFrameResult>& lastResult() const { return m_last; }
+  /** Puts the ROI of every keyframe up to `id` not yet seen into the ROI
+   *  landmark database: a recall adds a sighting, else a new landmark is
+   *  stored. Returns the landmark keyframe `id` recalled, if any. Called by
+   *  CKeyframeERD for each new keyframe, before loopCandidates(). */
+  std::optional<int32_t> observeLandmarks(std::size_t id);
 
-  /** Loop-closure candidates for keyframe `id` (older than the gap), from
-   *  landmark recall (the keyframe's ROI is queried in the database, and
-   *  stored as a new landmark when not recalled) and from proximity in
-   *  `graph`. Each keyframe is queried at most once. Called by CKeyframeERD. */
+  /** Loop-closure candidates for keyframe `id` (older than the gap): the
+   *  earlier sightings of the landmark it recalled (observeLandmarks()),
+   *  most recent first, and keyframes near it in `graph`. */
   std::vector<std::pair<std::size_t, ELoopSource>> loopCandidates(
-      std::size_t id, const TGraph& graph);
+      std::size_t id, std::optional<int32_t> recalledLandmark, const TGraph& graph) const;
 
   /** The information matrix to put in the graph for a front-end measurement
    *  ([GraphSlam] edge_information). Constant-velocity constraints keep the
@@ -212,11 +214,14 @@ class CSlamContext
   std::size_t rejectedLoopClosures() const { return m_rejectedLoops; }
 
   /** Optimises `graph` (SPA Levenberg-Marquardt, root fixed), removes loop
-   *  edges that remain inconsistent (loop_outlier_chi2) and re-optimises, then
-   *  pushes every optimised node pose into the front end as its keyframe pose.
+   *  edges that remain inconsistent (loop_outlier_chi2) and re-optimises.
    *  window > 0 (and smaller than the graph): only the newest `window` nodes
-   *  move, and no closure is removed. */
+   *  move, and no closure is removed. The front end is not told: the caller
+   *  hands the result on with correctFrontEnd(). */
   TOptimizationReport optimize(TGraph& graph, std::size_t window = 0);
+  /** The back end's one correction of the front end: every node pose of
+   *  `graph` becomes its keyframe's pose (CRgbdOdometry::correctKeyframePoses). */
+  void correctFrontEnd(const TGraph& graph);
 
   /** Keyframe map clouds in each keyframe's optical camera frame. */
   const std::vector<mrpt::maps::CColouredPointsMap>& keyframeClouds() const { return m_clouds; }
@@ -224,14 +229,11 @@ class CSlamContext
  private:
   TConfig m_config;
   frontend::CRgbdOdometry m_odometry;
-  landmarks::CLandmarkDatabase m_database;
-  roi::CRoiDetector m_roiDetector;
+  /** The landmark database, reached through the observation processor (the
+   *  one path from a region to a landmark, as in roi-landmarks). */
+  landmarks::CObservationProcessor m_landmarks;
   std::optional<frontend::TFrameResult> m_last;
-  std::optional<frontend::CRgbdOdometry::TRoiHint> m_roiHint;
   std::vector<mrpt::maps::CColouredPointsMap> m_clouds;
-  /** ROI box of each keyframe (detected on the keyframe image when the front
-   *  end ran in traditional mode). */
-  std::vector<std::optional<cv::Rect>> m_rois;
   cv::Size m_imageSize;
   /** Keyframes already queried in the landmark database. */
   std::size_t m_landmarkQueried = 0;

@@ -1,12 +1,15 @@
 /* The timed part of one SLAM run, frame by frame: while frame i is tracked
- * and registered, frame i+1 is decoded on a second thread, which in ROI modes
- * also detects its ROI (CRgbdOdometry::detectRoiAhead), so stage 1 costs the
- * tracking thread nothing. Per frame: CKeyframeNRD (front end, new keyframe
- * node), CKeyframeERD (keyframe edges and verified loop closures), and an
- * SPA optimisation when a new closure disagrees with the current estimate
- * (over the newest keyframes only) or every few loop-closing keyframes (the
- * whole graph) ([GraphSlam] optimize_min_chi2, optimize_window_keyframes,
- * optimize_every_keyframes); finish() runs the final one.
+ * and registered, frame i+1 is decoded on a second thread, which also
+ * prepares it for the front end (CRgbdOdometry::prepare: grey image and, in
+ * ROI modes, stage 1), so stage 1 costs the tracking thread nothing. Per
+ * frame, in one direction: the front end (CRgbdOdometry::process) -> its
+ * result to CKeyframeNRD (new keyframe node and odometry edge) and
+ * CKeyframeERD (keyframe edges and verified loop closures) -> an SPA
+ * optimisation when a new closure disagrees with the current estimate (over
+ * the newest keyframes only) or every few loop-closing keyframes (the whole
+ * graph) ([GraphSlam] optimize_min_chi2, optimize_window_keyframes,
+ * optimize_every_keyframes), whose poses go back to the front end in one call
+ * (CSlamContext::correctFrontEnd); finish() runs the final one.
  *
  * Drives our deciders directly rather than through CGraphSlamEngine, whose
  * 2.5 version resets optimised 3-D poses from the spanning tree after every
@@ -20,13 +23,14 @@
 #pragma once
 
 #include <roislam/frontend/TFrameResult.h>
+#include <roislam/frontend/TPreparedFrame.h>
 #include <roislam/graphslam/CKeyframeERD.h>
 #include <roislam/graphslam/CKeyframeNRD.h>
 #include <roislam/graphslam/CSlamContext.h>
+#include <roislam/io/CFramePrefetcher.h>
 #include <roislam/io/CFrameSource.h>
 #include <roislam/io/TumTrajectory.h>
 
-#include <future>
 #include <memory>
 #include <optional>
 #include <utility>
@@ -60,11 +64,7 @@ class CSlamPipeline
   /** Blocks until the next frame is decoded (and its ROI detected): the time
    *  the next step() would wait for it. For benchmarks that time steps of
    *  several pipelines in turn. */
-  void waitForPrefetch() const
-  {
-    if (m_next.valid())
-      m_next.wait();
-  }
+  void waitForPrefetch() const { m_prefetch->waitReady(); }
 
   /** Final optimisation (call once, after the last step). */
   TOptimizationReport finish();
@@ -87,20 +87,26 @@ class CSlamPipeline
   const io::CFrameSource& source() const { return *m_source; }
 
  private:
-  using TRoiHint = frontend::CRgbdOdometry::TRoiHint;
-  using TFetched = std::pair<std::optional<io::TRGBDFrame>, std::optional<TRoiHint>>;
-  void startFetch();
+  /** The optimisation schedule after a keyframe that brought closures
+   *  (those from index firstNewLoop of the context's loopClosures()). */
+  void optimizeForClosures(std::size_t firstNewLoop);
+  /** Largest squared error of the closures from index firstLoop on. */
+  double worstClosureError(std::size_t firstLoop) const;
+  /** Optimises (window 0 = whole graph) and corrects the front end. */
+  TOptimizationReport optimize(std::size_t window);
 
   std::unique_ptr<io::CFrameSource> m_source;
   std::shared_ptr<CSlamContext> m_ctx;
   TGraph m_graph;
   CKeyframeNRD m_nrd;
   CKeyframeERD m_erd;
-  std::future<TFetched> m_next;
   std::vector<TFrameRecord> m_records;
   std::size_t m_optimizations = 0;
   std::size_t m_windowedOptimizations = 0;
   /** Keyframes that brought loop closures since the last optimisation. */
   std::size_t m_pendingLoopKeyframes = 0;
+  /** Decodes and prepares frame i+1 while i is processed (last: it reads
+   *  the source and the context, and stops before they go). */
+  std::unique_ptr<io::CFramePrefetcher<frontend::TPreparedFrame>> m_prefetch;
 };
 }  // namespace roislam::graphslam

@@ -35,6 +35,10 @@ class CFrameSource
   /** Ground-truth file in TUM format belonging to this sequence, if any
    *  (<dir>/groundtruth.txt, or <rawlog>.groundtruth.txt next to a rawlog). */
   virtual std::optional<std::string> groundTruthFile() const = 0;
+  /** Accelerometer log in TUM format (TumAccelerometer.h) belonging to this
+   *  sequence, if any (<dir>/accelerometer.txt, or <rawlog stem>.accelerometer.txt
+   *  next to a rawlog). */
+  virtual std::optional<std::string> accelerometerFile() const { return std::nullopt; }
   /** Human-readable name of the sequence (folder or file stem). */
   virtual std::string name() const = 0;
   /** Colour frames skipped because no depth image was within the association

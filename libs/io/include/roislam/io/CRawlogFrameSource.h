@@ -66,6 +66,7 @@ class CRawlogFrameSource : public CFrameSource
   std::size_t size() const override { return m_count; }
   const mrpt::img::TCamera& camera() const override { return m_camera; }
   std::optional<std::string> groundTruthFile() const override;
+  std::optional<std::string> accelerometerFile() const override;
   std::string name() const override;
 
   /** Next observation as stored (external images not loaded), for tools that

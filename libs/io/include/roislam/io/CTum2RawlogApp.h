@@ -16,6 +16,7 @@
  *    directory despite MRPT 2.5.8's broken images-folder detection. (Our own
  *    reader also finds them after rawlog and folder are moved together.)
  *  - DIR/NAME.groundtruth.txt: copy of groundtruth.txt when present.
+ *  - DIR/NAME.accelerometer.txt: copy of accelerometer.txt when present.
  * Everything is written under temporary names and renamed at the end; on any
  * error nothing is left behind. An existing NAME_Images folder is replaced.
  * Progress goes to the COutputLogger (console output disabled: the app prints
@@ -45,12 +46,13 @@ class CTum2RawlogApp : public mrpt::system::COutputLogger
 
   struct TResult
   {
-    std::size_t frames = 0;                  //!< observations written
-    std::size_t skipped = 0;                 //!< colour frames without depth partner
-    std::string rawlog;                      //!< absolute path of the rawlog
-    std::string imagesDir;                   //!< absolute path of NAME_Images
-    std::optional<std::string> groundTruth;  //!< copied ground truth, if any
-    double seconds = 0;                      //!< wall time
+    std::size_t frames = 0;                    //!< observations written
+    std::size_t skipped = 0;                   //!< colour frames without depth partner
+    std::string rawlog;                        //!< absolute path of the rawlog
+    std::string imagesDir;                     //!< absolute path of NAME_Images
+    std::optional<std::string> groundTruth;    //!< copied ground truth, if any
+    std::optional<std::string> accelerometer;  //!< copied accelerometer log, if any
+    double seconds = 0;                        //!< wall time
   };
 
   explicit CTum2RawlogApp(const TOptions& options);

@@ -59,6 +59,7 @@ class CTumFrameSource : public CFrameSource
   std::size_t size() const override { return m_entries.size(); }
   const mrpt::img::TCamera& camera() const override { return m_camera; }
   std::optional<std::string> groundTruthFile() const override;
+  std::optional<std::string> accelerometerFile() const override;
   std::string name() const override;
   std::size_t skippedFrames() const override { return m_skipped; }
 

@@ -6,6 +6,7 @@
 
 #include <mrpt/poses/CPose3D.h>
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -33,6 +34,13 @@ enum class EInvalidPose
  *  Throws std::runtime_error "<file>:<line>: ..." on a malformed line and
  *  "<file>: cannot open" when unreadable. */
 TTrajectory loadTumTrajectory(const std::string& file, EInvalidPose invalid = EInvalidPose::Reject);
+
+/** The pose at time t of a trajectory sorted by timestamp: nullopt when no
+ *  stamp lies within maxDifference of t (the TUM tools' association);
+ *  otherwise, with interpolate, the interpolation (slerp, linear position)
+ *  between the stamps around t, else the nearest stamp's pose. */
+std::optional<mrpt::poses::CPose3D> poseAt(
+    const TTrajectory& sorted, double t, double maxDifference, bool interpolate = true);
 
 /** Writes a TUM trajectory (full double precision, unit quaternion with
  *  qw >= 0), through a temporary file renamed on success. Throws on failure. */

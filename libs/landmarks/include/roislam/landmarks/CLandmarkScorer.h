@@ -108,7 +108,6 @@ class CLandmarkScorer
  private:
   TOptions m_options;
   io::TTrajectory m_gt;
-  std::vector<double> m_stamps;
 };
 
 const char* toString(CLandmarkScorer::EOutcome outcome);

@@ -1,8 +1,11 @@
-/* The observation processor of the design: consumes RGB-D frames
- * (mrpt::obs::CObservation3DRangeScan, or TRGBDFrame + optional pose), runs the
- * ROI landmark pipeline (CRoiLandmarkTracker) and emits the landmarks seen in
- * the frame as a standard mrpt::obs::CObservationBearingRange, so rawlogs
- * annotated with it open in RawLogViewer and feed MRPT's landmark-based SLAM.
+/* The observation processor of the design, the one path from a frame to its
+ * landmark observation: consumes RGB-D frames (TRGBDFrame + optional pose; an
+ * MRPT CObservation3DRangeScan becomes one with io::observationToFrame) or
+ * regions whose features are already extracted (the SLAM back end's
+ * keyframes), runs the ROI landmark pipeline (CRoiLandmarkTracker) and emits
+ * the landmarks seen as a standard mrpt::obs::CObservationBearingRange, so
+ * rawlogs annotated with it open in RawLogViewer and feed MRPT's
+ * landmark-based SLAM (roi-landmarks --kf-slam).
  *
  * Convention (MRPT's, see mrpt::poses::CPose3D::sphericalCoordinates): the
  * measurement is expressed in MRPT's camera frame (x forward, y left, z up),
@@ -16,18 +19,19 @@
  * mapped into this frame by the 3-D alignment of the match inliers, so
  * repeated observations measure one fixed point). Frames without one give an
  * observation with no measurements, so every RGB-D observation has its
- * partner.
+ * partner. Each measurement carries its covariance from the noise model of
+ * TObservationOptions (validCovariances).
  */
 #pragma once
 
 #include <mrpt/img/TCamera.h>
-#include <mrpt/obs/CObservation3DRangeScan.h>
 #include <mrpt/obs/CObservationBearingRange.h>
 #include <mrpt/poses/CPose3D.h>
 #include <roislam/io/TRGBDFrame.h>
 #include <roislam/landmarks/CRoiLandmarkTracker.h>
 #include <roislam/landmarks/TFrameResult.h>
 #include <roislam/landmarks/TObservationOptions.h>
+#include <roislam/landmarks/TRegion.h>
 
 #include <cstdint>
 #include <optional>
@@ -52,14 +56,11 @@ class CObservationProcessor
       const io::TRGBDFrame& frame,
       const std::optional<mrpt::poses::CPose3D>& cameraPose = std::nullopt);
 
-  /** A CObservation3DRangeScan with intensity and range images (external
-   *  images must be loadable). The observation's sensorPose becomes the
-   *  bearing-range sensorLocationOnRobot. Frames are numbered 0, 1, ... in call
-   *  order. Throws std::invalid_argument when either image is missing or the
-   *  range image holds ray lengths (range_is_depth false). */
-  TOutput process(
-      const mrpt::obs::CObservation3DRangeScan& scan,
-      const std::optional<mrpt::poses::CPose3D>& cameraPose = std::nullopt);
+  /** A region whose features are already extracted (no ROI detection, no
+   *  confirmation against the previous frame): recalled or stored as a new
+   *  landmark (CRoiLandmarkTracker::identify). Used by the SLAM back end for
+   *  its keyframes' ROIs. */
+  TOutput processRegion(const TRegion& region);
 
   /** Builds the observation of landmarks (id, optical-frame position, metres)
    *  seen by a camera with these intrinsics. */
@@ -68,19 +69,13 @@ class CObservationProcessor
       const mrpt::img::TCamera& camera, double timestamp, const mrpt::poses::CPose3D& sensorPose,
       const TObservationOptions& options);
 
-  /** A TRGBDFrame from a scan (colour -> BGR, range image -> metres). */
-  static io::TRGBDFrame frameFromScan(const mrpt::obs::CObservation3DRangeScan& scan);
-
   const CRoiLandmarkTracker& tracker() const { return m_tracker; }
   CRoiLandmarkTracker& tracker() { return m_tracker; }
 
  private:
-  TOutput finish(
-      TFrameResult result, const io::TRGBDFrame& frame, const mrpt::poses::CPose3D& pose);
+  TOutput finish(TFrameResult result, const mrpt::img::TCamera& camera);
 
   TObservationOptions m_options;
   CRoiLandmarkTracker m_tracker;
-  /** Frame index given to scans (they carry none). */
-  uint64_t m_scans = 0;
 };
 }  // namespace roislam::landmarks

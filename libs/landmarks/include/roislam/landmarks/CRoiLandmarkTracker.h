@@ -19,6 +19,7 @@
 #include <roislam/landmarks/CLandmarkDatabase.h>
 #include <roislam/landmarks/TFrameResult.h>
 #include <roislam/landmarks/TPipelineOptions.h>
+#include <roislam/landmarks/TRegion.h>
 #include <roislam/matching/CFeatureMatcher.h>
 #include <roislam/matching/CHomographyLocator.h>
 #include <roislam/roi/CRoiDetector.h>
@@ -39,6 +40,12 @@ class CRoiLandmarkTracker
       const io::TRGBDFrame& frame,
       const std::optional<mrpt::poses::CPose3D>& cameraPose = std::nullopt);
 
+  /** The database step alone: recalls the region as a landmark (a sighting
+   *  is added) or stores it as a new one, and fills r's landmark fields
+   *  (status Landmark, id, new, box, position, recall figures). No
+   *  confirmation against the previous frame. */
+  void identify(const TRegion& region, TFrameResult& r);
+
   /** Forgets the previous frame (the next ROI cannot be confirmed); keeps the
    *  database. */
   void resetSequence();
@@ -54,6 +61,17 @@ class CRoiLandmarkTracker
   matching::CFeatureMatcher m_matcher;
   matching::CHomographyLocator m_locator;
   CLandmarkDatabase m_database;
+
+  /** The ROI of a frame with its features, depth and position. */
+  TRegion makeRegion(
+      const io::TRGBDFrame& frame, const cv::Mat& grey, const cv::Rect& box,
+      const features::TFeatureSet& all,
+      const std::optional<mrpt::poses::CPose3D>& cameraPose) const;
+  /** Re-finds the region in the previous frame (fills matches, false matches). */
+  bool confirm(const TRegion& region, TFrameResult& r) const;
+  /** Where a recalled landmark's stored point is in the region's frame. */
+  std::optional<mrpt::math::TPoint3D> recalledPosition(
+      const TRegion& region, const CLandmarkDatabase::TQueryResult& q) const;
 
   /** Whole-frame features of the previous frame (confirmation target). */
   std::optional<features::TFeatureSet> m_previous;

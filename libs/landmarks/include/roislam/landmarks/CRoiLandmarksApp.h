@@ -20,6 +20,12 @@
  *                   wall_s/fps_wall: whole run)
  *  - optionally an annotated rawlog: per frame the CObservation3DRangeScan
  *    followed by its CObservationBearingRange (observation-only format).
+ *  - with kfSlam (--kf-slam): kf-slam.rawlog (per frame the front end's
+ *    odometry as a CActionRobotMovement3D and a CSensoryFrame with the
+ *    frame's CObservationBearingRange), kf-slam/trajectory.txt (MRPT's
+ *    EKF-SLAM, TUM), kf-slam/odometry.txt, kf-slam/landmarks.txt,
+ *    kf-slam.landmarks_gt.txt with ground truth, and summary.json's
+ *    "kf_slam" object (kfslam::CKfSlamSession; [KfSlam] options).
  * The output folder is complete or absent (common::COutputFolder: written
  * into a staging folder beside it, renamed into place at the end); a
  * non-empty folder is refused unless `overwrite` (only our files, with the
@@ -30,10 +36,12 @@
 #pragma once
 
 #include <roislam/common/COutputFolder.h>
+#include <roislam/kfslam/CKfSlamSession.h>
 #include <roislam/landmarks/TPipelineOptions.h>
 
 #include <filesystem>
 #include <functional>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 #include <vector>
@@ -61,6 +69,8 @@ class CRoiLandmarksApp
     std::string camera = "auto";
     /** Process at most this many frames (0 = all). */
     std::size_t maxFrames = 0;
+    /** Also run MRPT's EKF-SLAM on the landmarks ([KfSlam] options). */
+    bool kfSlam = false;
     /** Progress lines (e.g. to stderr); may be empty. */
     std::function<void(const std::string&)> progress;
   };
@@ -70,6 +80,9 @@ class CRoiLandmarksApp
   {
     std::size_t frames = 0;
     std::size_t framesWithRoi = 0;
+    /** [RoiDetector] verify_hue: frames whose grey ROI the hue detector
+     *  did not confirm (they count as frames without a ROI). */
+    std::size_t framesRejectedByHue = 0;
     std::size_t confirmedRois = 0;
     std::size_t landmarks = 0;
     std::size_t recalls = 0;
@@ -95,6 +108,8 @@ class CRoiLandmarksApp
     double cpuS = 0;
     /** Wall time of the whole run including reading and writing. */
     double wallS = 0;
+    /** With kfSlam: summary.json's "kf_slam" object, else null. */
+    nlohmann::json kfSlam;
   };
 
   explicit CRoiLandmarksApp(TArguments arguments);
@@ -113,6 +128,10 @@ class CRoiLandmarksApp
  private:
   common::COutputFolder::TOptions outputFolderOptions(
       const std::optional<std::filesystem::path>& rawlogInFolder) const;
+  void progress(const std::string& line) const;
+  /** EKF-SLAM's setup, writing into `outputDir` (the staging folder). */
+  kfslam::CKfSlamSession::TSetup kfSlamSetup(const std::string& outputDir) const;
+
   TArguments m_args;
   TPipelineOptions m_options;
 };

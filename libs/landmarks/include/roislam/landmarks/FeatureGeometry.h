@@ -32,10 +32,10 @@ struct TFeatureDepth
 };
 
 /** Depth statistics and robust 3-D position of keypoints. depth: CV_32FC1
- *  metres (0 = none), registered to the colour camera; a keypoint without a
- *  reading at its pixel takes the median of the valid readings in its 3x3
- *  neighbourhood. Readings outside [minDepth, maxDepth] are ignored. Pixels are
- *  undistorted with the camera's distortion before back-projection. */
+ *  metres (0 = none), registered to the colour camera; which keypoints have a
+ *  depth is the project's one rule (geometry::liftPixels: the reading at the
+ *  keypoint's pixel within [minDepth, maxDepth], not on a depth edge); rays
+ *  go through the undistorted pixels. */
 TFeatureDepth featureDepth(
     const std::vector<cv::KeyPoint>& keypoints, const cv::Mat& depth,
     const mrpt::img::TCamera& camera, double minDepth, double maxDepth);
@@ -65,11 +65,11 @@ struct TRigidFit
   double rms = 0;
 };
 
-/** Rigid transform between corresponding 3-D points: RANSAC over minimal
- *  3-pair samples (deterministic seed) with inlier distance `threshold`
- *  (metres), then Horn's closed form (mrpt::tfest::se3_l2) refitted on the
- *  inliers. Pairs with an invalid point are ignored. nullopt with fewer than
- *  3 valid pairs or no non-degenerate sample. */
+/** Rigid transform between corresponding 3-D points by
+ *  matching::CRigidTransformRansac (minimal 3-pair samples, deterministic
+ *  seed, at most `iterations` hypotheses, inlier distance `threshold` in
+ *  metres, least-squares refits on the inliers). Pairs with an invalid point
+ *  are ignored. nullopt with fewer than 3 valid pairs or agreeing inliers. */
 std::optional<TRigidFit> fitRigid(
     const std::vector<mrpt::math::TPoint3D>& a, const std::vector<mrpt::math::TPoint3D>& b,
     double threshold, int iterations = 100);

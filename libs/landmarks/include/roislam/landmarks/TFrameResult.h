@@ -31,6 +31,9 @@ struct TFrameResult
   ERoiStatus status = ERoiStatus::NoRoi;
   /** The detected ROI box, when any. */
   std::optional<cv::Rect> roi;
+  /** [RoiDetector] verify_hue rejected the grey detector's ROI (roi is then
+   *  empty and status NoRoi). */
+  bool rejectedByHue = false;
   /** Recalled or new landmark (status Landmark), else -1. */
   int32_t landmarkId = -1;
   bool newLandmark = false;

@@ -6,6 +6,7 @@
 
 #include <mrpt/config/CConfigFileBase.h>
 #include <roislam/features/CFeatureExtractor.h>
+#include <roislam/kfslam/TKfSlamOptions.h>
 #include <roislam/landmarks/CLandmarkDatabase.h>
 #include <roislam/landmarks/CLandmarkScorer.h>
 #include <roislam/landmarks/TObservationOptions.h>
@@ -53,6 +54,7 @@ struct TPipelineOptions
   TTrackerOptions tracker;                         // [RoiLandmarks]
   CLandmarkScorer::TOptions scoring;               // [LandmarkScoring]
   TObservationOptions observations;                // [ObservationProcessor]
+  kfslam::TKfSlamOptions kfSlam;                   // [KfSlam] (roi-landmarks --kf-slam)
 
   /** Loads every section present (absent sections keep defaults), after
    *  checking that each of these sections holds only known keys;

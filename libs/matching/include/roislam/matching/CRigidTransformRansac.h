@@ -1,8 +1,10 @@
 /* 3-D rigid transform from putative point correspondences: minimal-sample
- * (3 pairs) RANSAC with Horn's closed-form absolute orientation, adaptive
- * number of iterations, and a least-squares fit on the final inliers.
- * Used by the SLAM front end (frame-to-keyframe motion, keyframe-to-keyframe
- * verification). Our own implementation rather than mrpt::tfest::se3_l2_robust
+ * (3 pairs) RANSAC with the closed-form alignment of geometry::alignRigid
+ * (Eigen::umeyama), adaptive number of iterations, and least-squares refits
+ * on the inliers. The one robust rigid estimator of the project: used by the
+ * SLAM front end (frame-to-keyframe motion, keyframe-to-keyframe
+ * verification) and the landmark database's 3-D recall check
+ * (landmarks::fitRigid). Our own implementation rather than mrpt::tfest::se3_l2_robust
  * because that one needs ~80 ms for 300 pairs (findings) and we need < 1 ms.
  */
 #pragma once
@@ -39,6 +41,11 @@ class CRigidTransformRansac
    *                     reaches this, in (0,1)
    *  - min_inliers      fewer inliers -> no result, int >= 3    (default 8)
    *  - seed             random seed (deterministic runs)        (default 1)
+   *  - min_sample_spread  a minimal sample whose source points come closer
+   *                     to each other than this many threshold_m is
+   *                     skipped (its rotation is ill-conditioned), >= 0;
+   *                     0 keeps every non-collinear sample, as points in a
+   *                     small region need (a ROI landmark's)  (default 2)
    */
   struct TOptions : public mrpt::config::CLoadableOptions
   {
@@ -47,6 +54,7 @@ class CRigidTransformRansac
     double confidence = 0.995;
     int min_inliers = 8;
     std::uint32_t seed = 1;
+    double min_sample_spread = 2;
 
     void loadFromConfigFile(
         const mrpt::config::CConfigFileBase& source, const std::string& section) override;
@@ -64,14 +72,6 @@ class CRigidTransformRansac
   std::optional<TRigidRansacResult> estimate(
       const std::vector<mrpt::math::TPoint3D>& target,
       const std::vector<mrpt::math::TPoint3D>& source) const;
-
-  /** Closed-form least-squares T (Horn / Umeyama, no scale) over the given
-   *  pair indices (all pairs when indices is empty); nullopt when degenerate
-   *  (fewer than 3 pairs or collinear points). */
-  static std::optional<mrpt::poses::CPose3D> fitLeastSquares(
-      const std::vector<mrpt::math::TPoint3D>& target,
-      const std::vector<mrpt::math::TPoint3D>& source,
-      const std::vector<std::size_t>& indices = {});
 
   const TOptions& options() const { return m_options; }
 

@@ -10,6 +10,10 @@
  *   depth/<stamp>.png   depth, 16-bit PNG, metres x 5000, 0 = no reading
  *   rgb.txt, depth.txt  "timestamp filename" lists (TUM headers)
  *   groundtruth.txt     "timestamp tx ty tz qx qy qz qw", colour optical centre in the world
+ *   accelerometer.txt   "timestamp ax ay az", one sample per frame: the specific
+ *                       force (motion and gravity, m/s^2) in the TUM Kinect's
+ *                       accelerometer axes (io/TumAccelerometer.h), with
+ *                       0.05 m/s^2 noise per axis when noise is on
  *   camera.ini          [CAMERA_PARAMS] intrinsics (mrpt::img::TCamera), read by roislam::io
  *   simulator.ini       [RgbdSimulator] options used
  * The folder is complete or absent (common::COutputFolder: a staging folder
@@ -138,6 +142,10 @@ class CRgbdSimulator : public mrpt::system::COutputLogger
   unsigned bandHeight() const;
   /** Ground-truth pose of frame i (colour optical frame in the world). */
   mrpt::poses::CPose3D groundTruthPose(std::size_t i) const;
+  /** What the Kinect's accelerometer reads at frame i, without noise:
+   *  gravity (world z up, 9.81 m/s^2) plus the path's acceleration, as a
+   *  specific force in the accelerometer's axes. */
+  mrpt::math::TVector3D accelerometerReading(std::size_t i) const;
 
   /** Renders frame i (0 <= i < frames); noise per options, deterministic in
    *  (seed, i). The OpenGL (EGL) context is created on first call, in this

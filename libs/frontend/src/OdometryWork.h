@@ -1,0 +1,127 @@
+/* Private: the state of CRgbdOdometry between frames (TImpl) and the data
+ * one frame carries from stage to stage inside process() (TFrameWork). Every
+ * stage reads what the stages before it wrote into TFrameWork and adds its
+ * own results; nothing flows backwards.
+ */
+#pragma once
+
+#include <roislam/features/CFeatureExtractor.h>
+#include <roislam/frontend/CRgbdOdometry.h>
+#include <roislam/matching/CFeatureMatcher.h>
+#include <roislam/matching/CRigidTransformRansac.h>
+#include <roislam/roi/CRoiDetector.h>
+
+#include <map>
+#include <memory>
+#include <optional>
+#include <vector>
+
+#include "CDepthIcp.h"
+#include "FeatureLifting.h"
+#include "KeyframeRegistration.h"
+#include "RollingShutter.h"
+#include "Timing.h"
+
+namespace roislam::frontend
+{
+struct CRgbdOdometry::TImpl
+{
+  roi::CRoiDetector roiDetector;
+  features::CFeatureExtractor extractor;
+  matching::CFeatureMatcher matcher;
+  matching::CRigidTransformRansac ransac;
+
+  // Camera-dependent state, rebuilt when the intrinsics change.
+  bool haveCamera = false;
+  mrpt::img::TCamera camera;
+  cv::Mat K, dist;
+  detail::TPinhole pinhole;
+  std::unique_ptr<detail::CDepthIcp> icp;
+  /** ICP maps of the most recent keyframes only (memory). */
+  std::map<std::size_t, detail::CDepthIcp::TMap> icpMaps;
+
+  // Tracking state: the last tracked (non-lost) frame relative to a keyframe.
+  bool haveLast = false;
+  std::size_t lastRef = 0;
+  mrpt::poses::CPose3D lastRel;
+  /** Motion between the last two tracked frames: P_k = P_{k-1} (+) velocity. */
+  mrpt::poses::CPose3D velocity;
+  /** Colour stamp of the last tracked frame; the interval velocity spans
+   *  (0 = unknown). */
+  double lastStamp = 0, velocityDt = 0;
+  bool haveStamp = false;
+  /** The first keyframe is made before any velocity is known: its raw
+   *  points wait here until the next frame measures one (rolling shutter). */
+  std::optional<detail::TUncorrectedKeyframe> uncorrected;
+  /** roi_extraction = region: the tracking region's minimum area, as a
+   *  multiple of roi_min_area_fraction. It grows after each region
+   *  registration that failed or left the pose poorly determined, and
+   *  shrinks back after each good one, so that the region is as large as
+   *  this scene needs for a determined pose (StageTrack.cpp). */
+  double regionGrowth = 1;
+
+  explicit TImpl(const TOptions& o);
+  /** Rebuilds the camera-dependent state when the intrinsics change. */
+  void useCamera(const mrpt::img::TCamera& camera, const TOptions& o);
+  /** The motion since the last tracked frame, seen at `stamp`. */
+  void setVelocity(const mrpt::poses::CPose3D& motion, double stamp)
+  {
+    velocity = motion;
+    velocityDt = haveStamp ? stamp - lastStamp : 0;
+  }
+  /** registerSets() with this odometry's matcher, RANSAC and camera. */
+  std::optional<detail::TRegistration> registerSets(
+      const TKeyframe& ref, const TKeyframe& cur, const TOptions& o,
+      std::size_t* matchesOut = nullptr, TStageTimes* times = nullptr) const;
+};
+
+/** One frame on its way through the stages of process(). */
+struct CRgbdOdometry::TFrameWork
+{
+  explicit TFrameWork(const TPreparedFrame& f) : in(f) {}
+
+  const TPreparedFrame& in;
+  detail::Clock::time_point start = detail::Clock::now();
+  /** What process() returns, filled stage by stage. */
+  TFrameResult res;
+
+  // extractFeatures
+  /** Every feature described so far: the tracking region's first, then the
+   *  extension's (extendToImage). */
+  features::TFeatureSet all;
+  /** Stage 2 ran on the region only so far (ROI-only, may be extended). */
+  bool regionOnly = false;
+  // liftFeatures
+  detail::TLiftedFeatures lifted;
+  /** Features tracked with (indices into all, a subset of lifted.valid):
+   *  the ROI's in ROI modes, else every valid one. */
+  std::vector<int> chosen;
+  /** The whole image's set (keyframe storage, fallback) and the tracked one. */
+  TKeyframe full, cur;
+  /** ROI mode tracked with the whole image's features. */
+  bool fallback = false;
+  /** strict_roi: too few ROI features, the frame will be Lost. */
+  bool strictLost = false;
+  /** The rolling-shutter correction's first guess (the last motion), and
+   *  the one lifted's points carry now (the measured one after
+   *  refineRollingShutter). */
+  detail::TCameraRate ratePredicted, rateApplied;
+
+  // predictMotion
+  std::size_t lastKf = 0;
+  /** World pose of the last tracked frame, and the prediction relative to
+   *  the last keyframe (constant velocity). */
+  mrpt::poses::CPose3D lastWorld, predictedRel;
+
+  // trackFeatures, refine*
+  std::optional<detail::TRegistration> reg;
+  /** Keyframe the registration is against. */
+  std::size_t ref = 0;
+};
+
+/** The ETrackingMethod of a feature registration in `mode`. */
+ETrackingMethod featureMethod(EFrontEndMode mode, bool fallback);
+bool isFeatureMethod(ETrackingMethod m);
+/** s * identity. */
+TInformation66 scaledIdentity(double s);
+}  // namespace roislam::frontend

@@ -1,0 +1,122 @@
+// Refinement of the front end's registration, and the frame's pose: the
+// rolling-shutter correction with the velocity the registration measured,
+// depth ICP for registrations that leave the pose poorly determined, and,
+// when features failed, the depth-only and constant-velocity fallbacks.
+#include <roislam/frontend/PoseUncertainty.h>
+
+#include <tuple>
+
+#include "OdometryWork.h"
+
+namespace roislam::frontend
+{
+using detail::Clock;
+using detail::msSince;
+
+void CRgbdOdometry::refineRollingShutter(TFrameWork& w)
+{
+  TImpl& I = *m_impl;
+  const double readout = m_options.rolling_shutter_ms * 1e-3;
+  const double stamp = w.in.frame.timestamp;
+  if (!w.reg || readout == 0 || !I.haveStamp || !(stamp > I.lastStamp))
+    return;
+  // The velocity this registration measured since the last frame replaces
+  // the predicted one (it lags by half a frame instead of one and a half),
+  // and the same matches are refined again. Measured on fr1/rpy; a third
+  // pass was not better.
+  const mrpt::poses::CPose3D measured =
+      (m_keyframes[w.ref].pose + detail::toPose(w.reg->T)) - w.lastWorld;
+  const detail::TCameraRate rate = detail::cameraRate(measured, stamp - I.lastStamp);
+  // The first keyframe, uncorrected so far, gets the velocity measured from
+  // it to this frame (it was the last frame), and this registration is
+  // refined against its corrected points.
+  if (I.uncorrected && I.uncorrected->id == w.ref && I.lastStamp == m_keyframes[w.ref].timestamp)
+    detail::correctKeyframe(m_keyframes[w.ref], *I.uncorrected, rate, readout, I.pinhole);
+  I.uncorrected.reset();
+  // Points and pixels only: the feature sets keep their descriptors.
+  auto rebuild = [&]()
+  {
+    detail::updateFeatureSetPoints(w.full, w.lifted, w.lifted.valid, I.pinhole);
+    detail::updateFeatureSetPoints(
+        w.cur, w.lifted, w.fallback ? w.lifted.valid : w.chosen, I.pinhole);
+  };
+  detail::rectifyRollingShutter(w.lifted, rate, readout, I.pinhole);
+  rebuild();
+  if (auto again =
+          detail::refineRegistration(m_keyframes[w.ref], w.cur, *w.reg, I.pinhole, m_options))
+    w.reg = std::move(again);
+  else
+  {
+    detail::rectifyRollingShutter(w.lifted, w.ratePredicted, readout, I.pinhole);
+    rebuild();
+  }
+}
+
+void CRgbdOdometry::refineWithDepth(TFrameWork& w) const
+{
+  TImpl& I = *m_impl;
+  if (!w.reg || !(m_options.icp_refine_sigma_m > 0) || !I.icpMaps.count(w.ref))
+    return;
+  // A feature registration that leaves the pose poorly determined (blur,
+  // few inliers, features crowded in one region) is combined with depth ICP
+  // against the same keyframe, started from it: the depth geometry
+  // constrains exactly the directions the few features do not.
+  const auto sg = worstSigmas(detail::toMrptEstimate(*w.reg).second);
+  if (sg && sg->translation_m <= m_options.icp_refine_sigma_m)
+    return;
+  const auto t0 = Clock::now();
+  const auto ir = I.icp->align(I.icpMaps[w.ref], I.icp->buildMap(w.in.frame.depth), w.reg->T);
+  if (ir)
+  {
+    w.reg->T = detail::fuseLeft(w.reg->T, w.reg->information, ir->T, ir->information);
+    w.reg->information += ir->information;
+    w.res.icpRefined = true;
+  }
+  w.res.times.icp_ms += msSince(t0);
+}
+
+bool CRgbdOdometry::resolvePose(TFrameWork& w)
+{
+  TImpl& I = *m_impl;
+  const TOptions& o = m_options;
+  TFrameResult& res = w.res;
+  if (w.reg)
+  {
+    res.method = featureMethod(o.mode, w.fallback);
+    std::tie(res.relativePose, res.relativeInformation) = detail::toMrptEstimate(*w.reg);
+    res.inliers = w.reg->inliers;
+  }
+  else if (o.strict_roi && isRoiMode(o.mode))
+  {
+    res.method = ETrackingMethod::Lost;
+    return false;
+  }
+  else
+  {
+    // Features failed: depth-only ICP against the last keyframe, else the
+    // constant-velocity prediction (tracking never stops).
+    w.ref = w.lastKf;
+    res.method = ETrackingMethod::ConstantVelocity;
+    res.relativePose = w.predictedRel;
+    res.relativeInformation = scaledIdentity(o.constant_velocity_information_scale);
+    res.inliers = 0;
+    if (o.icp_fallback && I.icpMaps.count(w.lastKf))
+    {
+      const auto t0 = Clock::now();
+      const auto curMap = I.icp->buildMap(w.in.frame.depth);
+      const auto ir = I.icp->align(I.icpMaps[w.lastKf], curMap, detail::fromPose(w.predictedRel));
+      res.times.icp_ms += msSince(t0);
+      if (ir)
+      {
+        res.method = ETrackingMethod::DepthIcp;
+        std::tie(res.relativePose, res.relativeInformation) = detail::toMrptEstimate(*ir);
+        res.inliers = ir->pairs;
+      }
+    }
+  }
+  res.referenceKeyframe = w.ref;
+  res.pose = m_keyframes[w.ref].pose + res.relativePose;
+  I.setVelocity(*res.pose - w.lastWorld, w.in.frame.timestamp);
+  return true;
+}
+}  // namespace roislam::frontend
