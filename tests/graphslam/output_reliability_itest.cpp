@@ -84,7 +84,7 @@ std::string withGroundTruth(const std::string& seq, const std::string& root, con
 }
 }  // namespace
 
-TEST(OutputReliability, MalformedIniHeaderIsAnErrorNotTheDefaults)
+TEST(OutputReliability, MalformedIniIsAnErrorNotTheDefaults)
 {
   const std::string tmp = roislam::testing::makeTempDir("gs_rel_ini");
   const std::string ini = tmp + "/bad.ini";
@@ -98,6 +98,12 @@ TEST(OutputReliability, MalformedIniHeaderIsAnErrorNotTheDefaults)
   EXPECT_EQ(d.exitCode, 1);
   EXPECT_EQ(
       d.err, "roi-graphslam: error: " + ini + ":3: duplicate key 'mode' (first given on line 2)\n");
+  std::ofstream(ini) << "[FrontEnd]\nmode = roi_big\nthis is garbage\n";
+  const auto g = runApp("--ini " + ini + " --input /nonexistent --output-dir " + tmp + "/out");
+  EXPECT_EQ(g.exitCode, 1);
+  EXPECT_EQ(
+      g.err, "roi-graphslam: error: " + ini +
+                 ":3: expected a comment, [section] or key = value, got 'this is garbage'\n");
   EXPECT_FALSE(fs::exists(tmp + "/out"));
   fs::remove_all(tmp);
 }
