@@ -21,6 +21,7 @@ int main(int argc, char** argv)
   CRoiGraphSlamEngineApp::TArguments args;
   std::string gt;
   bool listNode = false, listEdge = false, listRegs = false, listOpt = false, noSnapshot = false;
+  bool allowPartial = false;
   cli.add_option("-i,--ini-file", args.iniFile, ".ini configuration (config/graphslam-engine.ini)");
   cli.add_option("-r,--rawlog", args.rawlog, "Rawlog of CObservation3DRangeScan (tum2rawlog)");
   cli.add_option("-g,--ground-truth", gt, "Ground truth, TUM format (NAME.groundtruth.txt)");
@@ -39,6 +40,10 @@ int main(int argc, char** argv)
   cli.add_flag("--list-optimizers", listOpt, "List the optimizers and exit");
   cli.add_option("--output-dir", args.outputDir, "Output folder")->capture_default_str();
   cli.add_flag("--no-snapshot", noSnapshot, "Do not render snapshot.png");
+  cli.add_flag("--overwrite", args.overwrite, "Replace an earlier output in --output-dir");
+  cli.add_flag(
+      "--allow-partial", allowPartial,
+      "Exit 0 when the evaluation or snapshot failed (else 3; summary.json says what)");
   CLI11_PARSE(cli, argc, argv);
 
   if (listNode || listEdge || listRegs || listOpt)
@@ -56,5 +61,5 @@ int main(int argc, char** argv)
   args.snapshot = !noSnapshot;
   args.progress = [](const std::string& line) { std::cerr << line << std::endl; };
   return roislam::graphslam::slamMain(
-      "roi-graphslam-engine", args.outputDir, [&] { return CRoiGraphSlamEngineApp(args).run(); });
+      "roi-graphslam-engine", args.outputDir, allowPartial, [&] { return CRoiGraphSlamEngineApp(args).run(); });
 }

@@ -1,9 +1,9 @@
 #include "roislam/gui/CLiveView.h"
 
-#include <mrpt/config/CConfigFile.h>
 #include <mrpt/gui/CDisplayWindow3D.h>
 #include <mrpt/system/CObserver.h>
 #include <pthread.h>
+#include <roislam/common/CStrictIniFile.h>
 #include <roislam/common/IniKeyCheck.h>
 #include <roislam/common/IniRead.h>
 #include <roislam/common/TextFiles.h>
@@ -165,9 +165,7 @@ CLiveView::TOptions CLiveView::loadOptions(const std::string& iniFile)
   TOptions o;
   if (iniFile.empty())
     return o;
-  if (!std::filesystem::is_regular_file(iniFile))
-    throw std::runtime_error("ini " + iniFile + ": cannot open");
-  mrpt::config::CConfigFile cfg(iniFile);
+  const common::CStrictIniFile cfg(iniFile);  // syntax checked: file:line errors
   common::checkIniKeys(cfg, kSection, common::knownIniKeys(o, kSection), iniFile);
   o.loadFromConfigFile(cfg, kSection);
   return o;

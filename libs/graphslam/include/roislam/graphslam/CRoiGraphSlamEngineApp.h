@@ -26,7 +26,7 @@ namespace roislam::graphslam
 class CRoiGraphSlamEngineApp
 {
  public:
-  /** graphslam-engine's options (and --output-dir, --no-snapshot). */
+  /** graphslam-engine's options (and --output-dir, --no-snapshot, --overwrite). */
   struct TArguments
   {
     std::string iniFile;                     //!< -i/--ini-file (required)
@@ -38,6 +38,8 @@ class CRoiGraphSlamEngineApp
     bool disableVisuals = false;             //!< --disable-visuals: always headless
     std::string outputDir = "graphslam_results";  //!< --output-dir
     bool snapshot = true;                         //!< no --no-snapshot
+    /** --overwrite: replace an earlier output of ours in outputDir. */
+    bool overwrite = false;
     /** Progress lines (e.g. to stderr); may be empty. */
     std::function<void(const std::string&)> progress;
   };

@@ -1,7 +1,9 @@
 /* Runs one SLAM pipeline (CSlamPipeline: MRPT's engine with the chosen
  * deciders) over its sequence and writes the run's outputs into the output
- * folder, each file under a temporary name renamed when complete
- * (CSlamOutputWriter). What roi-graphslam (CRoiGraphSlamApp) and
+ * folder, which is complete or absent: the files are staged beside it and
+ * the folder is renamed into place after summary.json (CSlamOutputWriter,
+ * common::COutputFolder); a non-empty folder is refused unless
+ * TSettings::overwrite, which replaces an earlier output of ours whole. What roi-graphslam (CRoiGraphSlamApp) and
  * roi-graphslam-engine (CRoiGraphSlamEngineApp) both do once their
  * configuration is known, so they write the same files the same way:
  *  - trajectory.txt  TUM format, colour stamps; every tracked frame: its
@@ -19,7 +21,8 @@
  *                    (description, parameters in use, counters)
  *  - summary.json    counts, speed, memory, ATE/RPE when ground truth is known,
  *                    display_frame (CGravityFrame::TResult::toJson()), the
- *                    deciders' names ("engine")
+ *                    deciders' names ("engine"); "partial" and "incomplete"
+ *                    (TSlamSummary::incomplete)
  * trajectory.txt and graph.graph are in the estimate's own frame (the first
  * camera's optical frame, TUM convention: as estimated); map.bt,
  * scene.3Dscene and snapshot.png are gravity-up (z up) in the frame
@@ -31,6 +34,7 @@
 
 #include <roislam/evaluation/TEvaluationResult.h>
 #include <roislam/graphslam/CSlamObserver.h>
+#include <roislam/graphslam/CSlamOutputWriter.h>
 #include <roislam/graphslam/CSlamPipeline.h>
 #include <roislam/graphslam/TSlamSummary.h>
 #include <roislam/io/CFrameSource.h>
@@ -54,6 +58,8 @@ class CSlamRunner
     /** As given by the user (summary.json "input"). */
     std::string input;
     std::string outputDir;
+    /** Replace an earlier output of ours in outputDir (CSlamOutputWriter). */
+    bool overwrite = false;
     /** TUM-format ground truth; none: no ATE / RPE. */
     std::optional<std::string> groundTruthFile;
     bool snapshot = true;
@@ -75,7 +81,7 @@ class CSlamRunner
 
   explicit CSlamRunner(TSettings settings);
 
-  /** Checks the output folder, builds the pipeline over `source`, runs the
+  /** Checks the output folder (and prepares its staging folder), builds the pipeline over `source`, runs the
    *  whole sequence (or maxFrames), and writes the outputs. Throws when the
    *  output folder is not writable, the pipeline cannot be built or a frame
    *  cannot be read. */
@@ -106,7 +112,7 @@ class CSlamRunner
       const std::optional<TOptimizationReport>& finalReport, const TEvaluation& ev) const;
   /** The files of the run, after the timed part. */
   void writeOutputs(
-      const CSlamPipeline& pipeline, const io::TTrajectory& estimate,
+      CSlamOutputWriter& writer, const CSlamPipeline& pipeline, const io::TTrajectory& estimate,
       const std::optional<TOptimizationReport>& finalReport, const TEvaluation& ev,
       TSlamSummary& s) const;
 
