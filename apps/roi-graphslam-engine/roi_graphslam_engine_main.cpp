@@ -61,5 +61,6 @@ int main(int argc, char** argv)
   args.snapshot = !noSnapshot;
   args.progress = [](const std::string& line) { std::cerr << line << std::endl; };
   return roislam::graphslam::slamMain(
-      "roi-graphslam-engine", args.outputDir, allowPartial, [&] { return CRoiGraphSlamEngineApp(args).run(); });
+      "roi-graphslam-engine", args.outputDir, allowPartial,
+      [&] { return CRoiGraphSlamEngineApp(args).run(); });
 }

@@ -111,16 +111,17 @@ common::COutputFolder::TOptions folderOptions(bool overwrite)
   common::COutputFolder::TOptions o;
   o.overwrite = overwrite;
   o.known = CSlamOutputWriter::files();
+  // The live view's key-press screenshots (CSlamObserver::onOutputFolder).
+  o.knownPrefixes = {"screenshot-"};
   return o;
 }
 }  // namespace
 
 const std::vector<std::string>& CSlamOutputWriter::files()
 {
-  static const std::vector<std::string> names{"trajectory.txt", "graph.graph",  "map.bt",
-                                              "scene.3Dscene",  "snapshot.png", "frames.csv",
-                                              "ate.png",        "errors.png",   "report.txt",
-                                              "summary.json"};
+  static const std::vector<std::string> names{
+      "trajectory.txt", "graph.graph", "map.bt",     "scene.3Dscene", "snapshot.png",
+      "frames.csv",     "ate.png",     "errors.png", "report.txt",    "summary.json"};
   return names;
 }
 

@@ -287,6 +287,8 @@ TSlamSummary CSlamRunner::run(
   if (m_settings.started)
     m_settings.started(*pipeline);
   pipeline->setObserver(m_settings.observer);
+  if (m_settings.observer)
+    m_settings.observer->onOutputFolder(writer.folder());
   const bool stopped = runFrames(*pipeline, total);
   const auto finalReport = pipeline->finish();
   const io::TTrajectory estimate = pipeline->trajectory();
@@ -298,6 +300,8 @@ TSlamSummary CSlamRunner::run(
   if (!ev.error.empty())
     s.incomplete.push_back("evaluation failed: " + ev.error);
   writeOutputs(writer, *pipeline, estimate, finalReport, ev, s);
+  if (m_settings.observer)
+    m_settings.observer->onOutputFolder(writer.folder());
   return s;
 }
 }  // namespace roislam::graphslam

@@ -460,11 +460,13 @@ void CLiveView::TImpl::drawLoop()
     const auto step = std::chrono::duration<double>(budget.period());
     std::vector<TUpdate> updates;
     std::optional<TShot> shot;
+    std::string shotDir;
     {
       std::unique_lock<std::mutex> lk(mutex);
       wake.wait_for(lk, step, [this] { return stopDrawing || !shots.empty(); });
       if (stopDrawing)
         return;
+      shotDir = session.screenshotDir;  // onOutputFolder() moves it
       updates.swap(pending);
       sequenceShown = sequence;
       messageShown = message;
@@ -487,7 +489,7 @@ void CLiveView::TImpl::drawLoop()
     {
       char name[64];
       std::snprintf(name, sizeof(name), "screenshot-%06zu.png", last ? last->index : 0);
-      serve({(std::filesystem::path(session.screenshotDir) / name).string(), nullptr});
+      serve({(std::filesystem::path(shotDir) / name).string(), nullptr});
     }
     if (shot)
       serve(*shot);
@@ -717,6 +719,12 @@ CLiveView::CLiveView(const TOptions& options, TSession session)
 }
 
 CLiveView::~CLiveView() = default;
+
+void CLiveView::onOutputFolder(const std::string& dir)
+{
+  std::lock_guard<std::mutex> lk(m_impl->mutex);
+  m_impl->session.screenshotDir = dir;
+}
 
 void CLiveView::onStart(const io::CFrameSource& source, const graphslam::CSlamContext& context)
 {

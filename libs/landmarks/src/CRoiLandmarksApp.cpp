@@ -509,9 +509,10 @@ CRoiLandmarksApp::TSummary CRoiLandmarksApp::run()
       rawlogInFolder ? std::optional<std::string>((outDir / *rawlogInFolder).string())
                      : m_args.outputRawlog,
       m_args.outputRawlog.value_or(""));
-  auto kfSlam = m_args.kfSlam
-                    ? std::make_unique<kfslam::CKfSlamSession>(kfSlamSetup(*source, outDir.string()))
-                    : nullptr;
+  auto kfSlam =
+      m_args.kfSlam
+          ? std::make_unique<kfslam::CKfSlamSession>(kfSlamSetup(*source, outDir.string()))
+          : nullptr;
   CObservationProcessor processor(m_options);
   const TFrameLog log = processFrames(
       *source, m_args.maxFrames, processor, m_options.observations.sensor_pose, patchesDir, rawlog,

@@ -394,7 +394,7 @@ CRgbdSimulator::TWriteStats CRgbdSimulator::writeSequence(const std::string& out
   // Complete or absent: a staging folder beside outDir, renamed at the end.
   roislam::common::COutputFolder::TOptions folderOptions;
   folderOptions.overwrite = overwrite;
-  folderOptions.known = {"rgb",        "depth",         "rgb.txt",          "depth.txt",
+  folderOptions.known = {"rgb",        "depth",         "rgb.txt",         "depth.txt",
                          "camera.ini", "simulator.ini", "groundtruth.txt", "accelerometer.txt"};
   roislam::common::COutputFolder folder(outDir, folderOptions);
   const fs::path tmp(folder.path());

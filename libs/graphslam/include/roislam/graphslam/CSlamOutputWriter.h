@@ -83,6 +83,10 @@ class CSlamOutputWriter
    *  folder fails before the work. */
   explicit CSlamOutputWriter(const std::string& outputDir, bool overwrite = false);
 
+  /** Where the files go now: the staging folder until writeSummary(),
+   *  then the output folder. */
+  std::string folder() const { return m_folder.path(); }
+
   /** The names this writer may put into an output folder. */
   static const std::vector<std::string>& files();
 

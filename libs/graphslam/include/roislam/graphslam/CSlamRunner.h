@@ -3,8 +3,8 @@
  * folder, which is complete or absent: the files are staged beside it and
  * the folder is renamed into place after summary.json (CSlamOutputWriter,
  * common::COutputFolder); a non-empty folder is refused unless
- * TSettings::overwrite, which replaces an earlier output of ours whole. What roi-graphslam (CRoiGraphSlamApp) and
- * roi-graphslam-engine (CRoiGraphSlamEngineApp) both do once their
+ * TSettings::overwrite, which replaces an earlier output of ours whole. What roi-graphslam
+ * (CRoiGraphSlamApp) and roi-graphslam-engine (CRoiGraphSlamEngineApp) both do once their
  * configuration is known, so they write the same files the same way:
  *  - trajectory.txt  TUM format, colour stamps; every tracked frame: its
  *                    keyframe's optimised pose (+) its pose relative to it
@@ -81,10 +81,9 @@ class CSlamRunner
 
   explicit CSlamRunner(TSettings settings);
 
-  /** Checks the output folder (and prepares its staging folder), builds the pipeline over `source`, runs the
-   *  whole sequence (or maxFrames), and writes the outputs. Throws when the
-   *  output folder is not writable, the pipeline cannot be built or a frame
-   *  cannot be read. */
+  /** Checks the output folder (and prepares its staging folder), builds the pipeline over `source`,
+   * runs the whole sequence (or maxFrames), and writes the outputs. Throws when the output folder
+   * is not writable, the pipeline cannot be built or a frame cannot be read. */
   TSlamSummary run(std::unique_ptr<io::CFrameSource> source, const TMakePipeline& make) const;
 
  private:
