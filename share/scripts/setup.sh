@@ -9,7 +9,12 @@
 #   share/scripts/setup.sh ci     test, sanitize, fuzz (what .ci/run runs), with timings
 # Environment: BUILD_DIR (default build), JOBS (default nproc),
 #              ROISLAM_TEST_LABELS (ctest label regex, default "unit|integration"),
-#              ROISLAM_FUZZ_SECONDS (default 60).
+#              ROISLAM_FUZZ_SECONDS (default 60),
+#              ROISLAM_SANITIZE_EXCLUDE (ctest -E regex for the sanitizer run; `ci` sets
+#              the default below, `sanitize` alone runs everything).
+# CI's budget (.ci/run, fresh 2-core machine, 90 min, aim <= 60): README
+# "Reliability" has the measured time of each stage and why the sanitizer run
+# leaves out the one test it does.
 set -euo pipefail
 mode="${1:-}"
 case "$mode" in
@@ -29,12 +34,20 @@ shared="$root/../shared/data"
 bash share/scripts/install-deps.sh
 
 if [ "$mode" = ci ]; then
+  # graphslam_tum_accuracy_itest is 4 min in Release and ~3x that under ASan,
+  # the sanitizer run's critical path: it checks ATE figures on the real
+  # excerpts through the same pipeline code that graphslam_engine_tum_itest,
+  # graphslam_pipeline_itest and frontend_odometry_tum_itest run under the
+  # sanitizers, so it adds time but no code. The Release stage runs it.
+  export ROISLAM_SANITIZE_EXCLUDE="${ROISLAM_SANITIZE_EXCLUDE-^graphslam_tum_accuracy_itest\$}"
+  all=$(date +%s)
   # Each stage timed; the first failure stops the run (set -e).
   for stage in test sanitize fuzz; do
     start=$(date +%s)
     bash "$0" "$stage"
     echo "setup.sh ci: stage $stage took $(($(date +%s) - start)) s"
   done
+  echo "setup.sh ci: all stages took $(($(date +%s) - all)) s"
   exit 0
 fi
 
@@ -51,7 +64,9 @@ if [ "$mode" = sanitize ]; then
   export ASAN_OPTIONS="detect_leaks=1:allocator_may_return_null=1:check_initialization_order=1"
   export LSAN_OPTIONS="suppressions=$root/share/scripts/lsan.supp:print_suppressions=0"
   export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1:suppressions=$root/share/scripts/ubsan.supp"
-  ctest --test-dir "$asan" -L "$labels" -j"$jobs" --output-on-failure --timeout 1800
+  exclude=()
+  [ -n "${ROISLAM_SANITIZE_EXCLUDE:-}" ] && exclude=(-E "$ROISLAM_SANITIZE_EXCLUDE")
+  ctest --test-dir "$asan" -L "$labels" "${exclude[@]}" -j"$jobs" --output-on-failure --timeout 1800
   exit $?
 fi
 

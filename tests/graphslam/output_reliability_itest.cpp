@@ -8,6 +8,7 @@
 #include <roislam/graphslam/CSlamOutputWriter.h>
 #include <roislam/graphslam/CSlamPipeline.h>
 #include <roislam/io/CFrameSource.h>
+#include <roislam/testing/FolderListing.h>
 #include <roislam/testing/TestData.h>
 
 #include <algorithm>
@@ -58,17 +59,6 @@ std::string readFile(const fs::path& p)
   std::stringstream ss;
   ss << in.rdbuf();
   return ss.str();
-}
-
-/** Names in a folder, sorted. */
-std::vector<std::string> listing(const fs::path& dir)
-{
-  std::vector<std::string> names;
-  for (const auto& e : fs::directory_iterator(dir))
-    if (e.path().filename().string() != ".roislam-output")  // COutputFolder's manifest
-      names.push_back(e.path().filename().string());
-  std::sort(names.begin(), names.end());
-  return names;
 }
 
 /** A TUM folder sharing `seq`'s images and lists (symlinks) with its own
@@ -128,7 +118,7 @@ TEST(OutputReliability, NonEmptyFolderRefusedAndOverwriteLeavesNoStaleFile)
   EXPECT_EQ(r.exitCode, 1);
   EXPECT_NE(r.err.find("holds notes.txt, which this app does not write"), std::string::npos)
       << r.err;
-  EXPECT_EQ(listing(out), std::vector<std::string>{"notes.txt"});
+  EXPECT_EQ(roislam::testing::outputListing(out), std::vector<std::string>{"notes.txt"});
   fs::remove(out + "/notes.txt");
 
   // A first run with a snapshot, then --no-snapshot: refused without
@@ -145,7 +135,7 @@ TEST(OutputReliability, NonEmptyFolderRefusedAndOverwriteLeavesNoStaleFile)
   EXPECT_FALSE(fs::exists(out + "/snapshot.png"));
   EXPECT_TRUE(fs::exists(out + "/summary.json"));
   // Nothing but the output folder is left beside it (no staging folder).
-  EXPECT_EQ(listing(tmp), std::vector<std::string>{"out"});
+  EXPECT_EQ(roislam::testing::outputListing(tmp), std::vector<std::string>{"out"});
   fs::remove_all(tmp);
 }
 
@@ -246,7 +236,7 @@ TEST(OutputReliability, FailureWhileWritingTheMapLeavesTheFolderAbsentOrAsBefore
 
   // An earlier output, replaced with --overwrite: untouched after the failure.
   writeAll(out, false, false);
-  const auto before = listing(out);
+  const auto before = roislam::testing::outputListing(out);
   EXPECT_EQ(
       before, (std::vector<std::string>{
                   "frames.csv", "graph.graph", "map.bt", "scene.3Dscene", "summary.json",
@@ -256,12 +246,12 @@ TEST(OutputReliability, FailureWhileWritingTheMapLeavesTheFolderAbsentOrAsBefore
     contents[f] = readFile(fs::path(out) / f);
   std::ofstream(fs::path(out) / "snapshot.png") << "an earlier snapshot";
   EXPECT_THROW(writeAll(out, true, true), std::runtime_error);
-  EXPECT_EQ(listing(tmp), std::vector<std::string>{"out"});
+  EXPECT_EQ(roislam::testing::outputListing(tmp), std::vector<std::string>{"out"});
   for (const auto& f : before)
     EXPECT_EQ(readFile(fs::path(out) / f), contents[f]) << f;
   EXPECT_EQ(readFile(fs::path(out) / "snapshot.png"), "an earlier snapshot");
   // And the same run without the failure replaces it whole.
   writeAll(out, true, false);
-  EXPECT_EQ(listing(out), before);
+  EXPECT_EQ(roislam::testing::outputListing(out), before);
   fs::remove_all(tmp);
 }

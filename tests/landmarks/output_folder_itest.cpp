@@ -3,6 +3,7 @@
  * that fails, and the annotated rawlog inside it moves with it. */
 #include <gtest/gtest.h>
 #include <roislam/landmarks/CRoiLandmarksApp.h>
+#include <roislam/testing/FolderListing.h>
 #include <roislam/testing/TestData.h>
 
 #include <algorithm>
@@ -16,16 +17,6 @@ using roislam::landmarks::CRoiLandmarksApp;
 
 namespace
 {
-std::vector<std::string> listing(const fs::path& dir)
-{
-  std::vector<std::string> names;
-  for (const auto& e : fs::directory_iterator(dir))
-    if (e.path().filename().string() != ".roislam-output")  // COutputFolder's manifest
-      names.push_back(e.path().filename().string());
-  std::sort(names.begin(), names.end());
-  return names;
-}
-
 std::string errorOf(const CRoiLandmarksApp::TArguments& a)
 {
   try
@@ -50,32 +41,32 @@ TEST(RoiLandmarksOutput, CompleteOrAbsentAndNeverMixed)
   a.outputRawlog = tmp + "/out/rawlog/annotated.rawlog";
   a.maxFrames = 12;
   EXPECT_EQ(errorOf(a), "");
-  const auto first = listing(a.outputDir);
+  const auto first = roislam::testing::outputListing(a.outputDir);
   EXPECT_EQ(
       first, (std::vector<std::string>{
                  "frames.csv", "landmarks", "landmarks.db", "rawlog", "summary.json"}));
   EXPECT_TRUE(fs::is_regular_file(a.outputDir + "/rawlog/annotated.rawlog"));
   EXPECT_TRUE(fs::is_directory(a.outputDir + "/rawlog/annotated_Images"));
-  EXPECT_EQ(listing(tmp), std::vector<std::string>{"out"});
+  EXPECT_EQ(roislam::testing::outputListing(tmp), std::vector<std::string>{"out"});
 
   // Again: refused without overwrite, the earlier output untouched.
   const std::string e = errorOf(a);
   EXPECT_NE(e.find("output dir " + a.outputDir + ": not empty"), std::string::npos) << e;
-  EXPECT_EQ(listing(a.outputDir), first);
+  EXPECT_EQ(roislam::testing::outputListing(a.outputDir), first);
   // With overwrite, but no annotated rawlog this time: the old one is gone.
   a.overwrite = true;
   a.outputRawlog.reset();
   EXPECT_EQ(errorOf(a), "");
   EXPECT_EQ(
-      listing(a.outputDir),
+      roislam::testing::outputListing(a.outputDir),
       (std::vector<std::string>{"frames.csv", "landmarks", "landmarks.db", "summary.json"}));
 
   // A run that fails (no such input) leaves the earlier output as it was.
-  const auto before = listing(a.outputDir);
+  const auto before = roislam::testing::outputListing(a.outputDir);
   a.input = tmp + "/missing";
   EXPECT_NE(errorOf(a).find("missing"), std::string::npos);
-  EXPECT_EQ(listing(a.outputDir), before);
-  EXPECT_EQ(listing(tmp), std::vector<std::string>{"out"});
+  EXPECT_EQ(roislam::testing::outputListing(a.outputDir), before);
+  EXPECT_EQ(roislam::testing::outputListing(tmp), std::vector<std::string>{"out"});
 
   // A file we do not write is never replaced.
   std::ofstream(a.outputDir + "/notes.txt") << "precious";
