@@ -2,12 +2,12 @@
  * and writes it in the TUM benchmark layout (see roislam::sim::CRgbdSimulator).
  *
  *   rgbd-simul --output DIR [--scene textured|featureless] [--frames N]
- *              [--seed S] [--no-noise] [--config FILE]
+ *              [--seed S] [--no-noise] [--config FILE] [--overwrite]
  *
  * --config reads section [RgbdSimulator] of an ini file; command-line options
  * given explicitly override it.
  */
-#include <mrpt/config/CConfigFile.h>
+#include <roislam/common/CStrictIniFile.h>
 #include <roislam/sim/CRgbdSimulator.h>
 
 #include <CLI/CLI.hpp>
@@ -23,8 +23,9 @@ int main(int argc, char** argv)
   std::string output, config, scene = "textured";
   unsigned frames = 90, seed = 1;
   bool noNoise = false;
-  app.add_option("--output,-o", output, "Output folder (replaced if it is an earlier output)")
-      ->required();
+  bool overwrite = false;
+  app.add_option("--output,-o", output, "Output folder (absent or empty)")->required();
+  app.add_flag("--overwrite", overwrite, "Replace an earlier output of rgbd-simul in --output");
   auto* optScene = app.add_option("--scene", scene, "textured | featureless");
   auto* optFrames = app.add_option("--frames", frames, "Number of frames (>= 2)");
   auto* optSeed = app.add_option("--seed", seed, "Noise seed");
@@ -44,9 +45,7 @@ int main(int argc, char** argv)
     roislam::sim::CRgbdSimulator::TOptions opts;
     if (!config.empty())
     {
-      if (!std::filesystem::is_regular_file(config))
-        throw std::runtime_error("cannot read config file " + config);
-      opts.loadFromConfigFile(mrpt::config::CConfigFile(config), "RgbdSimulator");
+      opts.loadFromConfigFile(roislam::common::CStrictIniFile(config), "RgbdSimulator");
     }
     if (optScene->count() || config.empty())
       opts.scene = scene;
@@ -60,7 +59,7 @@ int main(int argc, char** argv)
     roislam::sim::CRgbdSimulator sim(opts);
     std::cerr << "rgbd-simul: rendering " << opts.frames << " frames of the '" << opts.scene
               << "' scene to " << output << "\n";
-    const auto st = sim.writeSequence(output);
+    const auto st = sim.writeSequence(output, overwrite);
     std::fprintf(
         stderr,
         "rgbd-simul: wrote %zu frames in %.2f s (render+noise %.2f s, %.1f ms/frame; PNG %.2f s); "

@@ -15,6 +15,7 @@ int main(int argc, char** argv)
       ->required();
   cli.add_option("--tests", o.tests, "Tests to run, e.g. 1,2,3 (4: EKF-SLAM on ROI landmarks)")
       ->capture_default_str();
+  cli.add_option("--plan", o.planFile, "Ini with a [Bench] section (features, modes, caps...)");
   cli.add_option("--jobs", o.jobs, "Runs in parallel")->capture_default_str();
   cli.add_flag("--emit-jobs", o.emitJobs, "Print one shell command per run and exit");
   cli.add_option("--merge", o.mergeDirs, "Combine these result folders into --output-dir")
@@ -49,6 +50,8 @@ int main(int argc, char** argv)
     return cli.exit(e);
   }
   o.merge = cli.count("--merge") > 0;
+  if (!o.planFile.empty() && cli.count("--tests") == 0)
+    o.tests.clear();  // the plan file's tests
   o.charts = !noCharts;
   try
   {

@@ -34,6 +34,9 @@ int main(int argc, char** argv)
   cli.add_option("--plot", p.plotFile, "write a PNG: ground truth and aligned estimate");
   cli.add_option("--plot-errors", p.errorPlotFile, "write a PNG: ATE and RPE over time");
   cli.add_option("--save-aligned", p.alignedFile, "write the aligned estimate (TUM format)");
+  cli.add_flag(
+      "--skip-invalid", p.skipInvalid,
+      "skip lines with a NaN or a zero quaternion, as the benchmark scripts do (default: error)");
   CLI11_PARSE(cli, argc, argv);
 
   try

@@ -23,6 +23,7 @@ int main(int argc, char** argv)
   CRoiGraphSlamEngineApp::TArguments args;
   std::string gt;
   bool listNode = false, listEdge = false, listRegs = false, listOpt = false, noSnapshot = false;
+  bool allowPartial = false;
   cli.add_option("-i,--ini-file", args.iniFile, ".ini configuration (config/graphslam-engine.ini)");
   cli.add_option("-r,--rawlog", args.rawlog, "Rawlog of CObservation3DRangeScan (tum2rawlog)");
   cli.add_option("-g,--ground-truth", gt, "Ground truth, TUM format (NAME.groundtruth.txt)");
@@ -49,6 +50,10 @@ int main(int argc, char** argv)
   cli.add_flag("--no-snapshot", noSnapshot, "Do not render snapshot.png");
   roislam::gui::CLiveViewSession liveView("roi-graphslam-engine");
   liveView.addFlags(cli);
+  cli.add_flag("--overwrite", args.overwrite, "Replace an earlier output in --output-dir");
+  cli.add_flag(
+      "--allow-partial", allowPartial,
+      "Exit 0 when the evaluation or snapshot failed (else 3; summary.json says what)");
   CLI11_PARSE(cli, argc, argv);
 
   if (listNode || listEdge || listRegs || listOpt)
@@ -66,7 +71,7 @@ int main(int argc, char** argv)
   args.snapshot = !noSnapshot;
   args.progress = [](const std::string& line) { std::cerr << line << std::endl; };
   const int rc = roislam::graphslam::slamMain(
-      "roi-graphslam-engine", args.outputDir,
+      "roi-graphslam-engine", args.outputDir, allowPartial,
       [&]
       {
         CRoiGraphSlamEngineApp app(args);  // checks the arguments before a window opens

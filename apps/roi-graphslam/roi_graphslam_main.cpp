@@ -21,6 +21,7 @@ int main(int argc, char** argv)
   std::string mode, feature;
   int maxFeatures = -1;
   bool noSnapshot = false, listNode = false, listEdge = false, strict = false;
+  bool allowPartial = false;
   cli.add_option("--ini", args.iniFile, "Configuration (MRPT ini), e.g. config/traditional.ini");
   cli.add_option("--input", args.input, "TUM RGB-D folder or .rawlog");
   cli.add_option("--output-dir", args.outputDir, "Output folder");
@@ -34,6 +35,10 @@ int main(int argc, char** argv)
   cli.add_option("--camera", args.camera, "Camera: auto|fr1|fr2|fr3|ros|<calibration file>");
   cli.add_option("--max-frames", args.maxFrames, "Process at most N frames (0 = all)");
   cli.add_flag("--no-snapshot", noSnapshot, "Do not render snapshot.png");
+  cli.add_flag("--overwrite", args.overwrite, "Replace an earlier output in --output-dir");
+  cli.add_flag(
+      "--allow-partial", allowPartial,
+      "Exit 0 when the evaluation or snapshot failed (else 3; summary.json says what)");
   cli.add_flag("--list-node-regs", listNode, "List the node registration deciders and exit");
   cli.add_flag("--list-edge-regs", listEdge, "List the edge registration deciders and exit");
   roislam::gui::CLiveViewSession liveView("roi-graphslam");
@@ -62,7 +67,7 @@ int main(int argc, char** argv)
   args.snapshot = !noSnapshot;
   args.progress = [](const std::string& line) { std::cerr << line << std::endl; };
   const int rc = roislam::graphslam::slamMain(
-      "roi-graphslam", args.outputDir,
+      "roi-graphslam", args.outputDir, allowPartial,
       [&]
       {
         if (args.input.empty() || args.outputDir.empty())

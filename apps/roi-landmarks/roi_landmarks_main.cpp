@@ -31,6 +31,7 @@ int main(int argc, char** argv)
       "--output-rawlog", rawlog, "Also write an annotated rawlog (3-D scans + landmarks)");
   cli.add_option("--camera", args.camera, "Camera: auto|fr1|fr2|fr3|ros|<calibration file>");
   cli.add_option("--max-frames", args.maxFrames, "Process at most N frames (0 = all)");
+  cli.add_flag("--overwrite", args.overwrite, "Replace an earlier output in --output-dir");
   cli.add_flag(
       "--kf-slam", args.kfSlam,
       "Also write kf-slam.rawlog (odometry + landmarks) and run MRPT's EKF-SLAM on it "

@@ -14,6 +14,7 @@ PKGS=(
   libgtest-dev libgmock-dev libbenchmark-dev
   libcli11-dev nlohmann-json3-dev
   gnuplot-nox clang-format
+  clang-14 libclang-rt-14-dev
   libegl1 libegl-mesa0 libgl1-mesa-dri
   # The live view (--gui): X11 client, wx headers (canvas-only repaints),
   # and for its tests and screenshots a virtual display and key presses.

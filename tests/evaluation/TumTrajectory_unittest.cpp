@@ -49,7 +49,7 @@ TEST(TumTrajectory, ParsesSeparatorsCommentsAndSkipsLikeTheScripts)
       "5.0 1 1 1 0 0 0 0\n"    // all-zero quaternion: skipped
       "6.0 1 1 1 0 0 0 -0\n"   // -0 is zero too
       "0.5 +1 -2 3e-1 0 0 0 1\r\n");
-  const auto t = roislam::io::loadTumTrajectory(path);
+  const auto t = roislam::io::loadTumTrajectory(path, roislam::io::EInvalidPose::Skip);
   ASSERT_EQ(t.size(), 4u);
   // Sorted by stamp.
   EXPECT_DOUBLE_EQ(t[0].timestamp, 0.5);
@@ -121,5 +121,25 @@ TEST(TumTrajectory, SaveLoadRoundTripIsExact)
     EXPECT_LT((back[k].pose.getRotationMatrix() - t[k].pose.getRotationMatrix()).norm(), 1e-14);
   }
   EXPECT_THROW(roislam::io::saveTumTrajectory(dir + "/no/such/dir/x.txt", t), std::runtime_error);
+  fs::remove_all(dir);
+}
+
+TEST(TumTrajectory, NanOrZeroQuaternionInGroundTruthIsAnErrorUnlessSkipped)
+{
+  const auto dir = roislam::testing::makeTempDir("eval_tumtraj_invalid");
+  const auto nan = writeFile(dir, "nan.txt", "1 0 0 0 0 0 0 1\n2 nan 0 0 0 0 0 1\n");
+  EXPECT_EQ(
+      loadError(nan), nan +
+                          ":2: NaN value (roi-eval --skip-invalid skips such lines as the "
+                          "benchmark scripts do)");
+  const auto zero = writeFile(dir, "zero.txt", "# gt\n1 0 0 0 0 0 0 1\n\n2 1 2 3 0 0 0 0\n");
+  EXPECT_EQ(loadError(zero).rfind(zero + ":4: zero quaternion (no rotation)", 0), 0u)
+      << loadError(zero);
+  const auto tiny = writeFile(dir, "tiny.txt", "2 1 2 3 0 0 1e-9 0\n");
+  EXPECT_EQ(loadError(tiny).rfind(tiny + ":1: zero quaternion", 0), 0u) << loadError(tiny);
+  // The scripts' semantics on request: the lines are dropped.
+  using roislam::io::EInvalidPose;
+  EXPECT_EQ(roislam::io::loadTumTrajectory(nan, EInvalidPose::Skip).size(), 1u);
+  EXPECT_EQ(roislam::io::loadTumTrajectory(zero, EInvalidPose::Skip).size(), 1u);
   fs::remove_all(dir);
 }

@@ -92,7 +92,7 @@ TEST(RoiGraphSlamApp, FeaturelessTrackedByFallbackButStrictRoiFails)
   // The dissertation's behaviour: ROI without fallback loses the featureless wall.
   r = runApp(
       "--ini " + config("roi_big.ini") + " --input " + seq + " --output-dir " + out +
-      " --no-snapshot --strict-roi");
+      " --no-snapshot --strict-roi --overwrite");
   EXPECT_EQ(r.exitCode, 1);
   EXPECT_NE(r.err.find("tracking failed"), std::string::npos) << r.err;
   s = readSummary(out);

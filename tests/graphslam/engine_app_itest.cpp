@@ -124,6 +124,19 @@ TEST(RoiGraphSlamEngineApp, PrintsTheParametersItsDecidersLoaded)
   // A readout the ini still sets overrides the sensor description's.
   EXPECT_EQ(s["sensor"]["rolling_shutter_from"], "ini");
   EXPECT_EQ(s["sensor"]["rolling_shutter_ms_used"], 25.0);
+  EXPECT_FALSE(s["partial"].get<bool>());
+  // An earlier output is refused before the run, untouched; --overwrite
+  // replaces it (CSlamRunner stages the folder: common::COutputFolder).
+  const std::string first = readText(out + "/run/summary.json");
+  r = runEngine("-i " + ini + " -r " + data.rawlog + " --output-dir " + out + "/run --no-snapshot");
+  EXPECT_EQ(r.exitCode, 1);
+  EXPECT_NE(r.err.find("output dir " + out + "/run: not empty"), std::string::npos) << r.err;
+  EXPECT_EQ(readText(out + "/run/summary.json"), first);
+  r = runEngine(
+      "-i " + ini + " -r " + data.rawlog + " --output-dir " + out +
+      "/run --no-snapshot --overwrite");
+  EXPECT_EQ(r.exitCode, 0) << r.err;
+  EXPECT_TRUE(fs::exists(out + "/run/report.txt"));
   // Without ground truth: no ATE, no RPE.
   EXPECT_TRUE(s["ate_rmse"].is_null());
   EXPECT_TRUE(s["rpe_trans_rmse"].is_null());
@@ -213,6 +226,21 @@ TEST(RoiGraphSlamEngineApp, BadInputGivesOneLineErrors)
   expectError("-i /nonexistent.ini -r " + rawlog, "ini /nonexistent.ini: cannot open");
   expectError("-i " + ini, "-r/--rawlog is required");
   expectError("-i " + ini + " -r " + rawlog + " -g /nonexistent/gt.txt", "/nonexistent/gt.txt");
+  // Strict reading (common::CStrictIniFile) of MRPT's sections too, the
+  // deciders' included: MRPT alone runs on the defaults or keeps the last.
+  const std::string broken = writeIni(out, "broken.ini", "[this is not\n");
+  expectError("-i " + broken + " -r " + rawlog, broken + ":1: malformed section header");
+  const std::string twice = writeIni(
+      out, "twice.ini",
+      "[EdgeRegistrationDeciderParameters]\nloop_min_inliers = 30\nloop_min_inliers = 40\n");
+  expectError(
+      "-i " + twice + " -r " + rawlog,
+      twice + ":3: duplicate key 'loop_min_inliers' (first given on line 2)");
+  const std::string garbage =
+      writeIni(out, "garbage.ini", "[OptimizerParameters]\noptimize_every_keyframes 3\n");
+  expectError(
+      "-i " + garbage + " -r " + rawlog,
+      garbage + ":2: expected a comment, [section] or key = value");
   const std::string second =
       writeIni(out, "second.ini", "[OptimizerParameters]\noptimization_on_second_thread = true\n");
   expectError(

@@ -199,7 +199,12 @@ TEST(SensorDescription, FilesNameThemselvesInErrors)
 {
   const fs::path dir = roislam::testing::makeTempDir("sensor_files");
   auto text = unusual().toIniText();
-  const auto file = write(dir / "bad.ini", text + "\n[SensorDescription]\nframe_rate = -2\n");
+  // A bad value in place (a second frame_rate would be a duplicate key,
+  // refused by the strict reading before the description sees it).
+  const auto at = text.find("\nframe_rate = ");
+  ASSERT_NE(at, std::string::npos) << text;
+  text = text.substr(0, at) + "\nframe_rate = -2" + text.substr(text.find('\n', at + 1));
+  const auto file = write(dir / "bad.ini", text);
   try
   {
     roislam::io::loadSensorFile(file);
@@ -211,6 +216,19 @@ TEST(SensorDescription, FilesNameThemselvesInErrors)
     EXPECT_NE(what.find(file), std::string::npos) << what;
     EXPECT_NE(what.find("[SensorDescription] frame_rate"), std::string::npos) << what;
     EXPECT_EQ(what.find('\n'), std::string::npos) << what;
+  }
+  const auto twice =
+      write(dir / "twice.ini", unusual().toIniText() + "\n[SensorDescription]\nframe_rate = 30\n");
+  try
+  {
+    roislam::io::loadSensorFile(twice);
+    ADD_FAILURE() << "accepted a duplicate key";
+  }
+  catch (const std::runtime_error& e)
+  {
+    EXPECT_NE(std::string(e.what()).find(twice + ":"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("duplicate key 'frame_rate'"), std::string::npos)
+        << e.what();
   }
   EXPECT_THROW(roislam::io::loadSensorFile((dir / "absent.ini").string()), std::runtime_error);
   // A plain TCamera ini is a registered, global-shutter description named after the file.

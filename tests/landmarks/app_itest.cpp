@@ -186,7 +186,7 @@ TEST(RoiLandmarksApp, ExecutableReportsErrorsOnOneLine)
   ss << f.rdbuf();
   EXPECT_EQ(
       ss.str(), "roi-landmarks: error: ini " + out +
-                    "/bad.ini: [LandmarkDatabase] unknown key 'max_candidats'\n");
+                    "/bad.ini: [LandmarkDatabase] unknown key 'max_candidats' (line 2)\n");
 
   // A folder that is not a sequence fails cleanly, naming it.
   const std::string cmd2 =

@@ -6,6 +6,9 @@
 
 #include <limits>
 #include <opencv2/imgproc.hpp>
+#include <optional>
+#include <thread>
+#include <vector>
 
 #include "SyntheticScene.h"
 
@@ -183,4 +186,34 @@ TEST(LandmarkDatabase, SightingsAndBadIds)
   EXPECT_EQ(db.landmark(0).sightings[0].frame, 7u);
   EXPECT_THROW(db.addSighting(3, s), std::out_of_range);
   EXPECT_THROW(db.landmark(-1), std::out_of_range);
+}
+
+TEST(LandmarkDatabase, ConcurrentQueriesShareTheLazyVoteIndex)
+{
+  // max_candidates 2 with 6 landmarks: every query votes, and the first ones
+  // (concurrent here) build the vote index.
+  CLandmarkDatabase::TOptions o;
+  o.max_candidates = 2;
+  CLandmarkDatabase db(o, {}, {});
+  for (unsigned seed = 1; seed <= 6; ++seed)
+    db.add(makeLandmark(seed));
+  std::vector<features::TFeatureSet> queries;
+  for (unsigned seed : {2u, 4u, 6u, 9u})
+    queries.push_back(seenAgain(seed));
+  std::vector<std::optional<int32_t>> got(queries.size() * 3);
+  std::vector<std::thread> threads;
+  for (std::size_t t = 0; t < got.size(); ++t)
+    threads.emplace_back(
+        [&, t] {
+          got[t] = db.query(queries[t % queries.size()], kBox, {640, 480}).landmarkId;
+        });
+  for (auto& th : threads)
+    th.join();
+  for (std::size_t t = 0; t < got.size(); ++t)
+  {
+    const auto sequential = db.query(queries[t % queries.size()], kBox, {640, 480}).landmarkId;
+    EXPECT_EQ(got[t], sequential) << "thread " << t;
+  }
+  EXPECT_EQ(got[0], std::optional<int32_t>(1));
+  EXPECT_FALSE(got[3]);
 }

@@ -484,10 +484,12 @@ TEST(RgbdSimulator, WritesTumLayoutMatchingRenderedFrames)
     EXPECT_DOUBLE_EQ(d.depth_scale, 5000);
     EXPECT_EQ(d.depth_noise.model, "kinect");
   }
-  // Writing again replaces the earlier output.
+  // Writing again is refused unless overwrite, which replaces the earlier output.
   auto o2 = o;
   o2.frames = 2;
-  CRgbdSimulator(o2).writeSequence(out.string());
+  EXPECT_THROW(CRgbdSimulator(o2).writeSequence(out.string()), std::runtime_error);
+  EXPECT_EQ(countLines(out / "rgb.txt"), 4u);
+  CRgbdSimulator(o2).writeSequence(out.string(), true);
   EXPECT_EQ(countLines(out / "rgb.txt"), 2u);
   fs::remove_all(dir);
 }
@@ -513,6 +515,7 @@ TEST(RgbdSimulator, BadOutputPathsFailCleanly)
   fs::create_directories(foreign);
   std::ofstream(foreign / "keep.txt") << "precious";
   EXPECT_THROW(sim.writeSequence(foreign.string()), std::runtime_error);
+  EXPECT_THROW(sim.writeSequence(foreign.string(), true), std::runtime_error);
   EXPECT_TRUE(fs::exists(foreign / "keep.txt"));
   EXPECT_FALSE(fs::exists(foreign / "rgb.txt"));
   // No temporary folders left behind.

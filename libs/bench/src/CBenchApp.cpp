@@ -6,6 +6,9 @@
 #include <roislam/bench/CReportWriter.h>
 #include <roislam/bench/CResultsCollector.h>
 #include <roislam/bench/ProcessUtils.h>
+#include <roislam/common/COutputFolder.h>
+#include <roislam/common/CStrictIniFile.h>
+#include <roislam/common/IniKeyCheck.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -27,6 +30,17 @@ bool isExecutable(const fs::path& p)
 {
   return fs::is_regular_file(p) && access(p.c_str(), X_OK) == 0;
 }
+
+/** roi-bench's output folder may be reused (resumed), but only as ours. */
+void checkBenchFolder(const std::string& dir)
+{
+  common::COutputFolder::TOptions o;
+  o.overwrite = true;
+  o.known = {"runs", "configs", "results.csv", "report.md", "charts"};
+  // Temporary names of results.csv / report.md being written.
+  o.knownPrefixes = {"results.csv.", "report.md."};
+  common::COutputFolder::checkReplaceable(dir, o);
+}
 }  // namespace
 
 CBenchApp::CBenchApp(const TOptions& options) : m_options(options)
@@ -40,7 +54,14 @@ CBenchApp::CBenchApp(const TOptions& options) : m_options(options)
   // A bare --merge (re-make the report of --output-dir) may arrive as one empty value.
   auto& md = m_options.mergeDirs;
   md.erase(std::remove(md.begin(), md.end(), std::string()), md.end());
-  m_options.plan.tests = CExperimentPlan::parseTests(m_options.tests);
+  if (!m_options.planFile.empty())
+  {
+    const common::CStrictIniFile cfg(m_options.planFile);
+    common::checkIniKeys(cfg, "Bench", common::knownIniKeys(m_options.plan), m_options.planFile);
+    m_options.plan.loadFromConfigFile(cfg, "Bench");
+  }
+  if (!m_options.tests.empty())
+    m_options.plan.tests = CExperimentPlan::parseTests(m_options.tests);
   if (m_options.noDefaultVariants)
   {
     m_options.plan.variants.clear();
@@ -130,9 +151,15 @@ std::vector<std::string> CBenchApp::jobCommands() const
       m_options.selfExe.empty() ? "roi-bench" : m_options.selfExe, "--datasets"};
   for (const auto& d : m_options.datasets)
     base.push_back(fs::absolute(d).string());
+  // The tests in effect (from --tests or the plan file).
+  std::string tests;
+  for (int t : m_options.plan.tests)
+    tests += (tests.empty() ? "" : ",") + std::to_string(t);
   base.insert(
-      base.end(), {"--output-dir", fs::absolute(m_options.outputDir).string(), "--tests",
-                   m_options.tests, "--jobs", "1", "--no-report"});
+      base.end(), {"--output-dir", fs::absolute(m_options.outputDir).string(), "--tests", tests,
+                   "--jobs", "1", "--no-report"});
+  if (!m_options.planFile.empty())
+    base.insert(base.end(), {"--plan", fs::absolute(m_options.planFile).string()});
   if (!m_options.binDir.empty())
     base.insert(base.end(), {"--bin-dir", fs::absolute(m_options.binDir).string()});
   if (!m_options.configDir.empty())
@@ -170,8 +197,13 @@ void CBenchApp::writeOutputs(const std::vector<TRunRecord>& records, std::ostrea
       err << "roi-bench: warning: gnuplot not found, no charts drawn\n";
     else
     {
-      for (const auto& png : charts.write(records, (out / "charts").string()))
+      // Replaced whole: no chart of an earlier report survives.
+      common::COutputFolder::TOptions chartsFolder;
+      chartsFolder.overwrite = chartsFolder.ownsEverything = true;
+      common::COutputFolder dir((out / "charts").string(), chartsFolder);
+      for (const auto& png : charts.write(records, dir.path()))
         ro.charts.push_back("charts/" + png);
+      dir.commit();
       for (const auto& w : charts.warnings())
         err << "roi-bench: warning: " << w << "\n";
     }
@@ -189,6 +221,7 @@ int CBenchApp::run(std::ostream& out, std::ostream& err)
 {
   if (m_options.merge)
   {
+    checkBenchFolder(m_options.outputDir);
     auto records = CResultsCollector::merge(m_options.mergeDirs, m_options.outputDir);
     if (!m_options.datasets.empty())
       records = CResultsCollector::orderByPlan(records, plan());
@@ -202,6 +235,7 @@ int CBenchApp::run(std::ostream& out, std::ostream& err)
       out << c << "\n";
     return 0;
   }
+  checkBenchFolder(m_options.outputDir);
   const auto runs = plan();
   CExperimentPlan::writeVariantConfigs(runs);
   CBenchRunner::TOptions rOpt;

@@ -1,6 +1,7 @@
 #include "roislam/bench/TVariant.h"
 
 #include <mrpt/system/string_utils.h>
+#include <roislam/common/ErrorText.h>
 
 #include <cctype>
 #include <sstream>
@@ -23,7 +24,8 @@ TVariant TVariant::parse(const std::string& spec)
   const auto bad = [&](const std::string& why)
   {
     return std::invalid_argument(
-        "variant '" + spec + "': " + why + " (expected name:Section.key=value[,...])");
+        "variant '" + common::printableExcerpt(spec, 80) +
+        "': " + common::printableExcerpt(why, 200) + " (expected name:Section.key=value[,...])");
   };
   const auto colon = spec.find(':');
   if (colon == std::string::npos || colon == 0)

@@ -2,6 +2,7 @@
 
 #include <mrpt/config/CConfigFileMemory.h>
 #include <mrpt/system/string_utils.h>
+#include <roislam/common/CStrictIniFile.h>
 
 #include <algorithm>
 #include <stdexcept>
@@ -32,9 +33,14 @@ void checkIniKeys(
     const bool known = std::any_of(
         knownKeys.begin(), knownKeys.end(),
         [&](const std::string& s) { return mrpt::system::strCmpI(s, key); });
-    if (!known)
-      throw std::runtime_error(
-          "ini " + fileLabel + ": [" + section + "] unknown key '" + key + "'");
+    if (known)
+      continue;
+    // Read through CStrictIniFile, the key's line is known.
+    const auto* strict = dynamic_cast<const CStrictIniFile*>(&cfg);
+    const auto line = strict ? strict->lineOf(section, key) : std::nullopt;
+    throw std::runtime_error(
+        "ini " + fileLabel + ": [" + section + "] unknown key '" + key + "'" +
+        (line ? " (line " + std::to_string(*line) + ")" : std::string()));
   }
 }
 }  // namespace roislam::common

@@ -26,8 +26,9 @@ CEvalApp::CEvalApp(const TParams& params) : m_params(params)
 
 TEvaluationResult CEvalApp::run(std::ostream& out) const
 {
-  const io::TTrajectory gt = io::loadTumTrajectory(m_params.groundTruthFile);
-  const io::TTrajectory est = io::loadTumTrajectory(m_params.estimateFile);
+  const auto invalid = m_params.skipInvalid ? io::EInvalidPose::Skip : io::EInvalidPose::Reject;
+  const io::TTrajectory gt = io::loadTumTrajectory(m_params.groundTruthFile, invalid);
+  const io::TTrajectory est = io::loadTumTrajectory(m_params.estimateFile, invalid);
   if (gt.empty())
     throw std::runtime_error(m_params.groundTruthFile + ": no valid poses");
   if (est.empty())

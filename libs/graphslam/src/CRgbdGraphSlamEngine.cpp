@@ -1,8 +1,8 @@
 #include <fcntl.h>
-#include <mrpt/config/CConfigFile.h>
 #include <mrpt/core/exceptions.h>
 #include <mrpt/system/filesystem.h>
 #include <mrpt/system/string_utils.h>
+#include <roislam/common/CStrictIniFile.h>
 #include <roislam/graphslam/CRgbdGraphSlamEngine.h>
 #include <unistd.h>
 
@@ -73,7 +73,9 @@ std::unique_ptr<CRgbdGraphSlamEngine> CRgbdGraphSlamEngine::create(
     // With this format the constructor points CImage's global image folder
     // at "<rawlog>_Images/" (for its RGBD-TUM reader, 2-D only in 2.5), which
     // would hide the external images of our rawlogs.
-    const mrpt::config::CConfigFile cfg(iniFile);
+    // Every line checked (file:line errors) before MRPT's engine and its
+    // deciders read the same file with MRPT's lenient parser.
+    const common::CStrictIniFile cfg(iniFile);
     if (mrpt::system::strCmpI(
             cfg.read_string("GeneralConfiguration", "ground_truth_file_format", "NavSimul"),
             "rgbd_tum"))

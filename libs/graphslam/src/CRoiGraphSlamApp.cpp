@@ -1,4 +1,6 @@
 #include <mrpt/config/CConfigFile.h>
+#include <mrpt/core/format.h>
+#include <roislam/common/CStrictIniFile.h>
 #include <roislam/graphslam/CRoiGraphSlamApp.h>
 #include <roislam/graphslam/CRoislamOptionsChecker.h>
 #include <roislam/graphslam/CSlamRunner.h>
@@ -21,9 +23,7 @@ CRoiGraphSlamApp::CRoiGraphSlamApp(TArguments arguments) : m_args(std::move(argu
 {
   if (!m_args.iniFile.empty())
   {
-    if (!fs::is_regular_file(m_args.iniFile))
-      throw std::runtime_error("ini " + m_args.iniFile + ": cannot open");
-    mrpt::config::CConfigFile cfg(m_args.iniFile);
+    const common::CStrictIniFile cfg(m_args.iniFile);
     m_config = CSlamContext::loadConfig(cfg, m_args.iniFile);
     m_iniReadout = iniSetsReadout(cfg, m_args.iniFile);
   }
@@ -64,6 +64,7 @@ CRoiGraphSlamApp::TSummary CRoiGraphSlamApp::run()
   settings.app = "roi-graphslam";
   settings.input = m_args.input;
   settings.outputDir = m_args.outputDir;
+  settings.overwrite = m_args.overwrite;
   const auto gt = source->groundTruthFile();
   if (gt && fs::exists(*gt))
     settings.groundTruthFile = gt;

@@ -1,4 +1,4 @@
-#include <mrpt/config/CConfigFile.h>
+#include <roislam/common/CStrictIniFile.h>
 #include <roislam/graphslam/CRoiGraphSlamEngineApp.h>
 #include <roislam/graphslam/CRoislamOptionsChecker.h>
 #include <roislam/graphslam/CSlamRunner.h>
@@ -35,9 +35,9 @@ CRoiGraphSlamEngineApp::CRoiGraphSlamEngineApp(TArguments arguments) : m_args(st
   }
   if (m_args.iniFile.empty())
     throw std::invalid_argument("-i/--ini-file is required");
-  if (!fs::is_regular_file(m_args.iniFile))
-    throw std::runtime_error("ini " + m_args.iniFile + ": cannot open");
-  const mrpt::config::CConfigFile cfg(m_args.iniFile);
+  // Every line checked (file:line errors): MRPT's engine reads the same file
+  // leniently afterwards.
+  const common::CStrictIniFile cfg(m_args.iniFile);
   // MRPT 2.5.8's CLevMarqGSO joins a thread it never started (abort).
   if (d.optimizer == "CLevMarqGSO" &&
       cfg.read_bool("OptimizerParameters", "optimization_on_second_thread", false))
@@ -63,6 +63,7 @@ TSlamSummary CRoiGraphSlamEngineApp::run()
   settings.app = "roi-graphslam-engine";
   settings.input = m_args.rawlog;
   settings.outputDir = m_args.outputDir;
+  settings.overwrite = m_args.overwrite;
   settings.groundTruthFile = m_args.groundTruth;
   settings.snapshot = m_args.snapshot;
   settings.progress = m_args.progress;

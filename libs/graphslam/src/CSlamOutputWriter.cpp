@@ -104,20 +104,35 @@ void writeFramesCsvRow(std::ostream& csv, const CSlamPipeline::TFrameRecord& r)
 }
 }  // namespace
 
-CSlamOutputWriter::CSlamOutputWriter(std::string outputDir) : m_dir(std::move(outputDir) + "/") {}
-
-void CSlamOutputWriter::checkWritableDir(const std::string& dir)
+namespace
 {
-  std::error_code ec;
-  fs::create_directories(dir, ec);
-  if (ec || !fs::is_directory(dir))
-    throw std::runtime_error("output dir " + dir + ": cannot create");
-  const std::string probe = dir + "/.roi-graphslam-write-test";
-  std::ofstream out(probe);
-  if (!out)
-    throw std::runtime_error("output dir " + dir + ": not writable");
-  out.close();
-  std::remove(probe.c_str());
+common::COutputFolder::TOptions folderOptions(bool overwrite)
+{
+  common::COutputFolder::TOptions o;
+  o.overwrite = overwrite;
+  o.known = CSlamOutputWriter::files();
+  // The live view's key-press screenshots (CSlamObserver::onOutputFolder).
+  o.knownPrefixes = {"screenshot-"};
+  return o;
+}
+}  // namespace
+
+const std::vector<std::string>& CSlamOutputWriter::files()
+{
+  static const std::vector<std::string> names{
+      "trajectory.txt", "graph.graph", "map.bt",     "scene.3Dscene", "snapshot.png",
+      "frames.csv",     "ate.png",     "errors.png", "report.txt",    "summary.json"};
+  return names;
+}
+
+CSlamOutputWriter::CSlamOutputWriter(const std::string& outputDir, bool overwrite)
+    : m_folder(outputDir, folderOptions(overwrite)), m_dir(m_folder.path() + "/")
+{
+}
+
+void CSlamOutputWriter::writeReport(const std::string& text) const
+{
+  writeTextFile(m_dir + "report.txt", text);
 }
 
 void CSlamOutputWriter::writeTextFile(const std::string& file, const std::string& text)
@@ -223,10 +238,8 @@ std::string CSlamOutputWriter::writeScene(const viz::TSceneContent& content, boo
 std::string CSlamOutputWriter::writePlots(const TReference& reference) const
 {
   const std::string ate = m_dir + "ate.png", errors = m_dir + "errors.png";
-  // None left from an earlier run here: without ground truth, or when
-  // gnuplot fails, the folder holds no plot.
-  std::remove(ate.c_str());
-  std::remove(errors.c_str());
+  // The folder is a fresh staging folder (COutputFolder): no plot of an
+  // earlier run can remain beside these.
   if (!reference.evaluation)
     return {};
   const auto& ev = *reference.evaluation;
@@ -323,8 +336,10 @@ CSlamOutputWriter::TPictures CSlamOutputWriter::writePictures(
   return out;
 }
 
-void CSlamOutputWriter::writeSummary(const nlohmann::json& summary) const
+void CSlamOutputWriter::writeSummary(const nlohmann::json& summary)
 {
   writeTextFile(m_dir + "summary.json", summary.dump(2) + "\n");
+  m_folder.commit();
+  m_dir = m_folder.path() + "/";
 }
 }  // namespace roislam::graphslam

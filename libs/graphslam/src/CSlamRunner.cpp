@@ -256,17 +256,16 @@ nlohmann::json CSlamRunner::summaryJson(
 }
 
 void CSlamRunner::writeOutputs(
-    const CSlamPipeline& pipeline, const io::TTrajectory& estimate,
+    CSlamOutputWriter& writer, const CSlamPipeline& pipeline, const io::TTrajectory& estimate,
     const std::optional<TOptimizationReport>& finalReport, const TEvaluation& ev,
     TSlamSummary& s) const
 {
-  const CSlamOutputWriter writer(m_settings.outputDir);
   writer.writeTrajectory(
       estimate, m_settings.app + " " + pipeline.source().name() + " mode " +
                     frontend::toString(pipeline.context().config().frontEnd.mode));
   writer.writeGraph(pipeline.graph());
   writer.writeFramesCsv(pipeline.records());
-  CSlamOutputWriter::writeTextFile(m_settings.outputDir + "/report.txt", pipeline.report());
+  writer.writeReport(pipeline.report());
 
   const CSlamOutputWriter::TRun run{
       pipeline.records(), pipeline.context(), pipeline.graph(),
@@ -277,19 +276,28 @@ void CSlamRunner::writeOutputs(
   const auto pictures = writer.writePictures(run, reference, m_settings.snapshot);
   for (const auto& w : pictures.warnings())
     progress(m_settings.app + ": warning: " + w);
+  // A missing snapshot or plot makes the output partial (exit 3); a picture
+  // not levelled by the accelerometer is only a warning.
+  if (!pictures.snapshotError.empty())
+    s.incomplete.push_back("no snapshot: " + pictures.snapshotError);
+  if (!pictures.plotError.empty())
+    s.incomplete.push_back("no error plots: " + pictures.plotError);
   s.mapS = pictures.mapS;
   s.snapshotS = pictures.snapshotS;
   s.peakRssMb = peakRssMb();
 
   nlohmann::json j = summaryJson(pipeline, s, finalReport, ev);
   pictures.addToSummary(j);
-  writer.writeSummary(j);
+  j["partial"] = !s.incomplete.empty();
+  j["incomplete"] = s.incomplete;
+  writer.writeSummary(j);  // renames the folder into place
 }
 
 TSlamSummary CSlamRunner::run(
     std::unique_ptr<io::CFrameSource> source, const TMakePipeline& make) const
 {
-  CSlamOutputWriter::checkWritableDir(m_settings.outputDir);
+  // Before the run: a folder we may not write fails now, not after the work.
+  CSlamOutputWriter writer(m_settings.outputDir, m_settings.overwrite);
   const std::string name = source->name();
   const std::size_t total = source->size();
 
@@ -302,6 +310,8 @@ TSlamSummary CSlamRunner::run(
   if (m_settings.started)
     m_settings.started(*pipeline);
   pipeline->setObserver(m_settings.observer);
+  if (m_settings.observer)
+    m_settings.observer->onOutputFolder(writer.folder());
   const bool stopped = runFrames(*pipeline, total);
   const auto finalReport = pipeline->finish();
   const io::TTrajectory estimate = pipeline->trajectory();
@@ -310,7 +320,11 @@ TSlamSummary CSlamRunner::run(
   const TEvaluation ev = evaluate(*pipeline, estimate);
   TSlamSummary s = summarize(*pipeline, estimate, wallS, ev);
   s.stoppedByUser = stopped;
-  writeOutputs(*pipeline, estimate, finalReport, ev, s);
+  if (!ev.error.empty())
+    s.incomplete.push_back("evaluation failed: " + ev.error);
+  writeOutputs(writer, *pipeline, estimate, finalReport, ev, s);
+  if (m_settings.observer)
+    m_settings.observer->onOutputFolder(writer.folder());
   return s;
 }
 }  // namespace roislam::graphslam

@@ -1,7 +1,7 @@
-#include <mrpt/config/CConfigFile.h>
 #include <mrpt/config/CConfigFileMemory.h>
 #include <mrpt/system/filesystem.h>
 #include <mrpt/system/string_utils.h>
+#include <roislam/common/CStrictIniFile.h>
 #include <roislam/common/IniKeyCheck.h>
 #include <roislam/graphslam/SlamIni.h>
 
@@ -254,9 +254,8 @@ std::string loadDeciderParams(
                                                                           : "no ini: defaults") +
            "):\n" +
            describeSlamParams(context.config(), part, ESlamIniLayout::RoiGraphSlam, nullptr);
-  if (!mrpt::system::fileExists(iniFile))
-    throw std::runtime_error("ini " + iniFile + ": cannot open");
-  const mrpt::config::CConfigFile cfg(iniFile);
+  // Strict syntax (file:line errors) before MRPT's reader sees the keys.
+  const common::CStrictIniFile cfg(iniFile);
   const ESlamIniLayout layout = slamIniLayout(cfg, iniFile);
   CSlamContext::TConfig config = context.config();
   loadSlamParams(cfg, iniFile, part, config);

@@ -1,9 +1,9 @@
 #include "roislam/gui/CLiveView.h"
 
-#include <mrpt/config/CConfigFile.h>
 #include <mrpt/gui/CDisplayWindow3D.h>
 #include <mrpt/system/CObserver.h>
 #include <pthread.h>
+#include <roislam/common/CStrictIniFile.h>
 #include <roislam/common/IniKeyCheck.h>
 #include <roislam/common/IniRead.h>
 #include <roislam/common/TextFiles.h>
@@ -165,9 +165,7 @@ CLiveView::TOptions CLiveView::loadOptions(const std::string& iniFile)
   TOptions o;
   if (iniFile.empty())
     return o;
-  if (!std::filesystem::is_regular_file(iniFile))
-    throw std::runtime_error("ini " + iniFile + ": cannot open");
-  mrpt::config::CConfigFile cfg(iniFile);
+  const common::CStrictIniFile cfg(iniFile);  // syntax checked: file:line errors
   common::checkIniKeys(cfg, kSection, common::knownIniKeys(o, kSection), iniFile);
   o.loadFromConfigFile(cfg, kSection);
   return o;
@@ -462,11 +460,13 @@ void CLiveView::TImpl::drawLoop()
     const auto step = std::chrono::duration<double>(budget.period());
     std::vector<TUpdate> updates;
     std::optional<TShot> shot;
+    std::string shotDir;
     {
       std::unique_lock<std::mutex> lk(mutex);
       wake.wait_for(lk, step, [this] { return stopDrawing || !shots.empty(); });
       if (stopDrawing)
         return;
+      shotDir = session.screenshotDir;  // onOutputFolder() moves it
       updates.swap(pending);
       sequenceShown = sequence;
       messageShown = message;
@@ -489,7 +489,7 @@ void CLiveView::TImpl::drawLoop()
     {
       char name[64];
       std::snprintf(name, sizeof(name), "screenshot-%06zu.png", last ? last->index : 0);
-      serve({(std::filesystem::path(session.screenshotDir) / name).string(), nullptr});
+      serve({(std::filesystem::path(shotDir) / name).string(), nullptr});
     }
     if (shot)
       serve(*shot);
@@ -719,6 +719,12 @@ CLiveView::CLiveView(const TOptions& options, TSession session)
 }
 
 CLiveView::~CLiveView() = default;
+
+void CLiveView::onOutputFolder(const std::string& dir)
+{
+  std::lock_guard<std::mutex> lk(m_impl->mutex);
+  m_impl->session.screenshotDir = dir;
+}
 
 void CLiveView::onStart(const io::CFrameSource& source, const graphslam::CSlamContext& context)
 {

@@ -12,6 +12,15 @@ namespace fs = std::filesystem;
 
 namespace roislam::io
 {
+void CFrameSource::seek(std::size_t index)
+{
+  if (index >= size())
+    throw std::out_of_range(name() + ": no frame " + std::to_string(index));
+  rewind();
+  for (std::size_t i = 0; i < index; ++i)
+    next();
+}
+
 std::unique_ptr<CFrameSource> CFrameSource::open(
     const std::string& path, const std::string& cameraSpec)
 {

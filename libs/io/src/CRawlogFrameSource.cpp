@@ -19,6 +19,11 @@ using mrpt::obs::CObservation3DRangeScan;
 
 namespace roislam::io
 {
+namespace detail
+{
+void linkThrowingAlignedMalloc();  // MrptAlignedMalloc.cpp
+}
+
 namespace
 {
 bool isRgbd(const CObservation3DRangeScan& o)
@@ -67,6 +72,7 @@ CRawlogFrameSource::CRawlogFrameSource(
     const std::optional<mrpt::img::TCamera>& cameraOverride)
     : m_options(options), m_cameraOverride(cameraOverride)
 {
+  detail::linkThrowingAlignedMalloc();
   if (!fs::is_regular_file(file))
     throw std::runtime_error(file + ": rawlog file not found");
   const fs::path abs = fs::absolute(file).lexically_normal();
@@ -130,6 +136,15 @@ void CRawlogFrameSource::rewind()
 {
   openStream();
   m_delivered = 0;
+}
+
+void CRawlogFrameSource::seek(std::size_t index)
+{
+  if (index >= m_count)
+    throw std::out_of_range(m_file + ": no frame " + std::to_string(index));
+  rewind();
+  for (; m_delivered < index; ++m_delivered)
+    nextObservation();
 }
 
 bool CRawlogFrameSource::accepts(const CObservation3DRangeScan& obs) const

@@ -13,6 +13,7 @@
 #include <opencv2/imgcodecs.hpp>
 #include <sstream>
 #include <stdexcept>
+#include <vector>
 
 namespace fs = std::filesystem;
 
@@ -24,6 +25,8 @@ struct TListItem
 {
   double stamp = 0;
   std::string file;
+  /** "<list>:<line>" where it is listed, for errors. */
+  std::string where;
 };
 
 // rgb.txt / depth.txt: "timestamp filename" per line, '#' comments; like the
@@ -57,7 +60,7 @@ std::vector<TListItem> readList(const fs::path& file)
       throw std::runtime_error(where + "invalid timestamp '" + stampText + "'");
     if (ss >> extra)
       throw std::runtime_error(where + "expected 'timestamp filename', got '" + line + "'");
-    items.push_back({*stamp, name});
+    items.push_back({*stamp, name, file.string() + ":" + std::to_string(lineNo)});
   }
   if (in.bad())
     throw std::runtime_error(file.string() + ": read error");
@@ -73,14 +76,32 @@ void checkSize(const cv::Mat& img, const std::string& file, const mrpt::img::TCa
         std::to_string(camera.nrows));
 }
 
+/** A PNG ends with its IEND chunk; a truncated one does not. Checked here
+ *  because libpng would print its own error on stderr before OpenCV fails. */
+bool isTruncatedPng(const std::vector<unsigned char>& bytes)
+{
+  static const unsigned char signature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+  static const unsigned char iend[12] = {0, 0, 0, 0, 'I', 'E', 'N', 'D', 0xae, 0x42, 0x60, 0x82};
+  if (bytes.size() < 8 || !std::equal(signature, signature + 8, bytes.begin()))
+    return false;  // not a PNG: left to the decoder
+  return bytes.size() < 8 + 12 || !std::equal(iend, iend + 12, bytes.end() - 12);
+}
+
 cv::Mat readImage(const std::string& file, int flags)
 {
   if (!fs::is_regular_file(file))
     throw std::runtime_error(file + ": image file not found");
+  std::ifstream in(file, std::ios::binary | std::ios::ate);
+  std::vector<unsigned char> bytes(in ? static_cast<std::size_t>(in.tellg()) : 0);
+  in.seekg(0);
+  if (!in || !in.read(reinterpret_cast<char*>(bytes.data()), bytes.size()))
+    throw std::runtime_error(file + ": read error");
+  if (isTruncatedPng(bytes))
+    throw std::runtime_error(file + ": cannot decode image (truncated PNG: no IEND chunk)");
   cv::Mat img;
   try
   {
-    img = cv::imread(file, flags);
+    img = cv::imdecode(bytes, flags);
   }
   catch (const cv::Exception&)
   {
@@ -177,9 +198,10 @@ CTumFrameSource::CTumFrameSource(
     e.depthStamp = depth[j].stamp;
     e.rgbFile = (root / rgb[i].file).lexically_normal().string();
     e.depthFile = (root / depth[j].file).lexically_normal().string();
-    for (const auto* f : {&e.rgbFile, &e.depthFile})
-      if (!fs::is_regular_file(*f))
-        throw std::runtime_error(*f + ": image file listed in the sequence not found");
+    for (const auto& [f, where] :
+         {std::pair(e.rgbFile, rgb[i].where), {e.depthFile, depth[j].where}})
+      if (!fs::is_regular_file(f))
+        throw std::runtime_error(where + ": image file not found: " + f);
     m_entries.push_back(std::move(e));
   }
   std::stable_sort(
@@ -214,6 +236,13 @@ cv::Mat CTumFrameSource::readDepthImage(const std::string& file, const mrpt::img
         " bits)");
   checkSize(img, file, camera);
   return img;
+}
+
+void CTumFrameSource::seek(std::size_t index)
+{
+  if (index >= m_entries.size())
+    throw std::out_of_range(m_dir + ": no frame " + std::to_string(index));
+  m_next = index;
 }
 
 std::optional<TRGBDFrame> CTumFrameSource::next()

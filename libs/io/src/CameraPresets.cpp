@@ -3,6 +3,8 @@
 #include <mrpt/config/CConfigFileMemory.h>
 #include <mrpt/containers/yaml.h>
 #include <mrpt/io/vector_loadsave.h>
+#include <roislam/common/CStrictIniFile.h>
+#include <roislam/common/StrictYaml.h>
 
 #include <algorithm>
 #include <filesystem>
@@ -48,9 +50,10 @@ mrpt::img::TCamera loadIniCamera(const std::string& file)
   if (!fs::is_regular_file(file))
     throw std::runtime_error(file + ": camera calibration file not found");
   mrpt::img::TCamera cam;
+  // Syntax first (file:line errors), then MRPT's reader on the same text.
+  common::CStrictIniFile cfg(file);
   try
   {
-    mrpt::config::CConfigFileMemory cfg(mrpt::io::file_get_contents(file));
     cam = cameraFromConfig(cfg, "CAMERA_PARAMS");
   }
   catch (const std::exception& e)
@@ -67,9 +70,11 @@ mrpt::img::TCamera loadIniCamera(const std::string& file)
 mrpt::img::TCamera loadYamlCamera(const std::string& file)
 {
   mrpt::img::TCamera cam;
+  const std::string text = mrpt::io::file_get_contents(file);
+  common::checkStrictYaml(text, file);
   try
   {
-    cam = mrpt::img::TCamera::FromYAML(mrpt::containers::yaml::FromFile(file));
+    cam = mrpt::img::TCamera::FromYAML(mrpt::containers::yaml::FromText(text));
   }
   catch (const std::exception& e)
   {
@@ -162,7 +167,7 @@ TSensorDescription loadSensorFile(const std::string& file)
     d.colour = loadYamlCamera(file);
     return d;
   }
-  mrpt::config::CConfigFileMemory cfg(mrpt::io::file_get_contents(file));
+  const common::CStrictIniFile cfg(file);
   if (!cfg.sectionExists(sensorSection()))
   {
     d.colour = loadIniCamera(file);

@@ -1,36 +1,10 @@
-/* Internal: one-line text of an exception for our error messages. MRPT
- * exceptions span many lines ("==== MRPT exception ====", "Message: ...",
- * location, call stack); we keep the (last) "Message:" text. */
+/* Internal: the one-line text of an exception (common::oneLineError) under
+ * the name the io sources use. */
 #pragma once
 
-#include <string>
+#include <roislam/common/ErrorText.h>
 
 namespace roislam::io::detail
 {
-inline std::string oneLineError(const std::string& what)
-{
-  std::string message, firstLine;
-  std::size_t start = 0;
-  while (start < what.size())
-  {
-    auto end = what.find('\n', start);
-    if (end == std::string::npos)
-      end = what.size();
-    std::string line = what.substr(start, end - start);
-    const auto b = line.find_first_not_of(" \t");
-    if (b != std::string::npos)
-    {
-      line = line.substr(b);
-      if (firstLine.empty())
-        firstLine = line;
-      if (line.rfind("Message:", 0) == 0)
-      {
-        const auto m = line.find_first_not_of(" \t", 8);
-        message = m == std::string::npos ? std::string() : line.substr(m);
-      }
-    }
-    start = end + 1;
-  }
-  return message.empty() ? firstLine : message;
-}
+using common::oneLineError;
 }  // namespace roislam::io::detail

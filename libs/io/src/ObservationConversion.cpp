@@ -235,6 +235,8 @@ TRGBDFrame observationToFrame(const CObservation3DRangeScan& obs, const std::str
   // Depth in metres on the depth camera's pixel grid.
   const auto& R = obs.rangeImage;
   const int rows = static_cast<int>(R.rows()), cols = static_cast<int>(R.cols());
+  if (rows == 0 || cols == 0)
+    throw std::runtime_error(context + ": empty range image (" + sizeText(cols, rows) + ")");
   if (cols != static_cast<int>(dc.ncols) || rows != static_cast<int>(dc.nrows))
     throw std::runtime_error(
         context + ": range image is " + sizeText(cols, rows) + " but cameraParams is for " +

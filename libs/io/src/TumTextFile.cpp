@@ -31,14 +31,14 @@ bool parseNumber(const std::string& token, double& value)
 }
 }  // namespace
 
-std::vector<std::vector<double>> readRows(
+std::vector<TRow> readRowsWithLines(
     const std::string& file, std::size_t columns, const std::string& what)
 {
   std::ifstream in(file, std::ios::binary);
   if (!in)
     throw std::runtime_error(file + ": cannot open");
 
-  std::vector<std::vector<double>> rows;
+  std::vector<TRow> rows;
   std::string line;
   std::size_t lineNo = 0;
   while (std::getline(in, line))
@@ -59,22 +59,33 @@ std::vector<std::vector<double>> readRows(
       throw std::runtime_error(
           where + ": expected " + std::to_string(columns) + " values (" + what + "), found " +
           std::to_string(tokens.size()));
-    std::vector<double> v(columns);
-    bool hasNan = false;
+    TRow row;
+    row.values.resize(columns);
+    row.line = lineNo;
     for (std::size_t k = 0; k < columns; ++k)
     {
-      if (!parseNumber(tokens[k], v[k]))
+      double& v = row.values[k];
+      if (!parseNumber(tokens[k], v))
         throw std::runtime_error(where + ": not a number: '" + tokens[k] + "'");
-      if (std::isnan(v[k]))
-        hasNan = true;
-      else if (std::isinf(v[k]))
+      if (std::isnan(v))
+        row.hasNan = true;
+      else if (std::isinf(v))
         throw std::runtime_error(where + ": infinite value '" + tokens[k] + "'");
     }
-    if (!hasNan)
-      rows.push_back(std::move(v));
+    rows.push_back(std::move(row));
   }
   if (in.bad())
     throw std::runtime_error(file + ": read error");
+  return rows;
+}
+
+std::vector<std::vector<double>> readRows(
+    const std::string& file, std::size_t columns, const std::string& what)
+{
+  std::vector<std::vector<double>> rows;
+  for (auto& r : readRowsWithLines(file, columns, what))
+    if (!r.hasNan)
+      rows.push_back(std::move(r.values));
   return rows;
 }
 

@@ -19,6 +19,19 @@ namespace roislam::io::tumtext
 std::vector<std::vector<double>> readRows(
     const std::string& file, std::size_t columns, const std::string& what);
 
+/** One row of numbers as read, with where it was. */
+struct TRow
+{
+  std::vector<double> values;
+  std::size_t line = 0;  //!< 1-based line number in the file
+  bool hasNan = false;   //!< some value is NaN (readRows() skips such rows)
+};
+
+/** As readRows(), but keeps the rows with a NaN (flagged) and each row's line
+ *  number, for readers that reject such rows naming the line. */
+std::vector<TRow> readRowsWithLines(
+    const std::string& file, std::size_t columns, const std::string& what);
+
 /** Shortest fixed-notation text that reads back as exactly the same double. */
 std::string formatDouble(double x);
 

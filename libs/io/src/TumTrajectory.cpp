@@ -25,9 +25,12 @@ namespace
 /** Pose from a (not necessarily unit) quaternion, built as the benchmark's
  *  evaluate_rpe.py transform44() does: q scaled by sqrt(2/|q|^2), then the
  *  outer-product form of the rotation matrix; a near-zero |q|^2 gives identity. */
+/** Below this |q|^2 the scripts' transform44() returns the identity. */
+constexpr double kMinQuaternionNorm2 = std::numeric_limits<double>::epsilon() * 4.0;
+
 mrpt::poses::CPose3D poseFromTum(const std::array<double, 8>& v)
 {
-  const double eps = std::numeric_limits<double>::epsilon() * 4.0;
+  const double eps = kMinQuaternionNorm2;
   std::array<double, 4> q = {v[4], v[5], v[6], v[7]};  // x y z w
   const double nq = q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3];
   mrpt::math::CMatrixDouble33 R = mrpt::math::CMatrixDouble33::Identity();
@@ -56,17 +59,26 @@ mrpt::poses::CPose3D poseFromTum(const std::array<double, 8>& v)
 
 }  // namespace
 
-TTrajectory loadTumTrajectory(const std::string& file)
+TTrajectory loadTumTrajectory(const std::string& file, EInvalidPose invalid)
 {
   TTrajectory trajectory;
-  for (const auto& row : tumtext::readRows(file, 8, "timestamp tx ty tz qx qy qz qw"))
+  for (const auto& row : tumtext::readRowsWithLines(file, 8, "timestamp tx ty tz qx qy qz qw"))
   {
-    // Same skips as evaluate_rpe.py's read_trajectory() (NaN rows: readRows).
-    if (row[4] == 0 && row[5] == 0 && row[6] == 0 && row[7] == 0)
+    const auto& v = row.values;
+    // The skips of evaluate_rpe.py's read_trajectory() (a NaN, a quaternion
+    // of exactly zero), or an error naming the line.
+    const double nq = v[4] * v[4] + v[5] * v[5] + v[6] * v[6] + v[7] * v[7];
+    const bool zeroQuaternion = !row.hasNan && nq < kMinQuaternionNorm2;
+    if ((row.hasNan || zeroQuaternion) && invalid == EInvalidPose::Reject)
+      throw std::runtime_error(
+          file + ":" + std::to_string(row.line) +
+          (row.hasNan ? ": NaN value" : ": zero quaternion (no rotation)") +
+          " (roi-eval --skip-invalid skips such lines as the benchmark scripts do)");
+    if (row.hasNan || (v[4] == 0 && v[5] == 0 && v[6] == 0 && v[7] == 0))
       continue;
-    std::array<double, 8> v{};
-    std::copy(row.begin(), row.end(), v.begin());
-    trajectory.push_back({v[0], poseFromTum(v)});
+    std::array<double, 8> a{};
+    std::copy(v.begin(), v.end(), a.begin());
+    trajectory.push_back({a[0], poseFromTum(a)});
   }
 
   // Stable, so a repeated stamp keeps file order (the scripts' dicts keep the last).

@@ -1,10 +1,10 @@
 #include "roislam/kfslam/CKfSlamSession.h"
 
-#include <mrpt/config/CConfigFile.h>
 #include <mrpt/config/CConfigFileMemory.h>
 #include <mrpt/obs/CActionCollection.h>
 #include <mrpt/obs/CActionRobotMovement3D.h>
 #include <mrpt/obs/CSensoryFrame.h>
+#include <roislam/common/CStrictIniFile.h>
 #include <roislam/common/IniKeyCheck.h>
 #include <roislam/common/TextFiles.h>
 #include <roislam/evaluation/CTrajectoryEvaluator.h>
@@ -70,7 +70,7 @@ frontend::CRgbdOdometry::TOptions CKfSlamSession::frontEndOptions(const TSetup& 
     const std::string file = resolve(setup.options.front_end_ini, setup.iniDir);
     if (!fs::is_regular_file(file))
       throw std::runtime_error("[KfSlam] front_end_ini: " + file + ": cannot open");
-    mrpt::config::CConfigFile cfg(file);
+    const common::CStrictIniFile cfg(file);
     for (const std::string s : {"FrontEnd", "RoiDetector", "FeatureExtractor", "FeatureMatcher"})
       common::checkIniKeys(cfg, s, keysOf(o, "FrontEnd", s), file);
     try

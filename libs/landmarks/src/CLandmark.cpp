@@ -19,19 +19,21 @@ void CLandmark::serializeTo(mrpt::serialization::CArchive& out) const
   detail::writeFeatures(out, features);
   out << static_cast<uint64_t>(featurePoints.size());
   for (const auto& p : featurePoints)
-    out << p.x << p.y << p.z;
+    detail::writePoint(out, p);
   detail::writeRect(out, box);
   out << static_cast<int32_t>(imageSize.width) << static_cast<int32_t>(imageSize.height);
   detail::writeImagePng(out, patch);
-  out << positionCamera.x << positionCamera.y << positionCamera.z << hasPositionCamera;
-  out << positionWorld.x << positionWorld.y << positionWorld.z << hasPositionWorld;
+  detail::writePoint(out, positionCamera);
+  out << hasPositionCamera;
+  detail::writePoint(out, positionWorld);
+  out << hasPositionWorld;
   out << static_cast<uint64_t>(sightings.size());
   for (const auto& s : sightings)
   {
     out << s.frame << s.timestamp;
     detail::writeRect(out, s.box);
-    out << s.position.x << s.position.y << s.position.z << s.hasPosition
-        << static_cast<int32_t>(s.inliers);
+    detail::writePoint(out, s.position);
+    out << s.hasPosition << static_cast<int32_t>(s.inliers);
   }
 }
 
@@ -49,14 +51,16 @@ void CLandmark::serializeFrom(mrpt::serialization::CArchive& in, uint8_t version
         throw std::runtime_error("corrupt landmark points in archive");
       featurePoints.resize(np);
       for (auto& p : featurePoints)
-        in >> p.x >> p.y >> p.z;
+        p = detail::readPoint(in);
       box = detail::readRect(in);
       int32_t w, h;
       in >> w >> h;
       imageSize = cv::Size(w, h);
       patch = detail::readImagePng(in);
-      in >> positionCamera.x >> positionCamera.y >> positionCamera.z >> hasPositionCamera;
-      in >> positionWorld.x >> positionWorld.y >> positionWorld.z >> hasPositionWorld;
+      positionCamera = detail::readPoint(in);
+      in >> hasPositionCamera;
+      positionWorld = detail::readPoint(in);
+      in >> hasPositionWorld;
       uint64_t n = 0;
       in >> n;
       if (n > (1u << 28))
@@ -67,7 +71,8 @@ void CLandmark::serializeFrom(mrpt::serialization::CArchive& in, uint8_t version
         int32_t inliers;
         in >> s.frame >> s.timestamp;
         s.box = detail::readRect(in);
-        in >> s.position.x >> s.position.y >> s.position.z >> s.hasPosition >> inliers;
+        s.position = detail::readPoint(in);
+        in >> s.hasPosition >> inliers;
         s.inliers = inliers;
       }
       break;

@@ -102,7 +102,7 @@ const CLandmark& CLandmarkDatabase::landmark(int32_t id) const
 void CLandmarkDatabase::clear()
 {
   m_landmarks.clear();
-  m_voteIndex.reset();
+  m_vote.reset();
 }
 
 int32_t CLandmarkDatabase::add(CLandmark landmark)
@@ -113,7 +113,7 @@ int32_t CLandmarkDatabase::add(CLandmark landmark)
         " features; cannot add " + features::toString(landmark.features.type));
   landmark.id = static_cast<int32_t>(m_landmarks.size());
   m_landmarks.push_back(std::move(landmark));
-  m_voteIndex.reset();
+  m_vote.reset();
   return m_landmarks.back().id;
 }
 
@@ -123,23 +123,28 @@ void CLandmarkDatabase::addSighting(int32_t id, const TLandmarkSighting& sightin
   m_landmarks[id].sightings.push_back(sighting);
 }
 
-void CLandmarkDatabase::rebuildVoteIndex() const
+std::shared_ptr<const CLandmarkDatabase::TVoteIndex> CLandmarkDatabase::voteIndex() const
 {
+  std::lock_guard<std::mutex> lock(*m_voteMutex);
+  if (m_vote)
+    return m_vote;
   // The index needs only the stacked descriptors (it keeps a reference).
+  auto vote = std::make_shared<TVoteIndex>();
   features::TFeatureSet all;
-  m_voteOwner.clear();
   std::vector<cv::Mat> rows;
   for (const auto& lm : m_landmarks)
   {
     if (lm.features.empty())
       continue;
     all.type = lm.features.type;
-    m_voteOwner.insert(m_voteOwner.end(), lm.features.size(), lm.id);
+    vote->owner.insert(vote->owner.end(), lm.features.size(), lm.id);
     rows.push_back(lm.features.descriptors);
   }
   if (!rows.empty())
     cv::vconcat(rows, all.descriptors);
-  m_voteIndex = std::make_shared<matching::CFeatureIndex>(m_voteMatcher.options(), all);
+  vote->index = std::make_shared<matching::CFeatureIndex>(m_voteMatcher.options(), all);
+  m_vote = vote;
+  return m_vote;
 }
 
 std::vector<int32_t> CLandmarkDatabase::candidates(
@@ -158,11 +163,10 @@ std::vector<int32_t> CLandmarkDatabase::candidates(
   if (maxCandidates == 0 || pool.size() <= maxCandidates)
     return pool;
 
-  if (!m_voteIndex)
-    rebuildVoteIndex();
+  const auto vote = voteIndex();
   std::vector<int> votes(m_landmarks.size(), 0);
-  for (const auto& m : m_voteIndex->match(roiFeatures))
-    ++votes[m_voteOwner[m.trainIdx]];
+  for (const auto& m : vote->index->match(roiFeatures))
+    ++votes[vote->owner[m.trainIdx]];
   std::stable_sort(
       pool.begin(), pool.end(), [&](int32_t a, int32_t b) { return votes[a] > votes[b]; });
   pool.resize(maxCandidates);
@@ -274,7 +278,7 @@ void CLandmarkDatabase::serializeFrom(mrpt::serialization::CArchive& in, uint8_t
         if (loaded[i].id != static_cast<int32_t>(i))
           throw std::runtime_error("landmark ids in archive are not 0..n-1");
       m_landmarks = std::move(loaded);
-      m_voteIndex.reset();
+      m_vote.reset();
       break;
     }
     default:

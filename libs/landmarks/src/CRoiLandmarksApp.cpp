@@ -13,6 +13,7 @@
 #include <opencv2/imgcodecs.hpp>
 #include <sstream>
 
+#include "roislam/common/COutputFolder.h"
 #include "roislam/common/TextFiles.h"
 #include "roislam/io/CFramePrefetcher.h"
 #include "roislam/io/CFrameSource.h"
@@ -79,10 +80,24 @@ nlohmann::json orNull(const std::optional<T>& v)
 struct TAnnotatedRawlog
 {
   std::string file, tmp, imagesDir;
+  std::string label;  //!< the name given on the command line, for errors
   std::unique_ptr<mrpt::io::CFileGZOutputStream> stream;
 };
 
-TAnnotatedRawlog openAnnotatedRawlog(const std::optional<std::string>& file)
+/** `file` relative to `dir` when it lies inside it. */
+std::optional<fs::path> pathInside(const std::string& file, const std::string& dir)
+{
+  const fs::path rel = fs::absolute(file).lexically_normal().lexically_relative(
+      fs::absolute(dir).lexically_normal());
+  if (rel.empty() || *rel.begin() == "..")
+    return std::nullopt;
+  return rel;
+}
+
+/** Opens the annotated rawlog `label` at `file` (inside the staging folder
+ *  when `label` lies inside the output folder). */
+TAnnotatedRawlog openAnnotatedRawlog(
+    const std::optional<std::string>& file, const std::string& label)
 {
   TAnnotatedRawlog out;
   if (!file)
@@ -90,6 +105,7 @@ TAnnotatedRawlog openAnnotatedRawlog(const std::optional<std::string>& file)
   std::error_code ec;
   const fs::path rl(*file);
   out.file = *file;
+  out.label = label;
   out.imagesDir = (rl.parent_path() / (rl.stem().string() + "_Images")).string();
   if (rl.has_parent_path())
     fs::create_directories(rl.parent_path(), ec);
@@ -99,7 +115,7 @@ TAnnotatedRawlog openAnnotatedRawlog(const std::optional<std::string>& file)
   out.tmp = *file + ".tmp";
   out.stream = std::make_unique<mrpt::io::CFileGZOutputStream>();
   if (!out.stream->open(out.tmp))
-    throw std::runtime_error(*file + ": cannot write");
+    throw std::runtime_error(label + ": cannot write");
   return out;
 }
 
@@ -112,24 +128,7 @@ void commitAnnotatedRawlog(TAnnotatedRawlog& rawlog)
   std::error_code ec;
   fs::rename(rawlog.tmp, rawlog.file, ec);
   if (ec)
-    throw std::runtime_error(rawlog.file + ": cannot write: " + ec.message());
-}
-
-/** Creates the output folder and the temporary folder of landmark patches
- *  (renamed to landmarks/ at the end); returns the latter. */
-fs::path prepareOutputFolder(const std::string& dir)
-{
-  const fs::path outDir(dir);
-  std::error_code ec;
-  fs::create_directories(outDir, ec);
-  if (ec || !fs::is_directory(outDir))
-    throw std::runtime_error(dir + ": cannot create output folder");
-  const fs::path patchesTmp = outDir / "landmarks.partial";
-  fs::remove_all(patchesTmp, ec);
-  fs::create_directories(patchesTmp, ec);
-  if (ec)
-    throw std::runtime_error(patchesTmp.string() + ": cannot create folder");
-  return patchesTmp;
+    throw std::runtime_error(rawlog.label + ": cannot write: " + ec.message());
 }
 
 /** What the frame loop collects: every frame's record and the confirmed ROI
@@ -368,7 +367,7 @@ std::string doneLine(const CRoiLandmarksApp::TSummary& sum, const TScores& score
  *  landmarks' patches saved, the annotated rawlog written. */
 TFrameLog processFrames(
     io::CFrameSource& source, std::size_t maxFrames, CObservationProcessor& processor,
-    const mrpt::poses::CPose3D& sensorPose, const fs::path& patchesTmp, TAnnotatedRawlog& rawlog,
+    const mrpt::poses::CPose3D& sensorPose, const fs::path& patchesDir, TAnnotatedRawlog& rawlog,
     kfslam::CKfSlamSession* kfSlam, const std::function<void(const std::string&)>& progress)
 {
   TFrameLog log;
@@ -381,7 +380,7 @@ TFrameLog processFrames(
     const TFrameResult& r = out.result;
     if (r.newLandmark)
     {
-      const std::string png = (patchesTmp / (frameName(r.frame) + ".png")).string();
+      const std::string png = (patchesDir / (frameName(r.frame) + ".png")).string();
       if (!cv::imwrite(png, processor.tracker().database().landmark(r.landmarkId).patch))
         throw std::runtime_error(png + ": cannot write");
     }
@@ -402,6 +401,36 @@ TFrameLog processFrames(
   return log;
 }
 }  // namespace
+
+const std::vector<std::string>& CRoiLandmarksApp::outputFiles()
+{
+  static const std::vector<std::string> names{
+      "frames.csv",
+      "landmarks",
+      "landmarks.db",
+      "summary.json",
+      "kf-slam",
+      "kf-slam.rawlog",
+      "kf-slam.landmarks_gt.txt"};
+  return names;
+}
+
+common::COutputFolder::TOptions CRoiLandmarksApp::outputFolderOptions(
+    const std::optional<fs::path>& rawlogInFolder) const
+{
+  common::COutputFolder::TOptions o;
+  o.overwrite = m_args.overwrite;
+  o.known = outputFiles();
+  if (rawlogInFolder)
+  {
+    // The annotated rawlog and its images folder, wherever they are inside.
+    const fs::path& r = *rawlogInFolder;
+    o.known.push_back(r.begin()->string());
+    const fs::path images = r.parent_path() / (r.stem().string() + "_Images");
+    o.known.push_back(images.begin()->string());
+  }
+  return o;
+}
 
 CRoiLandmarksApp::CRoiLandmarksApp(TArguments arguments) : m_args(std::move(arguments))
 {
@@ -424,14 +453,15 @@ CRoiLandmarksApp::CRoiLandmarksApp(TArguments arguments) : m_args(std::move(argu
     throw std::invalid_argument("no output folder given");
 }
 
-kfslam::CKfSlamSession::TSetup CRoiLandmarksApp::kfSlamSetup(const io::CFrameSource& source) const
+kfslam::CKfSlamSession::TSetup CRoiLandmarksApp::kfSlamSetup(
+    const io::CFrameSource& source, const std::string& outputDir) const
 {
   kfslam::CKfSlamSession::TSetup s;
   s.options = m_options.kfSlam;
   s.iniDir =
       m_args.iniFile.empty() ? std::string() : fs::path(m_args.iniFile).parent_path().string();
   s.sensorPose = m_options.observations.sensor_pose;
-  s.outputDir = m_args.outputDir;
+  s.outputDir = outputDir;
   if (m_args.feature)
     s.feature = m_options.features.feature_type;
   s.maxFeatures = m_args.maxFeatures;
@@ -448,8 +478,17 @@ void CRoiLandmarksApp::progress(const std::string& line) const
 CRoiLandmarksApp::TSummary CRoiLandmarksApp::run()
 {
   const auto wall0 = std::chrono::steady_clock::now();
-  const fs::path outDir(m_args.outputDir);
-  const fs::path patchesTmp = prepareOutputFolder(m_args.outputDir);
+  // Complete or absent: everything goes to a staging folder renamed at the end.
+  const auto rawlogInFolder = m_args.outputRawlog
+                                  ? pathInside(*m_args.outputRawlog, m_args.outputDir)
+                                  : std::optional<fs::path>();
+  common::COutputFolder folder(m_args.outputDir, outputFolderOptions(rawlogInFolder));
+  const fs::path outDir(folder.path());
+  const fs::path patchesDir = outDir / "landmarks";
+  std::error_code ec;
+  fs::create_directories(patchesDir, ec);
+  if (ec)
+    throw std::runtime_error(patchesDir.string() + ": cannot create folder");
 
   auto source = io::CFrameSource::open(m_args.input, m_args.camera);
   std::optional<CLandmarkScorer> scorer;
@@ -466,12 +505,17 @@ CRoiLandmarksApp::TSummary CRoiLandmarksApp::run()
       (scorer ? ", ground truth " + *gtFile : ", no ground truth"));
   progress("roi-landmarks: " + source->sensor().summary());
 
-  TAnnotatedRawlog rawlog = openAnnotatedRawlog(m_args.outputRawlog);
+  TAnnotatedRawlog rawlog = openAnnotatedRawlog(
+      rawlogInFolder ? std::optional<std::string>((outDir / *rawlogInFolder).string())
+                     : m_args.outputRawlog,
+      m_args.outputRawlog.value_or(""));
   auto kfSlam =
-      m_args.kfSlam ? std::make_unique<kfslam::CKfSlamSession>(kfSlamSetup(*source)) : nullptr;
+      m_args.kfSlam
+          ? std::make_unique<kfslam::CKfSlamSession>(kfSlamSetup(*source, outDir.string()))
+          : nullptr;
   CObservationProcessor processor(m_options);
   const TFrameLog log = processFrames(
-      *source, m_args.maxFrames, processor, m_options.observations.sensor_pose, patchesTmp, rawlog,
+      *source, m_args.maxFrames, processor, m_options.observations.sensor_pose, patchesDir, rawlog,
       kfSlam.get(), m_args.progress);
 
   // The primary score uses [LandmarkScoring] recall_position; the other
@@ -485,18 +529,13 @@ CRoiLandmarksApp::TSummary CRoiLandmarksApp::run()
 
   common::writeFileAtomically((outDir / "frames.csv").string(), framesCsv(log, scores));
   processor.tracker().database().save((outDir / "landmarks.db").string());
-  const fs::path patches = outDir / "landmarks";
-  std::error_code ec;
-  fs::remove_all(patches, ec);
-  fs::rename(patchesTmp, patches, ec);
-  if (ec)
-    throw std::runtime_error(patches.string() + ": cannot write: " + ec.message());
   commitAnnotatedRawlog(rawlog);
 
   if (kfSlam)
   {
     progress(
-        "roi-landmarks: running MRPT's EKF-SLAM (CRangeBearingKFSLAM) on " + kfSlam->rawlogFile());
+        "roi-landmarks: running MRPT's EKF-SLAM (CRangeBearingKFSLAM) on " +
+        (fs::path(m_args.outputDir) / fs::path(kfSlam->rawlogFile()).filename()).string());
     sum.kfSlam = kfSlam->finish(gt);
     progress(kfSlamLine(sum.kfSlam));
   }
@@ -506,6 +545,7 @@ CRoiLandmarksApp::TSummary CRoiLandmarksApp::run()
   if (kfSlam)
     j["kf_slam"] = sum.kfSlam;
   common::writeFileAtomically((outDir / "summary.json").string(), j.dump(2) + "\n");
+  folder.commit();
   progress(doneLine(sum, scores));
   return sum;
 }

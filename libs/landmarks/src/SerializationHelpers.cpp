@@ -99,4 +99,16 @@ features::TFeatureSet readFeatures(mrpt::serialization::CArchive& in)
     throw std::runtime_error("corrupt feature set in archive (descriptor rows)");
   return f;
 }
+void writePoint(mrpt::serialization::CArchive& out, const mrpt::math::TPoint3D& p)
+{
+  const double x = p.x, y = p.y, z = p.z;
+  out << x << y << z;
+}
+
+mrpt::math::TPoint3D readPoint(mrpt::serialization::CArchive& in)
+{
+  double x = 0, y = 0, z = 0;
+  in >> x >> y >> z;
+  return {x, y, z};
+}
 }  // namespace roislam::landmarks::detail

@@ -1,8 +1,7 @@
 #include "roislam/landmarks/TPipelineOptions.h"
 
-#include <mrpt/config/CConfigFile.h>
+#include <roislam/common/CStrictIniFile.h>
 
-#include <filesystem>
 #include <stdexcept>
 
 #include "IniRead.h"
@@ -70,9 +69,7 @@ void TPipelineOptions::load(const mrpt::config::CConfigFileBase& cfg, const std:
 
 void TPipelineOptions::loadFromFile(const std::string& file)
 {
-  if (!std::filesystem::is_regular_file(file))
-    throw std::runtime_error("ini " + file + ": cannot open");
-  mrpt::config::CConfigFile cfg(file);
+  const common::CStrictIniFile cfg(file);
   load(cfg, file);
 }
 

@@ -24,11 +24,25 @@ CFeatureIndex::CFeatureIndex(
     const CFeatureMatcher::TOptions& options, const features::TFeatureSet& train)
     : m_options(options), m_type(train.type), m_descriptors(train.descriptors)
 {
-  if (m_descriptors.empty())
+  if (m_descriptors.empty() || m_options.matcher == EMatcherType::BRUTE_FORCE)
     return;
-  m_index = makeMatcher(m_options.matcher, features::isBinary(m_type));
-  m_index->add(std::vector<cv::Mat>{m_descriptors});
-  m_index->train();
+  m_flann = makeMatcher(m_options.matcher, features::isBinary(m_type));
+  m_flann->add(std::vector<cv::Mat>{m_descriptors});
+  m_flann->train();
+}
+
+std::vector<std::vector<cv::DMatch>> CFeatureIndex::knn2(const cv::Mat& query) const
+{
+  std::vector<std::vector<cv::DMatch>> knn;
+  if (m_flann)
+  {
+    std::lock_guard<std::mutex> lock(m_flannMutex);
+    m_flann->knnMatch(query, knn, 2);
+  }
+  else
+    cv::BFMatcher(features::isBinary(m_type) ? cv::NORM_HAMMING : cv::NORM_L2)
+        .knnMatch(query, m_descriptors, knn, 2);
+  return knn;
 }
 
 std::vector<cv::DMatch> CFeatureIndex::match(const features::TFeatureSet& query) const
@@ -39,8 +53,7 @@ std::vector<cv::DMatch> CFeatureIndex::match(const features::TFeatureSet& query)
       query.descriptors.cols != m_descriptors.cols)
     throw std::invalid_argument("CFeatureMatcher::match: feature sets of different types");
 
-  std::vector<std::vector<cv::DMatch>> knn;
-  m_index->knnMatch(query.descriptors, knn, 2);
+  const auto knn = knn2(query.descriptors);
   std::vector<cv::DMatch> fwd;
   fwd.reserve(knn.size());
   for (const auto& k : knn)

@@ -1,7 +1,7 @@
 #include "roislam/reference/CCvOdometryApp.h"
 
-#include <mrpt/config/CConfigFile.h>
 #include <mrpt/config/CConfigFileMemory.h>
+#include <roislam/common/CStrictIniFile.h>
 #include <roislam/common/IniKeyCheck.h>
 #include <roislam/common/TextFiles.h>
 #include <roislam/evaluation/CTrajectoryEvaluator.h>
@@ -34,7 +34,7 @@ CCvOdometryApp::CCvOdometryApp(const TArguments& args) : m_args(args)
   {
     if (!fs::is_regular_file(m_args.iniFile))
       throw std::runtime_error(m_args.iniFile + ": ini file not found");
-    mrpt::config::CConfigFile cfg(m_args.iniFile);
+    const common::CStrictIniFile cfg(m_args.iniFile);
     common::checkIniKeys(cfg, kSection, common::knownIniKeys(m_options, kSection), m_args.iniFile);
     try
     {

@@ -6,6 +6,7 @@
 #include <mrpt/opengl/CCamera.h>
 #include <mrpt/opengl/CFBORender.h>
 #include <mrpt/random/RandomGenerators.h>
+#include <roislam/common/COutputFolder.h>
 #include <unistd.h>
 
 #include <Eigen/Dense>
@@ -120,10 +121,6 @@ cv::Mat depthAtPixelCentres(const mrpt::math::CMatrixFloat& D, unsigned ss, unsi
   return out;
 }
 
-bool isEmptyDir(const fs::path& p)
-{
-  return fs::is_directory(p) && fs::directory_iterator(p) == fs::directory_iterator();
-}
 }  // namespace
 
 // ---------------------------------------------------------------- simulator
@@ -390,39 +387,23 @@ CRgbdSimulator::TFrame CRgbdSimulator::renderFrame(std::size_t i)
   return f;
 }
 
-CRgbdSimulator::TWriteStats CRgbdSimulator::writeSequence(const std::string& outDir)
+CRgbdSimulator::TWriteStats CRgbdSimulator::writeSequence(const std::string& outDir, bool overwrite)
 {
   using Clock = std::chrono::steady_clock;
   const auto t0 = Clock::now();
-  if (outDir.empty())
-    throw std::runtime_error("output folder name is empty");
-  fs::path out = fs::absolute(fs::path(outDir)).lexically_normal();
-  if (out.filename().empty())
-    out = out.parent_path();  // trailing '/'
-  const fs::path parent = out.parent_path();
-  const std::string name = out.filename().string();
-
+  // Complete or absent: a staging folder beside outDir, renamed at the end.
+  roislam::common::COutputFolder::TOptions folderOptions;
+  folderOptions.overwrite = overwrite;
+  folderOptions.known = {"rgb",        "depth",         "rgb.txt",         "depth.txt",
+                         "camera.ini", "simulator.ini", "groundtruth.txt", "accelerometer.txt"};
+  roislam::common::COutputFolder folder(outDir, folderOptions);
+  const fs::path tmp(folder.path());
   std::error_code ec;
-  fs::create_directories(parent, ec);
-  if (ec || !fs::is_directory(parent))
-    throw std::runtime_error("cannot create folder " + parent.string() + ": " + ec.message());
-  if (fs::exists(out))
-  {
-    if (!fs::is_directory(out))
-      throw std::runtime_error("output " + out.string() + " exists and is not a folder");
-    if (!isEmptyDir(out) && !fs::exists(out / "simulator.ini"))
-      throw std::runtime_error(
-          "output folder " + out.string() +
-          " is not empty and was not written by rgbd-simul; refusing to replace it");
-  }
-  const std::string tag = std::to_string(::getpid());
-  const fs::path tmp = parent / ("." + name + ".tmp-" + tag);
-  fs::remove_all(tmp, ec);
   fs::create_directories(tmp / "rgb", ec);
   if (!ec)
     fs::create_directories(tmp / "depth", ec);
   if (ec)
-    throw std::runtime_error("cannot write to " + parent.string() + ": " + ec.message());
+    throw std::runtime_error("cannot write to " + tmp.string() + ": " + ec.message());
 
   TWriteStats st;
   try
@@ -476,28 +457,11 @@ CRgbdSimulator::TWriteStats CRgbdSimulator::writeSequence(const std::string& out
     m_opts.saveToConfigFile(simCfg, "RgbdSimulator");
     writeTextFile(tmp / "simulator.ini", simCfg.getContent());
 
-    if (fs::exists(out))
-    {
-      const fs::path old = parent / ("." + name + ".old-" + tag);
-      fs::remove_all(old, ec);
-      fs::rename(out, old);
-      fs::rename(tmp, out);
-      fs::remove_all(old, ec);
-    }
-    else
-    {
-      fs::rename(tmp, out);
-    }
+    folder.commit();
   }
   catch (const fs::filesystem_error& e)
   {
-    fs::remove_all(tmp, ec);
-    throw std::runtime_error("cannot write " + out.string() + ": " + e.what());
-  }
-  catch (...)
-  {
-    fs::remove_all(tmp, ec);
-    throw;
+    throw std::runtime_error("cannot write " + outDir + ": " + e.what());
   }
   st.totalSeconds = std::chrono::duration<double>(Clock::now() - t0).count();
   return st;

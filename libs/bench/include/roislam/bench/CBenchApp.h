@@ -12,6 +12,14 @@
  * <prefix>/share/roislam/config. Reference numbers: --reference, else the
  * source tree's share/roi-bench/dissertation.json, else
  * <prefix>/share/roislam/roi-bench/dissertation.json.
+ *
+ * Output folder: resumable, so an existing one is used again when it holds
+ * only roi-bench's entries (runs/, configs/, results.csv, report.md, charts/);
+ * anything else is refused. A run's folder is complete when its run.json,
+ * written last, exists (a run without it is redone from scratch, the app
+ * writing its own output folder complete or absent); results.csv and
+ * report.md are renamed into place when complete, charts/ is replaced whole
+ * (common::COutputFolder).
  */
 #pragma once
 
@@ -32,6 +40,9 @@ class CBenchApp
   {
     std::vector<std::string> datasets;  //!< sequence folders or folders of sequences
     std::string outputDir;
+    /** Ini with a [Bench] section (CExperimentPlan::TOptions); empty = none. */
+    std::string planFile;
+    /** Tests to run; empty = the plan file's (else 1,2,3). */
     std::string tests = "1,2,3";
     int jobs = 1;
     bool emitJobs = false;

@@ -26,6 +26,9 @@ class CEvalApp
     std::string plotFile;       //!< PNG to write, or empty
     std::string errorPlotFile;  //!< PNG of the errors over time, or empty
     std::string alignedFile;    //!< aligned estimate (TUM) to write, or empty
+    /** Skip lines with a NaN or a zero quaternion (the benchmark scripts'
+     *  behaviour) instead of rejecting the file. */
+    bool skipInvalid = false;
   };
 
   explicit CEvalApp(const TParams& params);

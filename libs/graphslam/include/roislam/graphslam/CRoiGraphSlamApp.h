@@ -4,7 +4,8 @@
  * same path as roi-graphslam-engine), configured by roi-graphslam's ini
  * ([FrontEnd], [GraphSlam], ...; MRPT's graph-SLAM sections are read too,
  * SlamIni.h) and the command line. While frame i is processed, frame i+1 is
- * decoded on a second thread. Outputs: CSlamRunner.h. The colour camera's
+ * decoded on a second thread. Outputs: CSlamRunner.h (the folder complete or
+ * absent, a non-empty one refused unless `overwrite`). The colour camera's
  * rolling-shutter readout comes from the sensor description
  * (io::CFrameSource::sensor(), --camera): the run prints which description
  * it picked and why, and summary.json records it ("sensor"). An ini that
@@ -41,6 +42,8 @@ class CRoiGraphSlamApp
     std::optional<int> maxFeatures;      //!< [FeatureExtractor] max_features
     std::optional<bool> strictRoi;       //!< [FrontEnd] strict_roi
     bool snapshot = true;
+    /** Replace an earlier output in outputDir (only our own files). */
+    bool overwrite = false;
     /** Camera spec as io::resolveCamera (default auto). */
     std::string camera = "auto";
     /** Process at most this many frames (0 = all). */

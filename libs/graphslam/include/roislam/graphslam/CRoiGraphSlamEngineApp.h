@@ -34,7 +34,7 @@ namespace roislam::graphslam
 class CRoiGraphSlamEngineApp
 {
  public:
-  /** graphslam-engine's options (and --output-dir, --no-snapshot). */
+  /** graphslam-engine's options (and --output-dir, --no-snapshot, --overwrite). */
   struct TArguments
   {
     std::string iniFile;                     //!< -i/--ini-file (required)
@@ -48,6 +48,8 @@ class CRoiGraphSlamEngineApp
     bool snapshot = true;                         //!< no --no-snapshot
     /** --camera: camera spec as io::resolveCamera (default auto). */
     std::string camera = "auto";
+    /** --overwrite: replace an earlier output of ours in outputDir. */
+    bool overwrite = false;
     /** Progress lines (e.g. to stderr); may be empty. */
     std::function<void(const std::string&)> progress;
     /** Told every frame and optimisation (e.g. the live view); not owned,

@@ -17,6 +17,8 @@
 #include <roislam/io/CFrameSource.h>
 #include <roislam/io/TRGBDFrame.h>
 
+#include <string>
+
 namespace roislam::graphslam
 {
 class CSlamObserver
@@ -27,6 +29,12 @@ class CSlamObserver
   /** Once, before the first frame: the sequence (name, ground-truth file)
    *  and the context (configuration). */
   virtual void onStart(const io::CFrameSource& source, const CSlamContext& context) {}
+
+  /** Where files the observer writes for the run (the live view's key-press
+   *  screenshots) go: before the first frame, the run's staging folder
+   *  (renamed into place with the outputs, CSlamRunner); after the outputs
+   *  are written, the output folder itself. */
+  virtual void onOutputFolder(const std::string& dir) {}
 
   /** After a frame went through the front end and the back end: its
    *  result, the decoded frame (colour, depth) and the context (keyframe

@@ -1,8 +1,15 @@
-/* Writes the files of one finished SLAM run into its output folder, each
- * under a temporary name renamed when complete (see CRoiGraphSlamApp.h for
- * the list and their content). One writer per output folder; the run's data
- * comes in through a TRun view, so any driver of our deciders (roi-graphslam's
- * own loop, MRPT's engine) writes the same files. Called by CRoiGraphSlamApp.
+/* Writes the files of one finished SLAM run into its output folder (see
+ * CRoiGraphSlamApp.h for the list and their content). One writer per output
+ * folder; the run's data comes in through a TRun view, so any driver of our
+ * deciders (roi-graphslam's own loop, MRPT's engine) writes the same files.
+ * Called by CRoiGraphSlamApp.
+ *
+ * The folder is complete or absent (common::COutputFolder): the files go to a
+ * staging folder beside it, and writeSummary(), the last call, writes
+ * summary.json and renames the folder into place. A writer destroyed before
+ * that (an exception while writing the map, say) leaves the output folder
+ * absent or as it was. An existing non-empty folder is refused unless
+ * `overwrite`, which replaces an earlier output of ours (files()).
  *
  * Frames: trajectory.txt and graph.graph keep the estimate's own world (the
  * first camera's optical frame, TUM convention); the pictures (map.bt,
@@ -12,6 +19,7 @@
  */
 #pragma once
 
+#include <roislam/common/COutputFolder.h>
 #include <roislam/evaluation/TEvaluationResult.h>
 #include <roislam/graphslam/CGravityFrame.h>
 #include <roislam/graphslam/CSlamPipeline.h>
@@ -69,23 +77,30 @@ class CSlamOutputWriter
     void addToSummary(nlohmann::json& summary) const;
   };
 
-  /** The folder must exist and be writable (checkWritableDir). */
-  explicit CSlamOutputWriter(std::string outputDir);
+  /** Prepares the staging folder; throws "output dir <dir>: ..." when `dir`
+   *  cannot be written, is not a folder or is not empty (unless overwrite
+   *  and it holds only our files). Construct it before the run, so a bad
+   *  folder fails before the work. */
+  explicit CSlamOutputWriter(const std::string& outputDir, bool overwrite = false);
 
-  /** Creates `dir` if needed and checks that a file can be written there;
-   *  throws "output dir <dir>: ..." otherwise. */
-  static void checkWritableDir(const std::string& dir);
+  /** Where the files go now: the staging folder until writeSummary(),
+   *  then the output folder. */
+  std::string folder() const { return m_folder.path(); }
+
+  /** The names this writer may put into an output folder. */
+  static const std::vector<std::string>& files();
 
   void writeTrajectory(const io::TTrajectory& estimate, const std::string& header) const;
   void writeGraph(const TGraph& graph) const;
   /** frames.csv: one row per frame (CRoiGraphSlamApp.h). */
   void writeFramesCsv(const std::vector<CSlamPipeline::TFrameRecord>& records) const;
+  /** report.txt: MRPT's engine report and the deciders' (CSlamRunner.h). */
+  void writeReport(const std::string& text) const;
   /** The pictures of a run, in the gravity-up frame (CGravityFrame::choose):
    *  map.bt, scene.3Dscene, snapshot.png when `snapshot`, and, when the
    *  evaluation is known, ate.png (CTrajectoryPlot: top view and height over
-   *  time) and errors.png (CErrorPlot: ATE and RPE over time); plots of an
-   *  earlier run in the folder are removed first. Throws on map or
-   *  scene errors; a missing snapshot or plot is reported in the result. */
+   *  time) and errors.png (CErrorPlot: ATE and RPE over time). Throws on map
+   *  or scene errors; a missing snapshot or plot is reported in the result. */
   TPictures writePictures(const TRun& run, const TReference& reference, bool snapshot) const;
 
   /** map.bt (OctoMap, 5 cm) from the keyframes' clouds, in the frame
@@ -97,12 +112,14 @@ class CSlamOutputWriter
   std::string writeScene(const viz::TSceneContent& content, bool snapshot) const;
   /** ate.png and errors.png of an evaluation; returns the first error (empty on success). */
   std::string writePlots(const TReference& reference) const;
-  void writeSummary(const nlohmann::json& summary) const;
+  /** Writes summary.json and moves the folder into place: the last call. */
+  void writeSummary(const nlohmann::json& summary);
 
   /** Writes text through `file`.tmp renamed on success; throws "<file>: ...". */
   static void writeTextFile(const std::string& file, const std::string& text);
 
  private:
-  std::string m_dir;  //!< with a trailing '/'
+  common::COutputFolder m_folder;
+  std::string m_dir;  //!< the staging folder, with a trailing '/'
 };
 }  // namespace roislam::graphslam

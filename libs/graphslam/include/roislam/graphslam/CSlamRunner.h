@@ -1,8 +1,10 @@
 /* Runs one SLAM pipeline (CSlamPipeline: MRPT's engine with the chosen
  * deciders) over its sequence and writes the run's outputs into the output
- * folder, each file under a temporary name renamed when complete
- * (CSlamOutputWriter). What roi-graphslam (CRoiGraphSlamApp) and
- * roi-graphslam-engine (CRoiGraphSlamEngineApp) both do once their
+ * folder, which is complete or absent: the files are staged beside it and
+ * the folder is renamed into place after summary.json (CSlamOutputWriter,
+ * common::COutputFolder); a non-empty folder is refused unless
+ * TSettings::overwrite, which replaces an earlier output of ours whole. What roi-graphslam
+ * (CRoiGraphSlamApp) and roi-graphslam-engine (CRoiGraphSlamEngineApp) both do once their
  * configuration is known, so they write the same files the same way:
  *  - trajectory.txt  TUM format, colour stamps; every tracked frame: its
  *                    keyframe's optimised pose (+) its pose relative to it
@@ -22,7 +24,8 @@
  *                    truth's relative poses, per direction and per edge
  *                    kind, evaluation::edgeChi2),
  *                    display_frame (CGravityFrame::TResult::toJson()), the
- *                    deciders' names ("engine")
+ *                    deciders' names ("engine"); "partial" and "incomplete"
+ *                    (TSlamSummary::incomplete)
  * trajectory.txt and graph.graph are in the estimate's own frame (the first
  * camera's optical frame, TUM convention: as estimated); map.bt,
  * scene.3Dscene and snapshot.png are gravity-up (z up) in the frame
@@ -35,6 +38,7 @@
 #include <roislam/evaluation/EdgeChi2.h>
 #include <roislam/evaluation/TEvaluationResult.h>
 #include <roislam/graphslam/CSlamObserver.h>
+#include <roislam/graphslam/CSlamOutputWriter.h>
 #include <roislam/graphslam/CSlamPipeline.h>
 #include <roislam/graphslam/TSlamSummary.h>
 #include <roislam/io/CFrameSource.h>
@@ -58,6 +62,8 @@ class CSlamRunner
     /** As given by the user (summary.json "input"). */
     std::string input;
     std::string outputDir;
+    /** Replace an earlier output of ours in outputDir (CSlamOutputWriter). */
+    bool overwrite = false;
     /** TUM-format ground truth; none: no ATE / RPE. */
     std::optional<std::string> groundTruthFile;
     bool snapshot = true;
@@ -79,10 +85,9 @@ class CSlamRunner
 
   explicit CSlamRunner(TSettings settings);
 
-  /** Checks the output folder, builds the pipeline over `source`, runs the
-   *  whole sequence (or maxFrames), and writes the outputs. Throws when the
-   *  output folder is not writable, the pipeline cannot be built or a frame
-   *  cannot be read. */
+  /** Checks the output folder (and prepares its staging folder), builds the pipeline over `source`,
+   * runs the whole sequence (or maxFrames), and writes the outputs. Throws when the output folder
+   * is not writable, the pipeline cannot be built or a frame cannot be read. */
   TSlamSummary run(std::unique_ptr<io::CFrameSource> source, const TMakePipeline& make) const;
 
  private:
@@ -117,7 +122,7 @@ class CSlamRunner
       const std::optional<TOptimizationReport>& finalReport, const TEvaluation& ev) const;
   /** The files of the run, after the timed part. */
   void writeOutputs(
-      const CSlamPipeline& pipeline, const io::TTrajectory& estimate,
+      CSlamOutputWriter& writer, const CSlamPipeline& pipeline, const io::TTrajectory& estimate,
       const std::optional<TOptimizationReport>& finalReport, const TEvaluation& ev,
       TSlamSummary& s) const;
 

@@ -6,6 +6,7 @@
 #include <cstddef>
 #include <optional>
 #include <string>
+#include <vector>
 
 namespace roislam::graphslam
 {
@@ -20,6 +21,11 @@ struct TSlamSummary
   bool failed = false;
   /** The observer stopped the run before the end of the sequence. */
   bool stoppedByUser = false;
+  /** What the outputs lack although the run worked (a failed evaluation
+   *  against ground truth, a failed snapshot or error plot); summary.json
+   *  "incomplete", and "partial": true when not empty. The apps then exit
+   *  with common::kExitPartial unless --allow-partial (slamMain). */
+  std::vector<std::string> incomplete;
   /** "ATE RMSE 0.0042 m, RPE 0.0031 m / 0.21 deg, 90 frames, 31.2 fps". */
   std::string resultLine() const;
 };

@@ -98,6 +98,8 @@ class CLiveView : public graphslam::CSlamObserver
   CLiveView& operator=(const CLiveView&) = delete;
 
   void onStart(const io::CFrameSource& source, const graphslam::CSlamContext& context) override;
+  /** Key-press screenshots go to `dir` from now on (TSession::screenshotDir). */
+  void onOutputFolder(const std::string& dir) override;
   void onFrame(
       const frontend::TFrameResult& result, const io::TRGBDFrame& frame,
       const graphslam::CSlamContext& context) override;

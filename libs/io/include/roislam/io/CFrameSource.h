@@ -29,6 +29,10 @@ class CFrameSource
   virtual std::optional<TRGBDFrame> next() = 0;
   /** Restart from the first frame. */
   virtual void rewind() = 0;
+  /** Continue from frame `index` (0-based; next() then returns it). The
+   *  default rewinds and reads up to it; sources with random access do
+   *  better. Throws std::out_of_range beyond size(). */
+  virtual void seek(std::size_t index);
   /** Number of frames this source will deliver in total. */
   virtual std::size_t size() const = 0;
   /** Intrinsics of the colour camera. */

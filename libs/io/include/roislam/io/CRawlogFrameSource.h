@@ -61,6 +61,8 @@ class CRawlogFrameSource : public CFrameSource
 
   std::optional<TRGBDFrame> next() override;
   void rewind() override;
+  /** Reads up to the frame without loading images. */
+  void seek(std::size_t index) override;
   std::size_t size() const override { return m_count; }
   const mrpt::img::TCamera& camera() const override { return m_camera; }
   std::optional<std::string> groundTruthFile() const override;

@@ -64,6 +64,7 @@ class CTumFrameSource : public CFrameSource
 
   std::optional<TRGBDFrame> next() override;
   void rewind() override { m_next = 0; }
+  void seek(std::size_t index) override;
   std::size_t size() const override { return m_entries.size(); }
   const mrpt::img::TCamera& camera() const override { return m_camera; }
   std::optional<std::string> groundTruthFile() const override;

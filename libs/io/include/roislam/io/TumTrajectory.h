@@ -19,12 +19,21 @@ struct TPoseStamped
 };
 using TTrajectory = std::vector<TPoseStamped>;
 
+/** What loadTumTrajectory does with a line holding a NaN or a zero quaternion. */
+enum class EInvalidPose
+{
+  /** An error naming file and line (a ground truth with holes is broken). */
+  Reject,
+  /** Skip the line, as the benchmark scripts do (roi-eval --skip-invalid). */
+  Skip
+};
+
 /** Reads a TUM trajectory. Separators: spaces, commas or tabs; '#' comments
- *  and blank lines are ignored; lines with a NaN or an all-zero quaternion are
- *  skipped (as the benchmark scripts do). The result is sorted by timestamp.
+ *  and blank lines are ignored; a line with a NaN or an all-zero quaternion
+ *  is an error unless `invalid` is Skip. The result is sorted by timestamp.
  *  Throws std::runtime_error "<file>:<line>: ..." on a malformed line and
  *  "<file>: cannot open" when unreadable. */
-TTrajectory loadTumTrajectory(const std::string& file);
+TTrajectory loadTumTrajectory(const std::string& file, EInvalidPose invalid = EInvalidPose::Reject);
 
 /** The pose at time t of a trajectory sorted by timestamp: nullopt when no
  *  stamp lies within maxDifference of t (the TUM tools' association);

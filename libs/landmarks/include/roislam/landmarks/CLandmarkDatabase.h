@@ -26,6 +26,7 @@
 #include <roislam/matching/CHomographyLocator.h>
 
 #include <memory>
+#include <mutex>
 #include <optional>
 #include <string>
 #include <vector>
@@ -138,7 +139,6 @@ class CLandmarkDatabase : public mrpt::serialization::CSerializable
   std::vector<int32_t> candidates(
       const features::TFeatureSet& roiFeatures,
       const std::optional<mrpt::math::TPoint3D>& worldPosition) const;
-  void rebuildVoteIndex() const;
 
   TOptions m_options;
   matching::CFeatureMatcher m_matcher;
@@ -148,8 +148,20 @@ class CLandmarkDatabase : public mrpt::serialization::CSerializable
   std::vector<CLandmark> m_landmarks;
 
   /** Search structure over all landmark descriptors stacked, and the
-   *  landmark owning each row; built lazily, null after add()/clear()/load. */
-  mutable std::vector<int32_t> m_voteOwner;
-  mutable std::shared_ptr<matching::CFeatureIndex> m_voteIndex;
+   *  landmark owning each row. Immutable once built, so const queries from
+   *  several threads share it. */
+  struct TVoteIndex
+  {
+    std::vector<int32_t> owner;
+    std::shared_ptr<const matching::CFeatureIndex> index;
+  };
+  /** The vote index, built on the first query after add()/clear()/load
+   *  (under m_voteMutex, so concurrent const queries are safe). */
+  std::shared_ptr<const TVoteIndex> voteIndex() const;
+
+  mutable std::shared_ptr<const TVoteIndex> m_vote;
+  /** Shared by copies (serialization clones the database): it only guards
+   *  the lazy build. */
+  std::shared_ptr<std::mutex> m_voteMutex = std::make_shared<std::mutex>();
 };
 }  // namespace roislam::landmarks

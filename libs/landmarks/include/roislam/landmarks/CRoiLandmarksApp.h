@@ -26,19 +26,26 @@
  *    EKF-SLAM, TUM), kf-slam/odometry.txt, kf-slam/landmarks.txt,
  *    kf-slam.landmarks_gt.txt with ground truth, and summary.json's
  *    "kf_slam" object (kfslam::CKfSlamSession; [KfSlam] options).
- * Every file is written under a temporary name and renamed when complete.
+ * The output folder is complete or absent (common::COutputFolder: written
+ * into a staging folder beside it, renamed into place at the end); a
+ * non-empty folder is refused unless `overwrite` (only our files, with the
+ * annotated rawlog when it is inside). An annotated rawlog outside the folder
+ * is written under a temporary name renamed when complete.
  * Called by apps/roi-landmarks (thin main) and the tests.
  */
 #pragma once
 
+#include <roislam/common/COutputFolder.h>
 #include <roislam/io/CFrameSource.h>
 #include <roislam/kfslam/CKfSlamSession.h>
 #include <roislam/landmarks/TPipelineOptions.h>
 
+#include <filesystem>
 #include <functional>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
+#include <vector>
 
 namespace roislam::landmarks
 {
@@ -57,6 +64,8 @@ class CRoiLandmarksApp
     std::optional<int> maxFeatures;
     std::optional<std::string> roiPreset;
     std::optional<std::string> outputRawlog;
+    /** Replace an earlier output in outputDir (only our own files). */
+    bool overwrite = false;
     /** Camera spec as io::resolveCamera (default auto). */
     std::string camera = "auto";
     /** Process at most this many frames (0 = all). */
@@ -113,9 +122,17 @@ class CRoiLandmarksApp
   /** Runs the whole sequence and writes the outputs. */
   TSummary run();
 
+  /** The names run() may put into the output folder (besides an annotated
+   *  rawlog inside it): what --overwrite may replace. */
+  static const std::vector<std::string>& outputFiles();
+
  private:
+  common::COutputFolder::TOptions outputFolderOptions(
+      const std::optional<std::filesystem::path>& rawlogInFolder) const;
   void progress(const std::string& line) const;
-  kfslam::CKfSlamSession::TSetup kfSlamSetup(const io::CFrameSource& source) const;
+  /** EKF-SLAM's setup for `source`, writing into `outputDir` (the staging folder). */
+  kfslam::CKfSlamSession::TSetup kfSlamSetup(
+      const io::CFrameSource& source, const std::string& outputDir) const;
 
   TArguments m_args;
   TPipelineOptions m_options;

@@ -3,12 +3,18 @@
  * database's vote over all stored descriptors, or one ROI against several
  * landmark candidates. CFeatureMatcher::match builds one per call, which is
  * what made database queries cost more than SIFT extraction itself.
+ *
+ * Thread safety: match() may be called from several threads at once. Brute
+ * force keeps no search state (OpenCV's const knnMatch over the stored
+ * descriptors); OpenCV's FLANN search is a non-const call on the trained
+ * matcher, so FLANN queries take turns on a mutex.
  */
 #pragma once
 
 #include <roislam/features/TFeatureSet.h>
 #include <roislam/matching/CFeatureMatcher.h>
 
+#include <mutex>
 #include <opencv2/core/types.hpp>
 #include <opencv2/features2d.hpp>
 #include <vector>
@@ -30,10 +36,15 @@ class CFeatureIndex
   std::size_t size() const { return static_cast<std::size_t>(m_descriptors.rows); }
 
  private:
+  /** The two nearest train descriptors of each query descriptor. */
+  std::vector<std::vector<cv::DMatch>> knn2(const cv::Mat& query) const;
+
   CFeatureMatcher::TOptions m_options;
   features::EFeatureType m_type;
   cv::Mat m_descriptors;
-  /** knnMatch is not const in OpenCV, but searching does not change the index. */
-  cv::Ptr<cv::DescriptorMatcher> m_index;
+  /** Trained FLANN matcher (null for brute force or an empty set); its
+   *  knnMatch is not const in OpenCV, hence the mutex. */
+  cv::Ptr<cv::DescriptorMatcher> m_flann;
+  mutable std::mutex m_flannMutex;
 };
 }  // namespace roislam::matching

@@ -19,8 +19,9 @@
  *                       readout, depth scale, noise model, frame rate and, for
  *                       unregistered depth, [DEPTH_CAMERA_PARAMS] and the depth
  *                       camera's pose; read by roislam::io
- *   simulator.ini       [RgbdSimulator] options used (also marks the folder as ours)
- * Everything goes to a temporary folder next to the output, renamed at the end.
+ *   simulator.ini       [RgbdSimulator] options used
+ * The folder is complete or absent (common::COutputFolder: a staging folder
+ * beside it, renamed at the end).
  *
  * Ini section [RgbdSimulator] (every key optional; defaults in brackets):
  *   scene              textured | featureless                         [textured]
@@ -191,9 +192,10 @@ class CRgbdSimulator : public mrpt::system::COutputLogger
   TFrame renderFrame(std::size_t i);
 
   /** Renders every frame and writes the TUM layout to outDir (see above).
-   *  An existing outDir is replaced only if it is empty or an earlier output
-   *  of this class; throws std::runtime_error naming the path otherwise. */
-  TWriteStats writeSequence(const std::string& outDir);
+   *  An existing outDir must be empty, or with `overwrite` an earlier output
+   *  of this class (which it replaces); throws std::runtime_error naming the
+   *  path otherwise. */
+  TWriteStats writeSequence(const std::string& outDir, bool overwrite = false);
 
  private:
   struct Impl;
