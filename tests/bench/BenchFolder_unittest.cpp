@@ -34,7 +34,8 @@ struct Fixture
     o.binDir = tmp;
     o.configDir = tmp + "/config";
     o.charts = false;
-    o.noDefaultVariants = true;  // the plan's own runs only (Test 1's variants add some)
+    o.noDefaultVariants = true;   // the plan's own runs only (Test 1's variants add some)
+    o.referenceMethods = "none";  // and no cv::rgbd reference rows (their own test)
     o.selfExe = "/usr/local/bin/roi-bench";
     return o;
   }

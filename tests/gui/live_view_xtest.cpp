@@ -243,8 +243,10 @@ nlohmann::json expectCompleteOutputs(const std::string& out)
  *  its first frame (space starts it). */
 std::string pausedRunCommand(const std::string& seq, const std::string& out)
 {
+  // --allow-partial: a run stopped after a few frames is too short to
+  // evaluate (exit 3 otherwise); the outputs are what these tests check.
   return exe() + " --ini " + config("roi_small.ini") + " --input " + seq + " --output-dir " + out +
-         " --gui-paused";
+         " --gui-paused --allow-partial";
 }
 
 #define ROISLAM_REQUIRE_DISPLAY()                                                       \
@@ -358,16 +360,32 @@ TEST(LiveView, KeysPauseScreenshotAndQuitWithCompleteOutputs)
   sendKeys(w, "space");
   std::this_thread::sleep_for(500ms);
   sendKeys(w, "space s");
-  bool shot = false;
-  for (int i = 0; i < 300 && !shot; ++i, std::this_thread::sleep_for(50ms))
+  // While the run goes on the output folder is staged beside `out`
+  // (COutputFolder): the screenshot is in there until the rename.
+  const auto hasScreenshot = [](const std::string& folder, bool recursive)
   {
     std::error_code ec;
-    for (const auto& e : fs::directory_iterator(out, ec))
-      shot = shot || e.path().filename().string().rfind("screenshot-", 0) == 0;
-  }
-  EXPECT_TRUE(shot) << "s saved no screenshot-*.png in " << out;
+    const auto isShot = [](const fs::path& p)
+    { return p.filename().string().rfind("screenshot-", 0) == 0; };
+    if (recursive)
+    {
+      for (const auto& e : fs::recursive_directory_iterator(folder, ec))
+        if (isShot(e.path()))
+          return true;
+    }
+    else
+      for (const auto& e : fs::directory_iterator(folder, ec))
+        if (isShot(e.path()))
+          return true;
+    return false;
+  };
+  bool shot = false;
+  for (int i = 0; i < 300 && !shot; ++i, std::this_thread::sleep_for(50ms))
+    shot = hasScreenshot(dir, true);
+  EXPECT_TRUE(shot) << "s saved no screenshot-*.png under " << dir;
   sendKeys(w, "q");
   ASSERT_EQ(app.wait(120s), std::optional<int>(0)) << readText(dir + "/err");
+  EXPECT_TRUE(hasScreenshot(out, false)) << "the screenshot did not move into " << out;
 
   const auto s = expectCompleteOutputs(out);
   EXPECT_TRUE(s["stopped_by_user"].get<bool>());
