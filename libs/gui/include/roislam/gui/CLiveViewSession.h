@@ -46,10 +46,8 @@ class CLiveViewSession
   CLiveViewSession& operator=(const CLiveViewSession&) = delete;
 
   /** Adds --gui, --gui-paused, --gui-screenshot and --gui-keep-open to
-   *  `cli`; they fill request(). */
+   *  `cli`; they fill the session's request. */
   void addFlags(CLI::App& cli);
-  const TRequest& request() const { return m_request; }
-  void setRequest(const TRequest& request) { m_request = request; }
 
   /** Opens the window when one is wanted, with [LiveView] of `iniFile`;
    *  's' saves screenshots into `outputDir`. Throws a one-line
