@@ -42,7 +42,9 @@ int main(int argc, char** argv)
   try
   {
     p.evaluation.delta_unit = roislam::evaluation::deltaUnitFromString(unit);
-    CEvalApp(p).run(std::cout);
+    const auto result = CEvalApp(p).run(std::cout);
+    if (const std::string w = roislam::evaluation::mirrorWarning(result.ate); !w.empty())
+      std::cerr << "roi-eval: " << w << "\n";
     return 0;
   }
   catch (const std::exception& e)

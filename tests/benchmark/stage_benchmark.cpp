@@ -785,7 +785,7 @@ void printPairedSlamTable(const CCollectingReporter& rep, int passes, const std:
         auto source = roislam::io::CFrameSource::open(d.path);
         // As roi-graphslam: the readout is the sensor's unless the ini sets it.
         if (!file.keyExists("FrontEnd", "rolling_shutter_ms"))
-          cfg.frontEnd.rolling_shutter_ms = source->sensor().sensor.signedReadoutMs();
+          cfg.frontEnd.rolling_shutter_ms = source->sensor().sensor.frameReadoutMs();
         pipe[m] = std::make_unique<roislam::graphslam::CSlamPipeline>(cfg, std::move(source));
         pipe[m]->waitForPrefetch();
       }

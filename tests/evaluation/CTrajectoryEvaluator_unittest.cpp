@@ -387,7 +387,7 @@ TEST(TrajectoryEvaluator, JsonHasTheDocumentedLayout)
   const TTrajectory gt = makeGroundTruth(5, 0.01, 10);
   const auto r = CTrajectoryEvaluator().evaluate(gt, transformed(gt, kRigid));
   const auto j = roislam::evaluation::toJson(r);
-  for (const char* k : {"rmse", "mean", "median", "std", "min", "max", "pairs"})
+  for (const char* k : {"rmse", "mean", "median", "std", "min", "max", "pairs", "mirrored_rmse"})
     EXPECT_TRUE(j["ate"].contains(k)) << k;
   for (const char* k :
        {"trans_rmse", "rot_rmse_deg", "trans_mean", "rot_mean_deg", "pairs", "trans_median",
@@ -422,4 +422,40 @@ TEST(TrajectoryEvaluator, AssociatesPairsJustInsideTheWindowLikeAssociatePy)
   const auto r = CTrajectoryEvaluator().evaluate(gt, est);
   EXPECT_EQ(r.ate.pairs, gt.size());
   EXPECT_LT(r.ate.rmse, 1e-9);
+}
+
+TEST(TrajectoryEvaluator, AMirroredEstimateIsRecognised)
+{
+  // The estimate a y-up ground truth (ICL-NUIM) gets from a camera given
+  // fy > 0: every pose P as S P S, S = diag(1, -1, 1), then placed anywhere.
+  // A helix: chiral, so no rotation maps it onto its mirror image.
+  TTrajectory gt;
+  for (int k = 0; k < 400; ++k)
+  {
+    const double t = k * 0.03;
+    gt.push_back(TPoseStamped{
+        kBase + t, CPose3D(std::cos(t), std::sin(t), 0.1 * t, 0.2 * t, 0.1 * std::sin(t), 0.3)});
+  }
+  TTrajectory mirrored;
+  for (const auto& p : gt)
+  {
+    auto R = p.pose.getRotationMatrix();
+    for (int i = 0; i < 3; ++i)
+      for (int k = 0; k < 3; ++k)
+        if ((i == 1) != (k == 1))
+          R(i, k) = -R(i, k);
+    mrpt::math::CVectorFixedDouble<3> t;
+    t[0] = p.pose.x();
+    t[1] = -p.pose.y();
+    t[2] = p.pose.z();
+    mirrored.push_back(TPoseStamped{p.timestamp, kRigid + CPose3D(R, t)});
+  }
+  const auto bad = CTrajectoryEvaluator().evaluate(gt, mirrored);
+  EXPECT_GT(bad.ate.rmse, 0.05);
+  EXPECT_LT(bad.ate.mirrored_rmse, 1e-9);
+  EXPECT_NE(roislam::evaluation::mirrorWarning(bad.ate).find("fy < 0"), std::string::npos);
+
+  const auto good = CTrajectoryEvaluator().evaluate(gt, transformed(gt, kRigid));
+  EXPECT_GT(good.ate.mirrored_rmse, 0.05);
+  EXPECT_TRUE(roislam::evaluation::mirrorWarning(good.ate).empty());
 }

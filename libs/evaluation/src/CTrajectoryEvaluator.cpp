@@ -225,6 +225,15 @@ void evaluateAte(
   result.ate.max = ate.max;
   result.ate.pairs = n;
   result.ate.alignment = T.toPose();
+  // Every reflection is diag(1, -1, 1) times a rotation, so mirroring y and
+  // aligning rigidly finds the best improper alignment.
+  Eigen::Matrix3Xd mirrored = model;
+  mirrored.row(1) *= -1;
+  const geometry::TRigid M = geometry::alignRigid(data, mirrored);
+  double sq = 0;
+  for (std::size_t k = 0; k < n; ++k)
+    sq += (M * mirrored.col(k) - data.col(k)).squaredNorm();
+  result.ate.mirrored_rmse = std::sqrt(sq / static_cast<double>(n));
   result.aligned.reserve(p.est.size());
   for (const auto& e : p.est)
     result.aligned.push_back(io::TPoseStamped{e.timestamp, result.ate.alignment + e.pose});

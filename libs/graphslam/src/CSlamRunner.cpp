@@ -100,6 +100,8 @@ CSlamRunner::TEvaluation CSlamRunner::evaluate(
   {
     ev.groundTruth = io::loadTumTrajectory(*gtFile);
     ev.result = evaluation::CTrajectoryEvaluator().evaluate(ev.groundTruth, estimate);
+    if (const std::string w = evaluation::mirrorWarning(ev.result->ate); !w.empty())
+      progress(m_settings.app + ": " + w);
     // The causal front-end estimate (poses as tracked, before later
     // optimisations), to show what the back end adds.
     io::TTrajectory odometryOnly;

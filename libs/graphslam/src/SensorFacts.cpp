@@ -20,7 +20,7 @@ void applySensorFacts(
   if (progress)
     progress(app + ": " + choice.summary());
   fe.depth_noise = choice.sensor.depth_noise;
-  const double sensorMs = choice.sensor.signedReadoutMs();
+  const double sensorMs = choice.sensor.frameReadoutMs();
   if (!iniReadout)
     fe.rolling_shutter_ms = sensorMs;
   else if (fe.rolling_shutter_ms != sensorMs && progress)

@@ -5,6 +5,7 @@
 #include <mrpt/obs/CActionCollection.h>
 #include <mrpt/obs/CSensoryFrame.h>
 #include <mrpt/serialization/CArchive.h>
+#include <roislam/io/CameraAxes.h>
 #include <roislam/io/CameraPresets.h>
 #include <roislam/io/ObservationConversion.h>
 
@@ -113,13 +114,16 @@ CRawlogFrameSource::CRawlogFrameSource(
         m_file + ": RGB-D observations from several sensors (" + list +
         "); choose one with [RawlogFrameSource] sensor_label");
   }
-  m_camera = m_cameraOverride ? *m_cameraOverride : *firstCamera;
+  // The frames' camera (observationToFrame flips a camera declared with a
+  // negative focal length; CameraAxes.h).
+  const mrpt::img::TCamera declared = m_cameraOverride ? *m_cameraOverride : *firstCamera;
+  m_camera = withPositiveFocalLengths(declared);
   m_sensor = {
       *firstSensor, "rawlog observations",
       "--camera auto and no " + fs::path(sensorFileBeside(m_file)).filename().string() +
           " beside the rawlog: the observations' intrinsics, depth units and registration; "
           "no rolling shutter assumed (pass --camera for the real camera)"};
-  m_sensor.sensor.colour = m_camera;
+  m_sensor.sensor.colour = declared;
   rewind();
 }
 

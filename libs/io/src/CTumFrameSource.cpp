@@ -2,6 +2,7 @@
 
 #include <mrpt/config/CConfigFileBase.h>
 #include <roislam/common/IniRead.h>
+#include <roislam/io/CameraAxes.h>
 #include <roislam/io/ObservationConversion.h>
 #include <roislam/io/StampAssociation.h>
 
@@ -159,8 +160,9 @@ CTumFrameSource::CTumFrameSource(
 
 CTumFrameSource::CTumFrameSource(
     const std::string& dir, const TSensorChoice& choice, const TOptions& options)
-    : m_camera(choice.sensor.colour),
-      m_depthCamera(choice.sensor.depth_registered ? choice.sensor.colour : choice.sensor.depth),
+    : m_camera(withPositiveFocalLengths(choice.sensor.colour)),
+      m_depthCamera(withPositiveFocalLengths(
+          choice.sensor.depth_registered ? choice.sensor.colour : choice.sensor.depth)),
       m_options(withScale(options, choice.sensor.depth_scale))
 {
   m_sensor = choice;
@@ -254,8 +256,13 @@ std::optional<TRGBDFrame> CTumFrameSource::next()
   f.index = m_next;
   f.timestamp = e.rgbStamp;
   f.depthTimestamp = e.depthStamp;
+  const TSensorDescription& sensor = m_sensor.sensor;
   f.rgb = readColourImage(e.rgbFile, m_camera);
-  const cv::Mat raw = readDepthImage(e.depthFile, m_depthCamera);
+  cv::Mat raw = readDepthImage(e.depthFile, m_depthCamera);
+  // A camera declared with a negative focal length (ICL-NUIM's fy < 0): the
+  // frames carry the flipped images and m_camera (CameraAxes.h).
+  flipToPositiveFocalLengths(f.rgb, sensor.colour);
+  flipToPositiveFocalLengths(raw, sensor.depth_registered ? sensor.colour : sensor.depth);
   // Exact float(raw / scale) per pixel (cv::convertTo scales in float and can
   // be one ulp off), so rawlog and folder readers agree bit for bit.
   f.depth.create(raw.size(), CV_32FC1);
@@ -267,7 +274,6 @@ std::optional<TRGBDFrame> CTumFrameSource::next()
     for (int c = 0; c < raw.cols; ++c)
       dst[c] = static_cast<float>(src[c] / scale);
   }
-  const TSensorDescription& sensor = m_sensor.sensor;
   if (!sensor.depth_registered)
     f.depth = registerDepthToColour(f.depth, m_depthCamera, m_camera, sensor.depth_pose_in_colour);
   f.camera = m_camera;

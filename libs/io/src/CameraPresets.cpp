@@ -7,6 +7,8 @@
 #include <roislam/common/StrictYaml.h>
 
 #include <algorithm>
+#include <cctype>
+#include <cmath>
 #include <filesystem>
 #include <stdexcept>
 #include <vector>
@@ -40,9 +42,40 @@ mrpt::img::TCamera makeCamera(
   return cam;
 }
 
+/** The part of a folder name that marks an ICL-NUIM sequence, if any: a word
+ *  starting with "icl" (ICL-NUIM, icl_lr_kt2), or the dataset's own names
+ *  (living_room_traj2_frei_png, office_room_traj0, lr_kt2, of_kt1). Words,
+ *  not substrings, for "icl": "bicycle" is no ICL sequence. */
+std::optional<std::string> iclNameTag(const std::string& folderName)
+{
+  std::string name = folderName;
+  std::transform(
+      name.begin(), name.end(), name.begin(), [](unsigned char c) { return std::tolower(c); });
+  for (const char* tag :
+       {"living_room", "livingroom", "office_room", "officeroom", "frei_png", "lr_kt", "of_kt"})
+    if (name.find(tag) != std::string::npos)
+      return std::string(tag);
+  std::size_t i = 0;
+  while (i < name.size())
+  {
+    while (i < name.size() && !std::isalnum(static_cast<unsigned char>(name[i])))
+      ++i;
+    std::size_t j = i;
+    while (j < name.size() && std::isalnum(static_cast<unsigned char>(name[j])))
+      ++j;
+    if (name.compare(i, 3, "icl") == 0)
+      return name.substr(i, j - i);
+    i = j;
+  }
+  return std::nullopt;
+}
+
 bool validCamera(const mrpt::img::TCamera& c)
 {
-  return c.ncols > 0 && c.nrows > 0 && c.fx() > 0 && c.fy() > 0;
+  // A negative focal length is allowed (an axis running against the image's,
+  // ICL-NUIM's fy < 0: CameraAxes.h); zero or NaN is not.
+  return c.ncols > 0 && c.nrows > 0 && std::isfinite(c.fx()) && std::isfinite(c.fy()) &&
+         c.fx() != 0 && c.fy() != 0;
 }
 
 mrpt::img::TCamera loadIniCamera(const std::string& file)
@@ -118,6 +151,14 @@ mrpt::img::TCamera cameraFromConfig(
   {
     throw std::runtime_error("[" + section + "] " + detail::oneLineError(e.what()));
   }
+  // MRPT 2.5 takes a focal length below 2 for a normalised one and multiplies
+  // it by the resolution: ICL-NUIM's fy = -480 became -230400. A negative
+  // focal length is a real one (CameraAxes.h): set the values as written.
+  const double fx = cfg.read_double(section, "fx", cam.fx());
+  const double fy = cfg.read_double(section, "fy", cam.fy());
+  if (fx < 0 || fy < 0)
+    cam.setIntrinsicParamsFromValues(
+        fx < 0 ? fx : cam.fx(), fy < 0 ? fy : cam.fy(), cam.cx(), cam.cy());
   return cam;
 }
 
@@ -136,7 +177,13 @@ mrpt::img::TCamera cameraPreset(const std::string& name)
     return makeCamera("fr3", 535.4, 539.2, 320.1, 247.6, {0, 0, 0, 0, 0});
   if (name == "ros")
     return makeCamera("ros", 525.0, 525.0, 319.5, 239.5, {0, 0, 0, 0, 0});
-  throw std::invalid_argument("unknown camera preset '" + name + "' (expected fr1, fr2, fr3, ros)");
+  // ICL-NUIM (Handa et al., ICRA 2014) as published: fy < 0, because its
+  // ground truth is the path of a y-up camera frame over images stored top
+  // down (CameraAxes.h).
+  if (name == "icl")
+    return makeCamera("icl", 481.20, -480.0, 319.5, 239.5, {0, 0, 0, 0, 0});
+  throw std::invalid_argument(
+      "unknown camera preset '" + name + "' (expected fr1, fr2, fr3, icl, ros)");
 }
 
 TSensorDescription sensorPreset(const std::string& name)
@@ -151,7 +198,19 @@ TSensorDescription sensorPreset(const std::string& name)
   // the same model and fr3 an Asus Xtion; neither was measured, and 25 ms is
   // what every mode config assumed for them before the readout moved here.
   // The ROS default stands for an unknown camera: no readout assumed.
-  d.rolling_shutter_ms = name == "ros" ? 0 : 25;
+  d.rolling_shutter_ms = name == "ros" || name == "icl" ? 0 : 25;
+  if (name == "icl")
+  {
+    // Rendered: global shutter, no distortion, and the dataset's simulated
+    // Kinect noise (Barron and Malik's model as ICL-NUIM applies it): the
+    // depth looked up 0.5 px off at random, disparity 35130 / z(cm) in 1/8 px
+    // steps (bf = 351.3 m steps / 8), noise 1/6 step, then quantised.
+    d.depth_noise.model = "disparity";
+    d.depth_noise.disparity_bf = 351.30 / 8;
+    d.depth_noise.disparity_steps_per_px = 8;
+    d.depth_noise.disparity_noise_steps = 1.0 / 6;
+    d.depth_noise.lateral_sigma_px = 0.5;
+  }
   return d;
 }
 
@@ -187,7 +246,7 @@ TSensorDescription loadSensorFile(const std::string& file)
 
 TSensorChoice resolveSensor(const std::string& spec, const std::string& datasetDir)
 {
-  if (spec == "fr1" || spec == "fr2" || spec == "fr3" || spec == "ros")
+  if (spec == "fr1" || spec == "fr2" || spec == "fr3" || spec == "icl" || spec == "ros")
     return {sensorPreset(spec), "preset " + spec, "--camera " + spec};
   if (spec != "auto")
     return {loadSensorFile(spec), "file " + spec, "--camera " + spec};
@@ -215,10 +274,13 @@ TSensorChoice resolveSensor(const std::string& spec, const std::string& datasetD
           sensorPreset(preset), std::string("preset ") + preset,
           "the folder name contains '" + tag + "'"};
   }
+  if (const auto tag = iclNameTag(folder))
+    return {sensorPreset("icl"), "preset icl", "the folder name contains '" + *tag + "'"};
   return {
       sensorPreset("ros"), "preset ros",
-      "no camera.ini or camera.yaml in the folder and no freiburg1/2/3 in its name: ROS "
-      "defaults, no rolling shutter (pass --camera for the real camera)"};
+      "no camera.ini or camera.yaml in the folder and no freiburg1/2/3 or ICL-NUIM name "
+      "(icl..., living_room, office_room, ..._frei_png) in its name: ROS defaults, no rolling "
+      "shutter (pass --camera for the real camera)"};
 }
 
 std::string sensorFileBeside(const std::string& recording)

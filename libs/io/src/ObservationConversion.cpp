@@ -4,6 +4,7 @@
 #include <mrpt/img/CImage.h>
 #include <mrpt/math/CMatrixFixed.h>
 #include <mrpt/system/datetime.h>
+#include <roislam/io/CameraAxes.h>
 
 #include <algorithm>
 #include <cmath>
@@ -196,13 +197,17 @@ TRGBDFrame observationToFrame(const CObservation3DRangeScan& obs, const std::str
     throw std::runtime_error(context + ": observation has no intensity (colour) image");
   const auto& dc = obs.cameraParams;
   const auto& cc = obs.cameraParamsIntensity;
-  if (cc.ncols == 0 || cc.nrows == 0 || !(cc.fx() > 0) || !(cc.fy() > 0))
+  // A negative focal length is an axis running against the image's
+  // (ICL-NUIM's fy < 0): the frame gets the flipped images and the camera
+  // with positive focal lengths (CameraAxes.h).
+  if (cc.ncols == 0 || cc.nrows == 0 || !std::isfinite(cc.fx()) || !std::isfinite(cc.fy()) ||
+      cc.fx() == 0 || cc.fy() == 0)
     throw std::runtime_error(context + ": colour intrinsics (cameraParamsIntensity) are not set");
 
   TRGBDFrame f;
   f.timestamp = mrpt::Clock::toDouble(obs.timestamp);
   f.depthTimestamp = f.timestamp;
-  f.camera = cc;
+  f.camera = withPositiveFocalLengths(cc);
 
   // Colour (external images load lazily here and throw when missing).
   cv::Mat colour;
@@ -262,11 +267,14 @@ TRGBDFrame observationToFrame(const CObservation3DRangeScan& obs, const std::str
     }
   }
 
+  flipToPositiveFocalLengths(f.rgb, cc);
+  flipToPositiveFocalLengths(depth, dc);
   if (obs.doDepthAndIntensityCamerasCoincide() && sameIntrinsics(dc, cc))
     f.depth = depth;
   else
   {
-    f.depth = registerDepthToColour(depth, dc, cc, depthPoseInColour(obs));
+    f.depth = registerDepthToColour(
+        depth, withPositiveFocalLengths(dc), f.camera, depthPoseInColour(obs));
   }
   return f;
 }

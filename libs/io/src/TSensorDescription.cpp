@@ -138,16 +138,36 @@ double TSensorDescription::signedReadoutMs() const
   return rolling_shutter_bottom_to_top ? -rolling_shutter_ms : rolling_shutter_ms;
 }
 
+double TSensorDescription::frameReadoutMs() const
+{
+  // Rows flipped by the frame sources are read out in the opposite order.
+  return colour.fy() < 0 ? -signedReadoutMs() : signedReadoutMs();
+}
+
 void TSensorDescription::validate(const std::string& s) const
 {
+  // A negative focal length is a camera whose pixel axis runs against its
+  // optical axis (ICL-NUIM's fy < 0; CameraAxes.h); zero is no camera.
   const auto cameraOk = [](const mrpt::img::TCamera& c)
-  { return c.ncols > 0 && c.nrows > 0 && c.fx() > 0 && c.fy() > 0; };
+  {
+    return c.ncols > 0 && c.nrows > 0 && std::isfinite(c.fx()) && std::isfinite(c.fy()) &&
+           c.fx() != 0 && c.fy() != 0;
+  };
   if (!cameraOk(colour))
-    common::throwBadIniKey(kColourSection, "resolution", "needs positive resolution, fx, fy");
+    common::throwBadIniKey(
+        kColourSection, "resolution", "needs positive resolution and non-zero fx, fy");
   if (!depth_registered && !cameraOk(depth))
     common::throwBadIniKey(
         kDepthSection, "resolution",
-        "needs positive resolution, fx, fy (depth_registered = false)");
+        "needs positive resolution and non-zero fx, fy (depth_registered = false)");
+  // depth_pose_in_colour is a rigid motion between the two optical frames,
+  // which exists only when both frames have the same handedness.
+  if (!depth_registered &&
+      ((colour.fx() < 0) != (depth.fx() < 0) || (colour.fy() < 0) != (depth.fy() < 0)))
+    common::throwBadIniKey(
+        kDepthSection, "fy",
+        "the signs of fx and fy must be those of [CAMERA_PARAMS] (both optical frames in one "
+        "axis convention, so that depth_pose_in_colour is a rigid motion)");
   if (name.empty())
     common::throwBadIniKey(s, "name", "must not be empty");
   common::require(depth_scale > 0, s, "depth_scale", depth_scale, "> 0 (units per metre)");

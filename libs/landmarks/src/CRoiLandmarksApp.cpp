@@ -465,7 +465,7 @@ kfslam::CKfSlamSession::TSetup CRoiLandmarksApp::kfSlamSetup(
   if (m_args.feature)
     s.feature = m_options.features.feature_type;
   s.maxFeatures = m_args.maxFeatures;
-  s.sensorReadoutMs = source.sensor().sensor.signedReadoutMs();
+  s.sensorReadoutMs = source.sensor().sensor.frameReadoutMs();
   return s;
 }
 

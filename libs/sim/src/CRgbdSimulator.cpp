@@ -194,6 +194,24 @@ mrpt::poses::CPose3D CRgbdSimulator::depthPoseInColour() const
   return p;
 }
 
+mrpt::poses::CPose3D CRgbdSimulator::published(const mrpt::poses::CPose3D& pose) const
+{
+  if (!m_opts.cameraYUp)
+    return pose;
+  // S P S with S = diag(1, -1, 1): the same motion seen in a mirrored world
+  // by a y-up optical frame (a proper rotation again: det(S R S) = det R).
+  auto R = pose.getRotationMatrix();
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j)
+      if ((i == 1) != (j == 1))
+        R(i, j) = -R(i, j);
+  mrpt::math::CVectorFixedDouble<3> t;
+  t[0] = pose.x();
+  t[1] = -pose.y();
+  t[2] = pose.z();
+  return mrpt::poses::CPose3D(R, t);
+}
+
 io::TSensorDescription CRgbdSimulator::sensorDescription() const
 {
   io::TSensorDescription d;
@@ -203,7 +221,14 @@ io::TSensorDescription CRgbdSimulator::sensorDescription() const
   if (!m_opts.depthRegistered)
   {
     d.depth = depthCamera();
-    d.depth_pose_in_colour = depthPoseInColour();
+    d.depth_pose_in_colour = published(depthPoseInColour());
+  }
+  if (m_opts.cameraYUp)
+  {
+    // v = fy Y / Z + cy = (-fy) (-Y) / Z + cy: the same pixels, y up.
+    for (mrpt::img::TCamera* c : {&d.colour, &d.depth})
+      if (c->fy() > 0)
+        c->setIntrinsicParamsFromValues(c->fx(), -c->fy(), c->cx(), c->cy());
   }
   d.depth_scale = kDepthScale;
   d.rolling_shutter_ms = m_opts.rollingShutterMs;
@@ -431,8 +456,10 @@ CRgbdSimulator::TWriteStats CRgbdSimulator::writeSequence(const std::string& out
       writePng(tmp / depthName, depth16);
       rgbTxt << stampName(f.timestamp) << ' ' << rgbName << '\n';
       depthTxt << stampName(f.depthTimestamp) << ' ' << depthName << '\n';
-      gt.push_back({f.timestamp, f.pose});
+      gt.push_back({f.timestamp, published(f.pose)});
       auto reading = accelerometerReading(i);
+      if (m_opts.cameraYUp)
+        reading.y = -reading.y;  // the Kinect axes are a half turn about the optical z
       if (m_opts.noise)
         reading += mrpt::math::TVector3D(
             accelRng.drawGaussian1D(0, 0.05), accelRng.drawGaussian1D(0, 0.05),

@@ -129,6 +129,7 @@ void CRgbdSimulator::TOptions::loadFromConfigFile(
   r.get("depth_cx", depthCx);
   r.get("depth_cy", depthCy);
   r.get("depth_pose_in_colour", depthPoseInColour);
+  r.get("camera_y_up", cameraYUp);
   r.get("rgb_noise_std", rgbNoiseStd);
   r.get("supersampling", supersampling);
   r.get("texels_per_metre", texelsPerMetre);
@@ -179,6 +180,7 @@ void CRgbdSimulator::TOptions::saveToConfigFile(
   wd("depth_cx", depthCx);
   wd("depth_cy", depthCy);
   w("depth_pose_in_colour", depthPoseInColour);
+  w("camera_y_up", cameraYUp ? "true" : "false");
   wd("rgb_noise_std", rgbNoiseStd);
   w("supersampling", std::to_string(supersampling));
   wd("texels_per_metre", texelsPerMetre);

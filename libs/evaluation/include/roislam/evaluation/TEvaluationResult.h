@@ -11,6 +11,7 @@
 
 #include <cstddef>
 #include <nlohmann/json.hpp>
+#include <string>
 #include <vector>
 
 namespace roislam::evaluation
@@ -32,7 +33,17 @@ struct TAteResult
   mrpt::poses::CPose3D alignment;
   /** Every associated pose's error, sorted by stamp (the error-over-time plot). */
   std::vector<TSample> samples;
+  /** Not a benchmark figure: the RMSE after the best alignment that may also
+   *  mirror the estimate (a reflection, then a rigid motion). Far below rmse
+   *  when the estimate and the ground truth use opposite axis conventions,
+   *  e.g. ICL-NUIM's y-up ground truth with a camera given fy > 0
+   *  (mirrorWarning()). */
+  double mirrored_rmse = 0;
 };
+
+/** A one-line warning when the estimate fits the ground truth far better
+ *  mirrored (mirrored_rmse below half of rmse), else empty. */
+std::string mirrorWarning(const TAteResult& ate);
 
 /** Relative pose errors over pose pairs `delta` apart. Translation in metres,
  *  rotation in degrees (the script's rotational median is printed in radians
@@ -63,7 +74,7 @@ struct TEvaluationResult
   io::TTrajectory aligned;
 };
 
-/** {"ate":{"rmse","mean","median","std","min","max","pairs"},
+/** {"ate":{"rmse","mean","median","std","min","max","pairs","mirrored_rmse"},
  *   "rpe":{"trans_rmse","trans_mean","trans_median","trans_std","trans_min","trans_max",
  *          "rot_rmse_deg","rot_mean_deg","rot_median_deg","rot_std_deg","rot_min_deg",
  *          "rot_max_deg","pairs"}}  (metres, degrees). */

@@ -66,6 +66,8 @@ class CTumFrameSource : public CFrameSource
   void rewind() override { m_next = 0; }
   void seek(std::size_t index) override;
   std::size_t size() const override { return m_entries.size(); }
+  /** The colour camera as the frames carry it: the description's, with
+   *  positive focal lengths (CameraAxes.h). */
   const mrpt::img::TCamera& camera() const override { return m_camera; }
   std::optional<std::string> groundTruthFile() const override;
   std::optional<std::string> accelerometerFile() const override;
@@ -88,6 +90,7 @@ class CTumFrameSource : public CFrameSource
 
  private:
   std::string m_dir;
+  /** The frames' cameras: the description's with positive focal lengths. */
   mrpt::img::TCamera m_camera;
   mrpt::img::TCamera m_depthCamera;  //!< the grid of the depth PNGs
   TOptions m_options;

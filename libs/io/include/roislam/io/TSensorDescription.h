@@ -2,7 +2,7 @@
  * depth camera and its pose when depth is not registered to colour, the depth
  * scale, the colour camera's rolling-shutter readout, the depth-noise model
  * and the frame rate. The mode configs hold algorithm settings only; camera
- * facts live here. Presets fr1, fr2, fr3, ros (sensorPreset()); files are an
+ * facts live here. Presets fr1, fr2, fr3, icl, ros (sensorPreset()); files are an
  * MRPT ini (a TUM-layout folder may carry one as camera.ini, a rawlog or .oni
  * one as <stem>.camera.ini; rgbd-simul and tum2rawlog write one). Resolved by
  * resolveSensor() (CameraPresets.h), held by every frame source
@@ -11,9 +11,15 @@
  *
  * File layout (MRPT ini):
  *   [CAMERA_PARAMS]        colour camera, mrpt::img::TCamera keys (resolution,
- *                          cx, cy, fx, fy, dist, distortion_model); required
+ *                          cx, cy, fx, fy, dist, distortion_model); required.
+ *                          fx or fy may be negative: an image axis running
+ *                          against the optical frame's (ICL-NUIM's fy < 0,
+ *                          whose ground truth is a y-up camera's path); the
+ *                          sources then flip the images (CameraAxes.h)
  *   [DEPTH_CAMERA_PARAMS]  depth camera, same keys; required when
- *                          depth_registered = false, ignored otherwise
+ *                          depth_registered = false, ignored otherwise; its
+ *                          fx and fy have the colour camera's signs (one axis
+ *                          convention for both optical frames)
  *   [SensorDescription]    optional: a file with only [CAMERA_PARAMS] is a
  *                          plain calibration and gets the defaults below.
  *                          Every key optional; unknown keys are an error.
@@ -84,9 +90,13 @@ struct TSensorDescription : public mrpt::config::CLoadableOptions
   double frame_rate = 30;  //!< Hz
   TDepthNoise depth_noise;
 
-  /** The readout as the front end uses it: positive top to bottom, negative
-   *  bottom to top (CRgbdOdometry's rolling_shutter_ms convention). */
+  /** The readout as declared: positive top to bottom, negative bottom to
+   *  top (CRgbdOdometry's rolling_shutter_ms convention). */
   double signedReadoutMs() const;
+  /** The readout as it runs in the frames the sources deliver, the front
+   *  end's rolling_shutter_ms: signedReadoutMs(), reversed for a colour
+   *  camera with fy < 0, whose images the sources flip (CameraAxes.h). */
+  double frameReadoutMs() const;
 
   /** Throws std::invalid_argument "[<section>] <key>: ..." on a bad value. */
   void validate(const std::string& section = "SensorDescription") const;

@@ -60,6 +60,13 @@
  *                      (same image size as colour)
  *   depth_pose_in_colour  depth optical frame in the colour optical frame,
  *                      [x y z yaw pitch roll] m, deg (MRPT CPose3D)   [[-0.025 0 0 0 0 0]]
+ *   camera_y_up        publish the camera as ICL-NUIM does (bool)     [false]
+ *                      true: camera.ini declares fy < 0 (and depth_fy < 0),
+ *                      the ground truth is the path of that y-up optical
+ *                      frame (each pose P written as S P S, S = diag(1, -1,
+ *                      1): a mirrored world), depth_pose_in_colour and the
+ *                      accelerometer's y axis likewise; the images are the
+ *                      same. The readers turn it back (io/CameraAxes.h)
  *   rgb_noise_std      colour noise, grey levels                      [2.0]
  *   supersampling      render ss x ss samples per pixel, 1..4         [2]
  *                      (colour: block mean; depth stays exact at pixel centres)
@@ -116,6 +123,7 @@ class CRgbdSimulator : public mrpt::system::COutputLogger
     bool depthRegistered = true;
     double depthFx = 575.8, depthFy = 575.8, depthCx = 319.5, depthCy = 239.5;
     std::string depthPoseInColour = "[-0.025 0 0 0 0 0]";
+    bool cameraYUp = false;
     double rgbNoiseStd = 2.0;
     unsigned supersampling = 2;
     double texelsPerMetre = 600.0;
@@ -165,8 +173,12 @@ class CRgbdSimulator : public mrpt::system::COutputLogger
   /** The depth camera's optical frame in the colour optical frame (identity
    *  when registered). */
   mrpt::poses::CPose3D depthPoseInColour() const;
-  /** What camera.ini holds: the sensor that rendered the sequence. */
+  /** What camera.ini holds: the sensor that rendered the sequence (with
+   *  camera_y_up, in the y-up convention: fy < 0). */
   io::TSensorDescription sensorDescription() const;
+  /** A pose as the sequence publishes it: unchanged, or with camera_y_up
+   *  in the y-up convention (S P S, S = diag(1, -1, 1)). */
+  mrpt::poses::CPose3D published(const mrpt::poses::CPose3D& pose) const;
   const CSceneModel& scene() const { return m_scene; }
   const CCameraPath& path() const { return m_path; }
 
