@@ -48,13 +48,15 @@ CSlamPipeline::CSlamPipeline(
     m_deciders.context->configure(config);
   }
   m_records.reserve(m_source->size());
-  // Only const members of the odometry are used on the prefetch thread
-  // (prepare(): checks, grey image, stage 1), while step() runs process() on
-  // the caller's.
-  const frontend::CRgbdOdometry& odo = m_deciders.context->odometry();
+  // The prefetch thread prepares frames with a front end of its own, built
+  // from the same options (prepare() reads only them and the ROI detector
+  // they make): nothing it touches is reachable from step(), which runs
+  // process() on the tracking front end and corrects its keyframes.
+  m_preparer =
+      std::make_unique<const frontend::CRgbdOdometry>(m_deciders.context->config().frontEnd);
   m_prefetch = std::make_unique<io::CFramePrefetcher<TAhead>>(
       *m_source, 1,
-      [&odo](const io::TRGBDFrame& f) {
+      [&odo = *m_preparer](const io::TRGBDFrame& f) {
         return TAhead{odo.prepare(f), io::frameToObservation(f)};
       });
 }

@@ -134,8 +134,11 @@ class CSlamPipeline
   std::unique_ptr<CRgbdGraphSlamEngine> m_engine;
   std::vector<TFrameRecord> m_records;
   CSlamObserver* m_observer = nullptr;
+  /** The prefetch thread's own front end, for prepare() only (const: it
+   *  keeps no per-frame state); the context's one is the tracking thread's. */
+  std::unique_ptr<const frontend::CRgbdOdometry> m_preparer;
   /** Decodes, prepares and converts frame i+1 while i is processed (last:
-   *  it reads the source and the context, and stops before they go). */
+   *  it reads the source and m_preparer, and stops before they go). */
   std::unique_ptr<io::CFramePrefetcher<TAhead>> m_prefetch;
 };
 }  // namespace roislam::graphslam
