@@ -86,7 +86,13 @@ bool CSlamPipeline::step()
   m_engine->step(ahead.observation);
   if (context().framesRecorded() != recorded + 1)
     throw std::logic_error("CSlamPipeline: the node decider did not track the frame");
-  m_records.push_back({*context().lastFrame(), m_engine->lastBackendMs()});
+  TFrameRecord record{*context().lastFrame()};
+  record.edgeMs = m_engine->lastSectionMs("edge_registrar");
+  record.optimizerMs = m_engine->lastSectionMs("optimizer");
+  record.backendMs = record.edgeMs + record.optimizerMs;
+  if (record.result.isNewKeyframe)
+    record.spanningTreeMs = m_engine->lastSectionMs("dijkstra_nodes_estimation");
+  m_records.push_back(std::move(record));
   if (m_observer)
   {
     if (optimizations() != optimizationsBefore)

@@ -49,6 +49,10 @@ class CSlamPipeline
     frontend::TFrameResult result;
     /** Edge registration, loop closures and optimisation, milliseconds. */
     double backendMs = 0;
+    /** Its parts (backendMs = edgeMs + optimizerMs), and the time MRPT's
+     *  engine spent re-estimating every node from its spanning tree after a
+     *  new node (outside backendMs; 0 when no node was added), ms. */
+    double edgeMs = 0, optimizerMs = 0, spanningTreeMs = 0;
   };
 
   /** roi-graphslam: our deciders and optimiser, configured by `config`;
