@@ -98,10 +98,10 @@ void CKeyframeGSO::optimizeForClosures(std::size_t firstNewLoop)
   }
 }
 
-TOptimizationReport CKeyframeGSO::optimize(std::size_t window)
+TOptimizationReport CKeyframeGSO::optimize(std::size_t window, bool measureChi2)
 {
   auto& c = ctx();
-  const auto report = c.optimize(*this->m_graph, window);
+  const auto report = c.optimize(*this->m_graph, window, measureChi2);
   c.correctFrontEnd(*this->m_graph);
   ++m_optimizations;
   m_justOptimized = window == 0 || report.freeNodes + 1 >= this->m_graph->nodes.size();
@@ -115,7 +115,7 @@ void CKeyframeGSO::optimizeGraph()
 
 TOptimizationReport CKeyframeGSO::finish()
 {
-  const auto r = optimize(0);
+  const auto r = optimize(0, true);
   m_seenLoops = ctx().loopClosures().size();
   return r;
 }

@@ -134,6 +134,11 @@ std::string CRgbdGraphSlamEngine::descriptiveReport() const
   return report;
 }
 
+double CRgbdGraphSlamEngine::lastSectionMs(const std::string& section) const
+{
+  return 1e3 * this->m_time_logger.getLastTime(section);
+}
+
 double CRgbdGraphSlamEngine::lastBackendMs() const
 {
   return 1e3 * (this->m_time_logger.getLastTime("edge_registrar") +

@@ -48,13 +48,15 @@ CSlamPipeline::CSlamPipeline(
     m_deciders.context->configure(config);
   }
   m_records.reserve(m_source->size());
-  // Only const members of the odometry are used on the prefetch thread
-  // (prepare(): checks, grey image, stage 1), while step() runs process() on
-  // the caller's.
-  const frontend::CRgbdOdometry& odo = m_deciders.context->odometry();
+  // The prefetch thread prepares frames with a front end of its own, built
+  // from the same options (prepare() reads only them and the ROI detector
+  // they make): nothing it touches is reachable from step(), which runs
+  // process() on the tracking front end and corrects its keyframes.
+  m_preparer =
+      std::make_unique<const frontend::CRgbdOdometry>(m_deciders.context->config().frontEnd);
   m_prefetch = std::make_unique<io::CFramePrefetcher<TAhead>>(
       *m_source, 1,
-      [&odo](const io::TRGBDFrame& f) {
+      [&odo = *m_preparer](const io::TRGBDFrame& f) {
         return TAhead{odo.prepare(f), io::frameToObservation(f)};
       });
 }
@@ -84,7 +86,13 @@ bool CSlamPipeline::step()
   m_engine->step(ahead.observation);
   if (context().framesRecorded() != recorded + 1)
     throw std::logic_error("CSlamPipeline: the node decider did not track the frame");
-  m_records.push_back({*context().lastFrame(), m_engine->lastBackendMs()});
+  TFrameRecord record{*context().lastFrame()};
+  record.edgeMs = m_engine->lastSectionMs("edge_registrar");
+  record.optimizerMs = m_engine->lastSectionMs("optimizer");
+  record.backendMs = record.edgeMs + record.optimizerMs;
+  if (record.result.isNewKeyframe)
+    record.spanningTreeMs = m_engine->lastSectionMs("dijkstra_nodes_estimation");
+  m_records.push_back(std::move(record));
   if (m_observer)
   {
     if (optimizations() != optimizationsBefore)

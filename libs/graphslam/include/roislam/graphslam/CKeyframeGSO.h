@@ -78,8 +78,9 @@ class CKeyframeGSO : public mrpt::graphslam::optimizers::CGraphSlamOptimizer<TGr
   void optimizeForClosures(std::size_t firstNewLoop);
   /** Largest squared error of the closures from index firstLoop on. */
   double worstClosureError(std::size_t firstLoop) const;
-  /** Optimises (window 0 = whole graph) and corrects the front end. */
-  TOptimizationReport optimize(std::size_t window);
+  /** Optimises (window 0 = whole graph) and corrects the front end; the
+   *  whole graph's chi2 only with measureChi2 (finish()). */
+  TOptimizationReport optimize(std::size_t window, bool measureChi2 = false);
 
   std::shared_ptr<CSlamContext> m_context;
   std::string m_params;

@@ -56,6 +56,10 @@ class CRgbdGraphSlamEngine : public mrpt::graphslam::CGraphSlamEngine<TGraph>
 
   /** The edge decider's and the optimiser's time in the last step, ms. */
   double lastBackendMs() const;
+  /** The last time of one of the sections MRPT's engine times, ms:
+   *  "edge_registrar", "optimizer" (every step), "dijkstra_nodes_estimation"
+   *  (steps that registered a node); 0 for one never timed. */
+  double lastSectionMs(const std::string& section) const;
 
   /** MRPT's step, then the optimised poses put back (see above). */
   bool _execGraphSlamStep(

@@ -120,6 +120,8 @@ struct TLoopClosure
 struct TOptimizationReport
 {
   std::size_t iterations = 0;
+  /** The whole graph's chi2 before and after; 0 when not measured
+   *  (CSlamContext::optimize's measureChi2). */
   double chi2Before = 0, chi2After = 0;
   double seconds = 0;
   /** Nodes it moved (the others were held fixed). */
@@ -258,8 +260,11 @@ class CSlamContext
    *  edges that remain inconsistent (loop_outlier_chi2) and re-optimises.
    *  window > 0 (and smaller than the graph): only the newest `window` nodes
    *  move, and no closure is removed. The front end is not told: the caller
-   *  hands the result on with correctFrontEnd(). */
-  TOptimizationReport optimize(TGraph& graph, std::size_t window = 0);
+   *  hands the result on with correctFrontEnd(). measureChi2: the report's
+   *  whole-graph chi2 before and after (a pass over every edge, 24 ms at 600
+   *  keyframes on fr1/rpy there and back, growing with the graph: CKeyframeGSO
+   *  asks for it only in the final optimisation, the one summary.json shows). */
+  TOptimizationReport optimize(TGraph& graph, std::size_t window = 0, bool measureChi2 = true);
   /** The back end's one correction of the front end: every node pose of
    *  `graph` becomes its keyframe's pose (CRgbdOdometry::correctKeyframePoses). */
   void correctFrontEnd(const TGraph& graph);

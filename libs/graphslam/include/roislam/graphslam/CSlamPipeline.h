@@ -49,6 +49,10 @@ class CSlamPipeline
     frontend::TFrameResult result;
     /** Edge registration, loop closures and optimisation, milliseconds. */
     double backendMs = 0;
+    /** Its parts (backendMs = edgeMs + optimizerMs), and the time MRPT's
+     *  engine spent re-estimating every node from its spanning tree after a
+     *  new node (outside backendMs; 0 when no node was added), ms. */
+    double edgeMs = 0, optimizerMs = 0, spanningTreeMs = 0;
   };
 
   /** roi-graphslam: our deciders and optimiser, configured by `config`;
@@ -134,8 +138,11 @@ class CSlamPipeline
   std::unique_ptr<CRgbdGraphSlamEngine> m_engine;
   std::vector<TFrameRecord> m_records;
   CSlamObserver* m_observer = nullptr;
+  /** The prefetch thread's own front end, for prepare() only (const: it
+   *  keeps no per-frame state); the context's one is the tracking thread's. */
+  std::unique_ptr<const frontend::CRgbdOdometry> m_preparer;
   /** Decodes, prepares and converts frame i+1 while i is processed (last:
-   *  it reads the source and the context, and stops before they go). */
+   *  it reads the source and m_preparer, and stops before they go). */
   std::unique_ptr<io::CFramePrefetcher<TAhead>> m_prefetch;
 };
 }  // namespace roislam::graphslam
