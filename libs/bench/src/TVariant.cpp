@@ -73,6 +73,14 @@ std::vector<TVariant> defaultVariants()
            {{"FrontEnd", "strict_roi", "false"},
             {"FrontEnd", "roi_feature_cap", "image"},
             {"FrontEnd", "roi_extraction", "region"},
+            {"FrontEnd", "roi_extension_scale", "0.5"}}},
+          // Issue 15: the ROI described, the rest of the image followed by
+          // the optical flow of the keyframe's anchors.
+          {"flow",
+           "ROI with fallback, ROI described, the rest followed by optical flow (ours)",
+           {{"FrontEnd", "strict_roi", "false"},
+            {"FrontEnd", "roi_feature_cap", "image"},
+            {"FrontEnd", "roi_extraction", "flow"},
             {"FrontEnd", "roi_extension_scale", "0.5"}}}};
 }
 
