@@ -28,8 +28,7 @@ cv::Mat texture(int w, int h)
   std::mt19937 rng(7);
   std::uniform_int_distribution<int> x(0, w - 1), y(0, h - 1), r(2, 12), g(0, 255);
   for (int i = 0; i < 4000; ++i)
-    cv::rectangle(
-        t, cv::Rect(x(rng), y(rng), r(rng), r(rng)), cv::Scalar(g(rng)), cv::FILLED);
+    cv::rectangle(t, cv::Rect(x(rng), y(rng), r(rng), r(rng)), cv::Scalar(g(rng)), cv::FILLED);
   cv::GaussianBlur(t, t, cv::Size(3, 3), 0.8);
   return t;
 }

@@ -172,8 +172,7 @@ TEST(OdometrySynthetic, FlowFramesDescribeOnlyTheirRoi)
           const int m = 31;  // ORB's support (CFeatureExtractor::supportPx)
           const cv::Rect padded =
               cv::Rect(
-                  w.region.x - m, w.region.y - m, w.region.width + 2 * m,
-                  w.region.height + 2 * m) &
+                  w.region.x - m, w.region.y - m, w.region.width + 2 * m, w.region.height + 2 * m) &
               cv::Rect(0, 0, image.width, image.height);
           EXPECT_EQ(w.regionPixels, static_cast<std::size_t>(padded.area()));
           // The image's density: the ROI's share of max_features (at least

@@ -74,14 +74,14 @@ std::vector<TVariant> defaultVariants()
             {"FrontEnd", "roi_feature_cap", "image"},
             {"FrontEnd", "roi_extraction", "region"},
             {"FrontEnd", "roi_extension_scale", "0.5"}}},
-          // Issue 15: the ROI described, the rest of the image followed by
-          // the optical flow of the keyframe's anchors.
+          // Issue 15: ordinary frames describe their ROI only, the rest of the
+          // view is followed by the optical flow of the keyframe's anchors;
+          // keyframes describe the whole image at full resolution.
           {"flow",
            "ROI with fallback, ROI described, the rest followed by optical flow (ours)",
            {{"FrontEnd", "strict_roi", "false"},
             {"FrontEnd", "roi_feature_cap", "image"},
-            {"FrontEnd", "roi_extraction", "flow"},
-            {"FrontEnd", "roi_extension_scale", "0.5"}}}};
+            {"FrontEnd", "roi_extraction", "flow"}}}};
 }
 
 std::vector<TVariant> defaultTest1Variants()

@@ -115,6 +115,10 @@ struct CRgbdOdometry::TFrameWork
   TKeyframe full, cur;
   /** ROI mode tracked with the whole image's features. */
   bool fallback = false;
+  /** Flow: the ROI had too few features (or there was none), so the pose
+   *  comes from the followed anchors, the rest of the image: reported as a
+   *  fallback frame, though nothing more was described. */
+  bool flowFallback = false;
   /** strict_roi: too few ROI features, the frame will be Lost. */
   bool strictLost = false;
   /** The rolling-shutter correction's first guess (the last motion), and

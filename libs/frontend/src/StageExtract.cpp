@@ -5,10 +5,10 @@
 // its subset. Keypoints are lifted to 3-D with the registered depth and
 // corrected for the rolling shutter with the last motion's velocity.
 #include <algorithm>
-#include <set>
-#include <tuple>
 #include <cmath>
 #include <opencv2/imgproc.hpp>
+#include <set>
+#include <tuple>
 
 #include "OdometryWork.h"
 #include "TrackingRegion.h"
@@ -131,8 +131,7 @@ void CRgbdOdometry::extractFeatures(TFrameWork& w) const
   {
     if (describesRegions() && !m_keyframes.empty())
       work.region = detail::followRegion(
-          m_keyframes[w.ref], w.predictedWorld - m_keyframes[w.ref].pose, I.pinhole,
-          grey.size());
+          m_keyframes[w.ref], w.predictedWorld - m_keyframes[w.ref].pose, I.pinhole, grey.size());
     // Its size is the one the registrations ask for now (regionGrowth, from
     // their determinacy), not the keyframe's: it shrinks back after a growth.
     if (!work.region.empty())
@@ -197,10 +196,12 @@ void CRgbdOdometry::liftFeatures(TFrameWork& w) const
     // Flow: few ROI features are no reason to describe more, the followed
     // keyframe features carry the pose.
     const bool flow = followsWithFlow() && w.regionOnly && flowAvailable(w);
-    if (static_cast<int>(inRoi.size()) >= o.min_roi_features || o.strict_roi || flow)
+    const bool enough = static_cast<int>(inRoi.size()) >= o.min_roi_features;
+    if (enough || o.strict_roi || flow)
       w.chosen = std::move(inRoi);  // strict with too few: the frame will be Lost
     else
       w.fallback = true;
+    w.flowFallback = flow && !enough && !o.strict_roi;
     w.strictLost = o.strict_roi && static_cast<int>(res.roiFeatures) < o.min_roi_features;
   }
   auto makeSet = [&](const std::vector<int>& idx)

@@ -109,10 +109,9 @@ void CRgbdOdometry::makeKeyframeConstraints(TFrameWork& w)
   const auto t0 = Clock::now();
   // ROI modes: the keyframe's edges come from the whole image's features it
   // stores anyway (as loop closures do); the ROI tracks the frames between.
-  const bool fullEdges =
-      isRoiMode(o.mode) && !o.strict_roi && o.keyframe_full_features &&
-      o.keyframe_full_registration &&
-      (w.flowRef.has_value() || w.cur.features.size() < w.full.features.size());
+  const bool fullEdges = isRoiMode(o.mode) && !o.strict_roi && o.keyframe_full_features &&
+                         o.keyframe_full_registration &&
+                         (w.flowRef.has_value() || w.cur.features.size() < w.full.features.size());
   if (fullEdges && isFeatureMethod(res.method))
     if (const auto r = I.registerSets(m_keyframes[w.ref], w.full, o))
     {
@@ -147,7 +146,7 @@ void CRgbdOdometry::makeKeyframeConstraints(TFrameWork& w)
     c.toKeyframe = first.toKeyframe;
     std::tie(c.relativePose, c.information) = detail::toMrptEstimate(*r);
     c.edgeInformation = detail::toSpaEstimate(*r);
-    c.method = featureMethod(o.mode, w.fallback);
+    c.method = featureMethod(o.mode, w.fallback || w.flowFallback);
     c.inliers = r->inliers;
     res.constraints.push_back(c);
   }

@@ -113,8 +113,7 @@ void CRgbdOdometry::followReference(TFrameWork& w) const
   // Everywhere, the ROI too: its described features alone may be few or
   // crowded, and the followed anchors are as good there.
   w.flow = detail::followAnchors(
-      kf, pyramid->second, w.in.flowPyramid, w.predictedWorld - kf.pose, I.K, I.dist,
-      I.flowParams);
+      kf, pyramid->second, w.in.flowPyramid, w.predictedWorld - kf.pose, I.K, I.dist, I.flowParams);
   // Lifted and corrected for the rolling shutter like the region's features.
   w.flowLifted = detail::liftFeatures(w.flow.set, w.in.frame.depth, I.K, I.dist, m_options);
   detail::rectifyRollingShutter(

@@ -100,8 +100,8 @@ void writeFramesCsvRow(std::ostream& csv, const CSlamPipeline::TFrameRecord& r)
   else
     csv << ",,,";
   csv << "," << w.regionPixels << "," << w.regionFeatures << "," << w.extensionPixels << ","
-      << w.extensionFeatures << "," << frontend::toString(w.extension) << "," << f.flowTracks
-      << "," << t.flow_ms << "\n";
+      << w.extensionFeatures << "," << frontend::toString(w.extension) << "," << f.flowTracks << ","
+      << t.flow_ms << "\n";
 }
 }  // namespace
 

@@ -31,9 +31,8 @@ struct TVariant
  *  (strict_roi = false, roi_feature_cap = image: our default), "roicap"
  *  (fallback with N features in the ROI), "region" (fallback, stage 2 on
  *  the tracking region only: roi_extraction = region, roi_extension_scale =
- *  0.5) and "flow" (fallback, the ROI described and the rest of the image
- *  followed by optical flow: roi_extraction = flow, roi_extension_scale =
- *  0.5). */
+ *  0.5) and "flow" (fallback, ordinary frames describe their ROI and follow
+ *  the rest by optical flow: roi_extraction = flow). */
 std::vector<TVariant> defaultVariants();
 
 /** Test 1's: "hue" ([RoiDetector] verify_hue = true: the ROI verified by the

@@ -195,8 +195,8 @@ struct TFrameResult
   /** roi_extraction = flow: reference-keyframe features followed into the
    *  frame by optical flow (outside the region; not described, not matched). */
   std::size_t flowTracks = 0;
-  std::size_t matches = 0;            //!< ratio-test matches to the reference
-  std::size_t inliers = 0;            //!< after RANSAC + refinement (ICP: pairs)
+  std::size_t matches = 0;  //!< ratio-test matches to the reference
+  std::size_t inliers = 0;  //!< after RANSAC + refinement (ICP: pairs)
   /** The ROI found in this frame: ROI modes, and keyframes of the
    *  traditional mode (their ROI is the back end's landmark). */
   std::optional<cv::Rect> roi;
