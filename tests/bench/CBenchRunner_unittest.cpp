@@ -81,12 +81,12 @@ TEST(CBenchRunner, runsResumesAndRecordsFailures)
   o.jobs = 2;
   std::ostringstream sout, serr;
   ASSERT_EQ(CBenchApp(o).run(sout, serr), 0);
-  // 2 sequences x 3 features x (1 + 2 modes x 4 variants) versions.
-  EXPECT_EQ(countLines(fx.tmp + "/calls.log"), 54);
-  EXPECT_NE(serr.str().find("54/54"), std::string::npos) << serr.str();
+  // 2 sequences x 3 features x (1 + 2 modes x 5 variants) versions.
+  EXPECT_EQ(countLines(fx.tmp + "/calls.log"), 66);
+  EXPECT_NE(serr.str().find("66/66"), std::string::npos) << serr.str();
 
   const auto records = CResultsCollector::loadFolder(out);
-  ASSERT_EQ(records.size(), 54u);
+  ASSERT_EQ(records.size(), 66u);
   int failed = 0;
   for (const auto& r : records)
   {
@@ -111,21 +111,21 @@ TEST(CBenchRunner, runsResumesAndRecordsFailures)
   // Second invocation: everything is complete, nothing runs again.
   std::ostringstream s2, e2;
   ASSERT_EQ(CBenchApp(o).run(s2, e2), 0);
-  EXPECT_EQ(countLines(fx.tmp + "/calls.log"), 54);
-  EXPECT_NE(e2.str().find("54 already done"), std::string::npos) << e2.str();
+  EXPECT_EQ(countLines(fx.tmp + "/calls.log"), 66);
+  EXPECT_NE(e2.str().find("66 already done"), std::string::npos) << e2.str();
 
   // Deleting one marker reruns exactly that run; --retry-failed reruns the failures.
   fs::remove(fs::path(out) / "runs" / "t2-textured-roi_big-orb-600-fallback" / "run.json");
   std::ostringstream s3, e3;
   CBenchApp(o).run(s3, e3);
-  EXPECT_EQ(countLines(fx.tmp + "/calls.log"), 55);
+  EXPECT_EQ(countLines(fx.tmp + "/calls.log"), 67);
   o.retryFailed = true;
   CBenchApp(o).run(s3, e3);
-  EXPECT_EQ(countLines(fx.tmp + "/calls.log"), 61);
+  EXPECT_EQ(countLines(fx.tmp + "/calls.log"), 73);
 
   // results.csv: one row per run plus the header, with the exact command.
   const std::string csv = readFile(out + "/results.csv");
-  EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 55);
+  EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 67);
   EXPECT_NE(
       csv.find(",failed,exit code 1: roi-graphslam: error: no ROI in frame 0,"), std::string::npos);
   EXPECT_TRUE(fs::exists(out + "/report.md"));

@@ -40,11 +40,11 @@ TEST(CExperimentPlan, countsPerTest)
 {
   const auto runs = CExperimentPlan({}, locations()).build(twoSequences());
   // Test 1: 2 seq x 3 features x (plain + hue). Test 2: 2 x 3 features x (traditional + 2
-  // ROI modes x 4 variants). Test 3: 2 x (traditional + big ROI x 4 variants). No Test 4.
+  // ROI modes x 5 variants). Test 3: 2 x (traditional + big ROI x 5 variants). No Test 4.
   EXPECT_EQ(countTest(runs, 1), 12u);
   EXPECT_EQ(countTest(runs, 4), 0u);
-  EXPECT_EQ(countTest(runs, 2), 54u);
-  EXPECT_EQ(countTest(runs, 3), 10u);
+  EXPECT_EQ(countTest(runs, 2), 66u);
+  EXPECT_EQ(countTest(runs, 3), 12u);
   // Reference rows: 2 seq x cv-odometry rgbd, icp, rgbdicp.
   EXPECT_EQ(countTest(runs, 0), 6u);
   std::set<std::string> ids;

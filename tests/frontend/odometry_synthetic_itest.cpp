@@ -6,6 +6,7 @@
 #include <roislam/testing/TestData.h>
 
 #include <algorithm>
+#include <cmath>
 #include <iostream>
 #include <map>
 #include <opencv2/core/types.hpp>
@@ -139,6 +140,89 @@ TEST(OdometrySynthetic, RegionFramesDescribeOnlyTheirRegion)
   }
 }
 
+TEST(OdometrySynthetic, FlowFramesDescribeOnlyTheirRoi)
+{
+  ROISLAM_REQUIRE_SYNTHETIC(dir, "textured");
+  // roi_extraction = flow: an ordinary frame describes its ROI (and the
+  // detector's margin) only, at the image's feature density, and follows
+  // the reference keyframe's anchors by optical flow; frames are extended
+  // (described beyond the ROI) at most once, each reason counted.
+  for (auto mode : {EFrontEndMode::RoiBig, EFrontEndMode::RoiSmall})
+  {
+    SCOPED_TRACE(toString(mode));
+    auto o = orb(mode);
+    o.roi_extraction = "flow";
+    o.roi_extension_scale = 0.5;
+    const auto s = runOdometry(dir, o);
+    ASSERT_TRUE(s.ate.has_value());
+    std::map<roislam::frontend::EExtension, std::size_t> counted;
+    std::size_t roiOnly = 0, followed = 0;
+    for (const auto& r : s.results)
+    {
+      const auto& w = r.work;
+      ++counted[w.extension];
+      const cv::Size image = r.imageSize;
+      if (w.extension == roislam::frontend::EExtension::None)
+      {
+        ++roiOnly;
+        // The region is the frame's ROI, nothing else was described.
+        if (r.roi)
+        {
+          EXPECT_EQ(w.region, *r.roi & cv::Rect(0, 0, image.width, image.height));
+          const int m = 31;  // ORB's support (CFeatureExtractor::supportPx)
+          const cv::Rect padded =
+              cv::Rect(
+                  w.region.x - m, w.region.y - m, w.region.width + 2 * m, w.region.height + 2 * m) &
+              cv::Rect(0, 0, image.width, image.height);
+          EXPECT_EQ(w.regionPixels, static_cast<std::size_t>(padded.area()));
+          // The image's density: the ROI's share of max_features (at least
+          // min_roi_features).
+          EXPECT_LE(
+              static_cast<double>(w.regionFeatures),
+              std::max(
+                  static_cast<double>(o.min_roi_features),
+                  std::ceil(600.0 * w.region.area() / image.area())));
+        }
+        else
+          EXPECT_EQ(w.regionPixels, 0u);
+        EXPECT_EQ(w.extensionPixels, 0u);
+        EXPECT_EQ(w.extensionFeatures, 0u);
+        EXPECT_EQ(r.features, w.regionFeatures);
+        // What it tracked with: the ROI's features and the followed anchors.
+        EXPECT_EQ(r.trackingFeatures, r.roiFeatures + r.flowTracks) << "frame " << r.frameIndex;
+        followed += r.flowTracks > 0;
+      }
+      else
+        EXPECT_EQ(r.features, w.regionFeatures + w.extensionFeatures) << "frame " << r.frameIndex;
+      if (r.isNewKeyframe)
+        EXPECT_NE(w.extension, roislam::frontend::EExtension::None);
+    }
+    // Keyframes store the whole image once, and their anchors.
+    for (const auto& kf : s.keyframes)
+    {
+      std::set<std::tuple<float, float, int>> seen;
+      for (const auto& k : kf.features.keypoints)
+        EXPECT_TRUE(seen.insert({k.pt.x, k.pt.y, k.octave}).second) << "keyframe " << kf.id;
+      EXPECT_GT(kf.anchorPoints.size(), 50u) << "keyframe " << kf.id;
+      EXPECT_EQ(kf.anchorPoints.size(), kf.anchorPixels.size());
+      EXPECT_EQ(kf.anchorPoints.size(), kf.anchorKeypoints.size());
+    }
+    std::size_t total = 0;
+    for (const auto& [reason, n] : s.stats.extensions)
+    {
+      EXPECT_EQ(n, counted[reason]) << toString(reason);
+      total += n;
+    }
+    EXPECT_EQ(total, s.results.size());
+    EXPECT_GT(roiOnly, s.results.size() / 2);
+    EXPECT_EQ(followed, roiOnly);
+    std::cout << toString(mode) << " flow: ATE " << *s.ate << " m, ROI-only frames " << roiOnly
+              << " of " << s.results.size() << ", mean described fraction "
+              << s.stats.describedFractionSum / s.results.size() << "\n";
+    EXPECT_LT(*s.ate, 0.05);
+  }
+}
+
 TEST(OdometrySynthetic, RollingShutterCorrectionRecoversTheSkewedFrames)
 {
   ROISLAM_REQUIRE_SYNTHETIC(dir, "textured");
@@ -253,6 +337,24 @@ TEST(OdometrySynthetic, FeaturelessRegionModeIsNeverLost)
     auto o = orb(mode);
     o.roi_extraction = "region";
     o.roi_extension_scale = 0.5;
+    const auto s = runOdometry(dir, o);
+    ASSERT_TRUE(s.ate.has_value());
+    EXPECT_EQ(s.stats.lost, 0u) << toString(mode);
+    EXPECT_EQ(s.trajectory.size(), s.results.size());
+    EXPECT_LE(s.stats.constantVelocity, s.results.size() / 20);
+    EXPECT_LT(*s.ate, 0.06) << toString(mode);
+  }
+}
+
+TEST(OdometrySynthetic, FeaturelessFlowModeIsNeverLost)
+{
+  ROISLAM_REQUIRE_SYNTHETIC(dir, "featureless");
+  // Without a ROI a flow frame describes nothing; the anchors of white
+  // faces are few, and depth ICP carries the frames they cannot.
+  for (auto mode : {EFrontEndMode::RoiBig, EFrontEndMode::RoiSmall})
+  {
+    auto o = orb(mode);
+    o.roi_extraction = "flow";
     const auto s = runOdometry(dir, o);
     ASSERT_TRUE(s.ate.has_value());
     EXPECT_EQ(s.stats.lost, 0u) << toString(mode);

@@ -91,22 +91,26 @@ TEST(SlamPipeline, RegionModesOnTheTexturedLoop)
 {
   ROISLAM_REQUIRE_SYNTHETIC(seq, "textured");
   // Both ROI modes describing their tracking region only, extended at half
-  // resolution when a frame needs it (issue 15): still within 1 cm.
-  for (const auto mode :
-       {roislam::frontend::EFrontEndMode::RoiSmall, roislam::frontend::EFrontEndMode::RoiBig})
-  {
-    const auto o =
-        run(seq, 0.0, 1, 0,
-            [&](graphslam::CSlamContext::TConfig& cfg)
-            {
-              cfg.frontEnd.mode = mode;
-              cfg.frontEnd.roi_extraction = "region";
-              cfg.frontEnd.roi_extension_scale = 0.5;
-            });
-    std::printf("%s region: ATE %.4f\n", roislam::frontend::toString(mode).c_str(), o.ate);
-    EXPECT_EQ(o.posed, o.frames);
-    EXPECT_LT(o.ate, 0.01) << roislam::frontend::toString(mode);
-  }
+  // resolution when a frame needs it (issue 15), and following the rest of
+  // the image by optical flow instead (roi_extraction = flow): still within
+  // 1 cm.
+  for (const char* extraction : {"region", "flow"})
+    for (const auto mode :
+         {roislam::frontend::EFrontEndMode::RoiSmall, roislam::frontend::EFrontEndMode::RoiBig})
+    {
+      const auto o =
+          run(seq, 0.0, 1, 0,
+              [&](graphslam::CSlamContext::TConfig& cfg)
+              {
+                cfg.frontEnd.mode = mode;
+                cfg.frontEnd.roi_extraction = extraction;
+                cfg.frontEnd.roi_extension_scale = 0.5;
+              });
+      std::printf(
+          "%s %s: ATE %.4f\n", roislam::frontend::toString(mode).c_str(), extraction, o.ate);
+      EXPECT_EQ(o.posed, o.frames);
+      EXPECT_LT(o.ate, 0.01) << roislam::frontend::toString(mode) << " " << extraction;
+    }
 }
 
 TEST(SlamPipeline, WindowedOptimisationsMoveOnlyTheNewestKeyframes)

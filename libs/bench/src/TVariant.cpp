@@ -73,7 +73,15 @@ std::vector<TVariant> defaultVariants()
            {{"FrontEnd", "strict_roi", "false"},
             {"FrontEnd", "roi_feature_cap", "image"},
             {"FrontEnd", "roi_extraction", "region"},
-            {"FrontEnd", "roi_extension_scale", "0.5"}}}};
+            {"FrontEnd", "roi_extension_scale", "0.5"}}},
+          // Issue 15: ordinary frames describe their ROI only, the rest of the
+          // view is followed by the optical flow of the keyframe's anchors;
+          // keyframes describe the whole image at full resolution.
+          {"flow",
+           "ROI with fallback, ROI described, the rest followed by optical flow (ours)",
+           {{"FrontEnd", "strict_roi", "false"},
+            {"FrontEnd", "roi_feature_cap", "image"},
+            {"FrontEnd", "roi_extraction", "flow"}}}};
 }
 
 std::vector<TVariant> defaultTest1Variants()

@@ -90,11 +90,11 @@ void CRgbdOdometry::TImpl::useCamera(const mrpt::img::TCamera& cam, const TOptio
 
 std::optional<detail::TRegistration> CRgbdOdometry::TImpl::registerSets(
     const TKeyframe& ref, const TKeyframe& cur, const TOptions& o, std::size_t* matchesOut,
-    TStageTimes* times) const
+    TStageTimes* times, const detail::TKnownPairs* known) const
 {
   return detail::registerSets(
       ref, cur, matcher, ransac, pinhole, o, matchesOut, times ? &times->match_ms : nullptr,
-      times ? &times->ransac_ms : nullptr);
+      times ? &times->ransac_ms : nullptr, known);
 }
 
 CRgbdOdometry::CRgbdOdometry() : CRgbdOdometry(TOptions()) {}
@@ -128,6 +128,7 @@ void CRgbdOdometry::reset()
   m_keyframes.clear();
   m_stats = TStats();
   m_impl->icpMaps.clear();
+  m_impl->flowPyramids.clear();
   m_impl->haveLast = false;
   m_impl->velocity = mrpt::poses::CPose3D();
   m_impl->velocityDt = 0;
@@ -180,6 +181,8 @@ TPreparedFrame CRgbdOdometry::prepare(const io::TRGBDFrame& frame) const
     p.roiDetected = true;
     p.roi_ms = msSince(t0);
   }
+  if (followsWithFlow())
+    p.flowPyramid = detail::flowPyramid(p.grey, m_impl->flowParams);
   p.prepare_ms = msSince(t0);
   return p;
 }

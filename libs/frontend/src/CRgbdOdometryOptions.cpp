@@ -200,9 +200,15 @@ void CRgbdOdometry::TOptions::validate(const std::string& s) const
   if (roi_feature_cap != "image" && roi_feature_cap != "roi")
     common::throwBadIniKey(
         s, "roi_feature_cap", "unknown value '" + roi_feature_cap + "' (expected image or roi)");
-  if (roi_extraction != "region" && roi_extraction != "image")
+  if (roi_extraction != "region" && roi_extraction != "image" && roi_extraction != "flow")
     common::throwBadIniKey(
-        s, "roi_extraction", "unknown value '" + roi_extraction + "' (expected region or image)");
+        s, "roi_extraction",
+        "unknown value '" + roi_extraction + "' (expected image, region or flow)");
+  if (roi_extraction == "flow" && !keyframe_full_features)
+    common::throwBadIniKey(
+        s, "roi_extraction",
+        "flow follows the keyframes' whole-image features: it needs keyframe_full_features = "
+        "true");
   if (!(roi_min_area_fraction >= 0 && roi_min_area_fraction <= 1))
     common::throwBadIniKey(s, "roi_min_area_fraction", "must be in [0, 1]");
   if (!(roi_min_aspect >= 0 && roi_min_aspect <= 1))

@@ -36,17 +36,25 @@ TCorrespondences correspondences(
   if (!o.scale_aware_weights)
     return c;
   // Keypoint precision degrades with the detection scale (pyramid level).
+  // Followed anchors (FlowTracking.h) have no detection scale: size 0, or
+  // beyond ref's features; they count as the finest.
+  const auto sizeOf = [](const TKeyframe& k, int i)
+  {
+    const auto u = static_cast<std::size_t>(i);
+    return u < k.features.keypoints.size() ? static_cast<double>(k.features.keypoints[u].size)
+                                           : 0.0;
+  };
   for (const auto& [ia, ib] : pairs)
   {
-    const double sa = ref.features.keypoints[static_cast<std::size_t>(ia)].size;
-    const double sb = cur.features.keypoints[static_cast<std::size_t>(ib)].size;
-    c.sigma.push_back(0.5 * (sa + sb));
+    const double sa = sizeOf(ref, ia), sb = sizeOf(cur, ib);
+    c.sigma.push_back(sa > 0 && sb > 0 ? 0.5 * (sa + sb) : std::max(sa, sb));
   }
   // Normalise: the smallest detection size of the type has pixel_sigma_px.
   double s0 = features::isBinary(ref.features.type) ? 31.0 : 1e9;
   if (!features::isBinary(ref.features.type))
     for (double v : c.sigma)
-      s0 = std::min(s0, v);
+      if (v > 0)
+        s0 = std::min(s0, v);
   s0 = std::max(s0, 1e-3);
   for (double& v : c.sigma)
     v = o.pixel_sigma_px * std::max(1.0, v / s0);
@@ -87,31 +95,48 @@ std::optional<TRegistration> finishRegistration(
 std::optional<TRegistration> registerSets(
     const TKeyframe& ref, const TKeyframe& cur, const matching::CFeatureMatcher& matcher,
     const matching::CRigidTransformRansac& ransac, const TPinhole& cam,
-    const CRgbdOdometry::TOptions& o, std::size_t* matchesOut, double* matchMs, double* ransacMs)
+    const CRgbdOdometry::TOptions& o, std::size_t* matchesOut, double* matchMs, double* ransacMs,
+    const TKnownPairs* known)
 {
   const std::size_t minInl = static_cast<std::size_t>(o.min_inliers);
   if (ref.features.size() < minInl || cur.features.size() < minInl)
     return std::nullopt;
   auto t0 = Clock::now();
-  const auto matches =
-      ref.index ? ref.index->match(cur.features) : matcher.match(cur.features, ref.features);
+  const bool withKnown = known && !known->empty();
+  std::vector<cv::DMatch> matches;
+  if (!withKnown || known->first == cur.features.size())
+    matches =
+        ref.index ? ref.index->match(cur.features) : matcher.match(cur.features, ref.features);
+  else if (known->first > 0)
+  {
+    // The described part only: the known pairs need no descriptor.
+    std::vector<int> head(known->first);
+    for (std::size_t i = 0; i < head.size(); ++i)
+      head[i] = static_cast<int>(i);
+    const features::TFeatureSet described = cur.features.select(head);
+    matches = ref.index ? ref.index->match(described) : matcher.match(described, ref.features);
+  }
   if (matchMs)
     *matchMs += msSince(t0);
+  std::vector<std::pair<int, int>> pairs;
+  pairs.reserve(matches.size() + (withKnown ? known->refIndex.size() : 0));
+  for (const auto& m : matches)
+    pairs.emplace_back(m.trainIdx, m.queryIdx);
+  if (withKnown)
+    for (std::size_t j = 0; j < known->refIndex.size(); ++j)
+      pairs.emplace_back(known->refIndex[j], static_cast<int>(known->first + j));
   if (matchesOut)
-    *matchesOut = matches.size();
-  if (matches.size() < minInl)
+    *matchesOut = pairs.size();
+  if (pairs.size() < minInl)
     return std::nullopt;
   t0 = Clock::now();
-  std::vector<std::pair<int, int>> pairs;
-  pairs.reserve(matches.size());
   std::vector<mrpt::math::TPoint3D> a, b;
-  a.reserve(matches.size());
-  b.reserve(matches.size());
-  for (const auto& m : matches)
+  a.reserve(pairs.size());
+  b.reserve(pairs.size());
+  for (const auto& [ia, ib] : pairs)
   {
-    pairs.emplace_back(m.trainIdx, m.queryIdx);
-    a.push_back(ref.points[static_cast<std::size_t>(m.trainIdx)]);
-    b.push_back(cur.points[static_cast<std::size_t>(m.queryIdx)]);
+    a.push_back(ref.points[static_cast<std::size_t>(ia)]);
+    b.push_back(cur.points[static_cast<std::size_t>(ib)]);
   }
   const TCorrespondences c = correspondences(ref, cur, pairs, o);
   const auto rs = ransac.estimate(a, b);

@@ -35,13 +35,25 @@ struct TRegistration
   std::vector<std::size_t> inlierPairs;
 };
 
+/** Correspondences known without matching (optical flow, FlowTracking.h):
+ *  cur's features from `first` on, each with the ref feature it came from. */
+struct TKnownPairs
+{
+  std::size_t first = 0;
+  std::vector<int> refIndex;  //!< for cur feature first + j
+  bool empty() const { return refIndex.empty(); }
+};
+
 /** Registers cur (query) against ref (train; its cached index is used when
  *  present). nullopt when fewer than o.min_inliers survive. The optional
- *  outputs receive the match count and add the matching / RANSAC times. */
+ *  outputs receive the match count and add the matching / RANSAC times.
+ *  With `known`, only cur's features before known->first are matched; the
+ *  known pairs join the matches (RANSAC and refinement see both). */
 std::optional<TRegistration> registerSets(
     const TKeyframe& ref, const TKeyframe& cur, const matching::CFeatureMatcher& matcher,
     const matching::CRigidTransformRansac& ransac, const TPinhole& cam,
-    const CRgbdOdometry::TOptions& o, std::size_t* matchesOut, double* matchMs, double* ransacMs);
+    const CRgbdOdometry::TOptions& o, std::size_t* matchesOut, double* matchMs, double* ransacMs,
+    const TKnownPairs* known = nullptr);
 
 /** Refines r again on the same matches after cur's points and pixels were
  *  changed in place (the rolling-shutter correction with a better angular

@@ -18,6 +18,7 @@
 
 #include "CDepthIcp.h"
 #include "FeatureLifting.h"
+#include "FlowTracking.h"
 #include "KeyframeOverlap.h"
 #include "KeyframeRegistration.h"
 #include "RollingShutter.h"
@@ -40,6 +41,10 @@ struct CRgbdOdometry::TImpl
   std::unique_ptr<detail::CDepthIcp> icp;
   /** ICP maps of the most recent keyframes only (memory). */
   std::map<std::size_t, detail::CDepthIcp::TMap> icpMaps;
+  /** roi_extraction = flow: the optical-flow pyramids of the most recent
+   *  keyframes' images (as icpMaps). */
+  std::map<std::size_t, detail::TFlowPyramid> flowPyramids;
+  detail::TFlowParams flowParams;
 
   // Tracking state: the last tracked (non-lost) frame relative to a keyframe.
   bool haveLast = false;
@@ -81,7 +86,8 @@ struct CRgbdOdometry::TImpl
   /** registerSets() with this odometry's matcher, RANSAC and camera. */
   std::optional<detail::TRegistration> registerSets(
       const TKeyframe& ref, const TKeyframe& cur, const TOptions& o,
-      std::size_t* matchesOut = nullptr, TStageTimes* times = nullptr) const;
+      std::size_t* matchesOut = nullptr, TStageTimes* times = nullptr,
+      const detail::TKnownPairs* known = nullptr) const;
 };
 
 /** One frame on its way through the stages of process(). */
@@ -109,6 +115,10 @@ struct CRgbdOdometry::TFrameWork
   TKeyframe full, cur;
   /** ROI mode tracked with the whole image's features. */
   bool fallback = false;
+  /** Flow: the ROI had too few features (or there was none), so the pose
+   *  comes from the followed anchors, the rest of the image: reported as a
+   *  fallback frame, though nothing more was described. */
+  bool flowFallback = false;
   /** strict_roi: too few ROI features, the frame will be Lost. */
   bool strictLost = false;
   /** The rolling-shutter correction's first guess (the last motion), and
@@ -124,6 +134,24 @@ struct CRgbdOdometry::TFrameWork
   /** keyframe_policy = overlap: the keyframes to track against, best
    *  overlapping the predicted view first (empty: the recent ones). */
   std::vector<std::size_t> candidates;
+
+  // trackFeatures (roi_extraction = flow): the reference keyframe's
+  // features followed into the frame outside its region. w.cur is then the
+  // region's set followed by theirs (regionSet alone is what other
+  // keyframes are matched with), and `known` their correspondences.
+  std::optional<std::size_t> flowRef;
+  detail::TFlowTracks flow;
+  detail::TLiftedFeatures flowLifted;
+  TKeyframe regionSet;
+  detail::TKnownPairs known;
+  /** The flow reference as registrations against its anchors see it
+   *  (detail::withAnchors). */
+  TKeyframe flowRefView;
+  /** The keyframe registrations against reference `id` use. */
+  const TKeyframe& reference(const std::deque<TKeyframe>& keyframes, std::size_t id) const
+  {
+    return flowRef && *flowRef == id ? flowRefView : keyframes[id];
+  }
 
   // trackFeatures, refine*
   std::optional<detail::TRegistration> reg;

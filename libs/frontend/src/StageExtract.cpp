@@ -7,6 +7,8 @@
 #include <algorithm>
 #include <cmath>
 #include <opencv2/imgproc.hpp>
+#include <set>
+#include <tuple>
 
 #include "OdometryWork.h"
 #include "TrackingRegion.h"
@@ -55,6 +57,9 @@ features::TFeatureSet describeOutside(
     return ext;
   std::vector<int> keep;
   const cv::Rect2f inRegion(region);
+  // The bands, rounded outwards at the lower resolution, may share a row or
+  // column there: a keypoint found in both is kept once.
+  std::set<std::tuple<float, float, int>> seen;
   for (std::size_t i = 0; i < ext.size(); ++i)
   {
     cv::KeyPoint& k = ext.keypoints[i];
@@ -62,7 +67,7 @@ features::TFeatureSet describeOutside(
     k.pt.x = static_cast<float>((k.pt.x + 0.5) / scale - 0.5);
     k.pt.y = static_cast<float>((k.pt.y + 0.5) / scale - 0.5);
     k.size = static_cast<float>(k.size / scale);
-    if (!inRegion.contains(k.pt))
+    if (!inRegion.contains(k.pt) && seen.insert({k.pt.x, k.pt.y, k.octave}).second)
       keep.push_back(static_cast<int>(i));
   }
   return ext.select(keep);
@@ -71,7 +76,18 @@ features::TFeatureSet describeOutside(
 
 bool CRgbdOdometry::describesRegions() const
 {
-  return isRoiMode(m_options.mode) && !m_options.strict_roi && m_options.roi_extraction == "region";
+  return isRoiMode(m_options.mode) && !m_options.strict_roi &&
+         (m_options.roi_extraction == "region" || m_options.roi_extraction == "flow");
+}
+
+bool CRgbdOdometry::followsWithFlow() const
+{
+  return describesRegions() && m_options.roi_extraction == "flow";
+}
+
+bool CRgbdOdometry::flowAvailable(const TFrameWork& w) const
+{
+  return !m_keyframes.empty() && !w.in.flowPyramid.empty() && m_impl->flowPyramids.count(w.ref);
 }
 
 void CRgbdOdometry::extractFeatures(TFrameWork& w) const
@@ -95,20 +111,43 @@ void CRgbdOdometry::extractFeatures(TFrameWork& w) const
   // a new one from stage 1 when it is lost (or at the start).
   const auto& o = m_options;
   const double minArea = std::min(1.0, o.roi_min_area_fraction * I.regionGrowth);
-  if (describesRegions() && !m_keyframes.empty())
-    work.region = detail::followRegion(
-        m_keyframes[w.ref], w.predictedWorld - m_keyframes[w.ref].pose, I.pinhole, grey.size());
-  // Its size is the one the registrations ask for now (regionGrowth, from
-  // their determinacy), not the keyframe's: it shrinks back after a growth.
-  if (!work.region.empty())
-    work.region = detail::regionOfArea(work.region, grey.size(), minArea, o.roi_min_aspect);
-  if (describesRegions() && work.region.empty() && res.roi)
-    work.region = detail::trackingRegion(*res.roi, grey.size(), minArea, o.roi_min_aspect);
+  const bool flow = followsWithFlow() && flowAvailable(w);
+  int regionCap = o.extractor.max_features;
+  if (flow)
+  {
+    // Flow: the optical flow of the reference keyframe's features gives the
+    // pose its spread, so the region is the ROI itself, described at the
+    // image's feature density (its share of max_features), and a frame
+    // without a ROI describes nothing.
+    if (res.roi)
+      work.region = *res.roi & cv::Rect(cv::Point(0, 0), grey.size());
+    if (regionCap > 0 && !work.region.empty())
+      regionCap = std::max(
+          o.min_roi_features, static_cast<int>(std::ceil(
+                                  regionCap * static_cast<double>(work.region.area()) /
+                                  static_cast<double>(grey.total()))));
+  }
+  else
+  {
+    if (describesRegions() && !m_keyframes.empty())
+      work.region = detail::followRegion(
+          m_keyframes[w.ref], w.predictedWorld - m_keyframes[w.ref].pose, I.pinhole, grey.size());
+    // Its size is the one the registrations ask for now (regionGrowth, from
+    // their determinacy), not the keyframe's: it shrinks back after a growth.
+    if (!work.region.empty())
+      work.region = detail::regionOfArea(work.region, grey.size(), minArea, o.roi_min_aspect);
+    if (describesRegions() && work.region.empty() && res.roi)
+      work.region = detail::trackingRegion(*res.roi, grey.size(), minArea, o.roi_min_aspect);
+  }
   if (!work.region.empty())
   {
-    w.all = I.extractor.extractIn(
-        grey, work.region, m_options.extractor.max_features, &work.regionPixels);
+    w.all = I.extractor.extractIn(grey, work.region, regionCap, &work.regionPixels);
     work.regionFeatures = w.all.size();
+    w.regionOnly = true;
+  }
+  else if (flow)
+  {
+    w.all.type = o.extractor.feature_type;
     w.regionOnly = true;
   }
   else
@@ -154,10 +193,15 @@ void CRgbdOdometry::liftFeatures(TFrameWork& w) const
           inRoi.push_back(i);
     }
     res.roiFeatures = inRoi.size();
-    if (static_cast<int>(inRoi.size()) >= o.min_roi_features || o.strict_roi)
+    // Flow: few ROI features are no reason to describe more, the followed
+    // keyframe features carry the pose.
+    const bool flow = followsWithFlow() && w.regionOnly && flowAvailable(w);
+    const bool enough = static_cast<int>(inRoi.size()) >= o.min_roi_features;
+    if (enough || o.strict_roi || flow)
       w.chosen = std::move(inRoi);  // strict with too few: the frame will be Lost
     else
       w.fallback = true;
+    w.flowFallback = flow && !enough && !o.strict_roi;
     w.strictLost = o.strict_roi && static_cast<int>(res.roiFeatures) < o.min_roi_features;
   }
   auto makeSet = [&](const std::vector<int>& idx)

@@ -34,6 +34,30 @@ void setRegion(TKeyframe& kf, const cv::Rect& region)
 }
 }  // namespace
 
+void CRgbdOdometry::setAnchors(TKeyframe& kf, TFrameWork& w) const
+{
+  const TImpl& I = *m_impl;
+  const auto t0 = Clock::now();
+  const features::TFeatureSet corners = detail::anchorCandidates(w.in.grey, I.flowParams);
+  // The keyframe's depth rule and rolling-shutter correction, as its features'.
+  detail::TLiftedFeatures lifted =
+      detail::liftFeatures(corners, w.in.frame.depth, I.K, I.dist, m_options);
+  detail::rectifyRollingShutter(
+      lifted, w.rateApplied, m_options.rolling_shutter_ms * 1e-3, I.pinhole);
+  kf.anchorKeypoints.clear();
+  kf.anchorPoints.clear();
+  kf.anchorPixels.clear();
+  for (int i : lifted.valid)
+  {
+    const auto u = static_cast<std::size_t>(i);
+    const Eigen::Vector3d X = I.pinhole.backProject(lifted.undistorted[u], lifted.z[u]);
+    kf.anchorKeypoints.push_back(corners.keypoints[u].pt);
+    kf.anchorPoints.emplace_back(X.x(), X.y(), X.z());
+    kf.anchorPixels.push_back(lifted.undistorted[u]);
+  }
+  w.res.times.flow_ms += msSince(t0);
+}
+
 void CRgbdOdometry::startMap(TFrameWork& w)
 {
   if (w.strictLost)
@@ -42,6 +66,10 @@ void CRgbdOdometry::startMap(TFrameWork& w)
     w.res.method = ETrackingMethod::Lost;
     return;
   }
+  // The map's first keyframe stores the whole image too (the first frame
+  // of a ROI mode described its region only).
+  if (m_options.keyframe_full_features)
+    extendToImage(w, EExtension::Keyframe);
   w.res.method = ETrackingMethod::Initial;
   w.res.pose = m_initialPose;
   w.res.relativeInformation = scaledIdentity(1e6);
@@ -83,7 +111,7 @@ void CRgbdOdometry::makeKeyframeConstraints(TFrameWork& w)
   // stores anyway (as loop closures do); the ROI tracks the frames between.
   const bool fullEdges = isRoiMode(o.mode) && !o.strict_roi && o.keyframe_full_features &&
                          o.keyframe_full_registration &&
-                         w.cur.features.size() < w.full.features.size();
+                         (w.flowRef.has_value() || w.cur.features.size() < w.full.features.size());
   if (fullEdges && isFeatureMethod(res.method))
     if (const auto r = I.registerSets(m_keyframes[w.ref], w.full, o))
     {
@@ -118,7 +146,7 @@ void CRgbdOdometry::makeKeyframeConstraints(TFrameWork& w)
     c.toKeyframe = first.toKeyframe;
     std::tie(c.relativePose, c.information) = detail::toMrptEstimate(*r);
     c.edgeInformation = detail::toSpaEstimate(*r);
-    c.method = featureMethod(o.mode, w.fallback);
+    c.method = featureMethod(o.mode, w.fallback || w.flowFallback);
     c.inliers = r->inliers;
     res.constraints.push_back(c);
   }
@@ -179,6 +207,13 @@ void CRgbdOdometry::insertKeyframe(TFrameWork& w, const mrpt::poses::CPose3D& po
     m_keyframes[m_keyframes.size() - 1 - keep].index.reset();
   while (I.icpMaps.size() > keep)
     I.icpMaps.erase(I.icpMaps.begin());
+  if (followsWithFlow())
+  {
+    setAnchors(m_keyframes.back(), w);
+    I.flowPyramids[res.newKeyframeId] = w.in.flowPyramid;
+    while (I.flowPyramids.size() > keep)
+      I.flowPyramids.erase(I.flowPyramids.begin());
+  }
   I.haveLast = true;
   I.lastRef = res.newKeyframeId;
   I.lastRel = mrpt::poses::CPose3D();

@@ -37,17 +37,27 @@ void CRgbdOdometry::refineRollingShutter(TFrameWork& w)
   auto rebuild = [&]()
   {
     detail::updateFeatureSetPoints(w.full, w.lifted, w.lifted.valid, I.pinhole);
+    if (w.flowRef)
+    {
+      detail::updateFeatureSetPoints(w.regionSet, w.lifted, w.chosen, I.pinhole);
+      rebuildFollowedSet(w);
+      return;
+    }
     detail::updateFeatureSetPoints(
         w.cur, w.lifted, w.fallback ? w.lifted.valid : w.chosen, I.pinhole);
   };
   detail::rectifyRollingShutter(w.lifted, rate, readout, I.pinhole);
+  if (w.flowRef)
+    detail::rectifyRollingShutter(w.flowLifted, rate, readout, I.pinhole);
   rebuild();
-  if (auto again =
-          detail::refineRegistration(m_keyframes[w.ref], w.cur, *w.reg, I.pinhole, m_options))
+  if (auto again = detail::refineRegistration(
+          w.reference(m_keyframes, w.ref), w.cur, *w.reg, I.pinhole, m_options))
     w.reg = std::move(again);
   else
   {
     detail::rectifyRollingShutter(w.lifted, w.ratePredicted, readout, I.pinhole);
+    if (w.flowRef)
+      detail::rectifyRollingShutter(w.flowLifted, w.ratePredicted, readout, I.pinhole);
     rebuild();
   }
 }
@@ -83,7 +93,7 @@ bool CRgbdOdometry::resolvePose(TFrameWork& w)
   TFrameResult& res = w.res;
   if (w.reg)
   {
-    res.method = featureMethod(o.mode, w.fallback);
+    res.method = featureMethod(o.mode, w.fallback || w.flowFallback);
     std::tie(res.relativePose, res.relativeInformation) = detail::toMrptEstimate(*w.reg);
     res.relativeEdgeInformation = detail::toSpaEstimate(*w.reg);
     res.inliers = w.reg->inliers;

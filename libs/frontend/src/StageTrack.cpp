@@ -42,11 +42,18 @@ void CRgbdOdometry::registerWithRecent(const TKeyframe& query, TFrameWork& w) co
     if (std::find(order.begin(), order.end(), w.lastKf - k) == order.end())
       order.push_back(w.lastKf - k);
   std::optional<std::tuple<detail::TRegistration, std::size_t, std::size_t>> fallback;
+  // With followed features (roi_extraction = flow), the keyframe they were
+  // followed from gets them as known pairs; others are matched with the
+  // region's set, the head of w.cur (same indices).
+  const bool followed = w.flowRef.has_value() && &query == &w.cur;
   for (std::size_t k = 0; k < order.size(); ++k)
   {
     const std::size_t id = order[k];
     std::size_t nm = 0;
-    w.reg = m_impl->registerSets(m_keyframes[id], query, m_options, &nm, &w.res.times);
+    const bool known = followed && id == *w.flowRef;
+    w.reg = m_impl->registerSets(
+        known ? w.flowRefView : m_keyframes[id], followed && !known ? w.regionSet : query,
+        m_options, &nm, &w.res.times, known ? &w.known : nullptr);
     if (k == 0 || w.reg)
       w.res.matches = nm;
     if (w.reg && k + 1 < order.size() &&
@@ -95,9 +102,51 @@ void CRgbdOdometry::predictMotion(TFrameWork& w) const
     w.ref = w.candidates.front();
 }
 
+void CRgbdOdometry::followReference(TFrameWork& w) const
+{
+  const TImpl& I = *m_impl;
+  const auto pyramid = I.flowPyramids.find(w.ref);
+  if (pyramid == I.flowPyramids.end() || w.in.flowPyramid.empty())
+    return;
+  const auto t0 = detail::Clock::now();
+  const TKeyframe& kf = m_keyframes[w.ref];
+  // Everywhere, the ROI too: its described features alone may be few or
+  // crowded, and the followed anchors are as good there.
+  w.flow = detail::followAnchors(
+      kf, pyramid->second, w.in.flowPyramid, w.predictedWorld - kf.pose, I.K, I.dist, I.flowParams);
+  // Lifted and corrected for the rolling shutter like the region's features.
+  w.flowLifted = detail::liftFeatures(w.flow.set, w.in.frame.depth, I.K, I.dist, m_options);
+  detail::rectifyRollingShutter(
+      w.flowLifted, w.rateApplied, m_options.rolling_shutter_ms * 1e-3, I.pinhole);
+  w.regionSet = w.cur;
+  w.flowRef = w.ref;
+  w.flowRefView = detail::withAnchors(kf);
+  rebuildFollowedSet(w);
+  w.res.flowTracks = w.known.refIndex.size();
+  w.res.trackingFeatures = w.cur.features.size();
+  w.res.times.flow_ms += detail::msSince(t0);
+}
+
+void CRgbdOdometry::rebuildFollowedSet(TFrameWork& w) const
+{
+  const TKeyframe followed =
+      detail::makeFeatureSet(w.flow.set, w.flowLifted, w.flowLifted.valid, m_impl->pinhole);
+  w.cur = w.regionSet;
+  w.cur.features = features::concat(w.regionSet.features, followed.features);
+  w.cur.points.insert(w.cur.points.end(), followed.points.begin(), followed.points.end());
+  w.cur.pixels.insert(w.cur.pixels.end(), followed.pixels.begin(), followed.pixels.end());
+  w.known.first = w.regionSet.features.size();
+  w.known.refIndex.clear();
+  const int anchors0 = static_cast<int>(m_keyframes[*w.flowRef].points.size());
+  for (int v : w.flowLifted.valid)
+    w.known.refIndex.push_back(anchors0 + w.flow.anchorIndex[static_cast<std::size_t>(v)]);
+}
+
 void CRgbdOdometry::trackFeatures(TFrameWork& w)
 {
   const TOptions& o = m_options;
+  if (followsWithFlow() && w.regionOnly && !w.fallback)
+    followReference(w);
   registerWithRecent(w.cur, w);
   // A ROI registration on few inliers, or one that leaves the pose poorly
   // determined, is kept only when nothing better exists.
@@ -132,6 +181,7 @@ void CRgbdOdometry::trackFeatures(TFrameWork& w)
     return;
   }
   w.fallback = true;
+  w.flowRef.reset();
   w.cur = w.full;
   w.cur.fullImageFallback = true;
   w.res.trackingFeatures = w.cur.features.size();

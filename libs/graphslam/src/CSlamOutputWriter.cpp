@@ -68,7 +68,7 @@ const char* kFramesCsvHeader =
     "matches,inliers,roi_x,roi_y,roi_w,roi_h,keyframe,reference_keyframe,roi_ms,"
     "extract_ms,lift_ms,match_ms,ransac_ms,icp_ms,keyframe_ms,frontend_ms,backend_ms,"
     "sigma_t_mm,sigma_r_deg,icp_refined,region_x,region_y,region_w,region_h,region_pixels,"
-    "region_features,extension_pixels,extension_features,extension\n";
+    "region_features,extension_pixels,extension_features,extension,flow_tracks,flow_ms\n";
 
 void writeFramesCsvRow(std::ostream& csv, const CSlamPipeline::TFrameRecord& r)
 {
@@ -100,7 +100,8 @@ void writeFramesCsvRow(std::ostream& csv, const CSlamPipeline::TFrameRecord& r)
   else
     csv << ",,,";
   csv << "," << w.regionPixels << "," << w.regionFeatures << "," << w.extensionPixels << ","
-      << w.extensionFeatures << "," << frontend::toString(w.extension) << "\n";
+      << w.extensionFeatures << "," << frontend::toString(w.extension) << "," << f.flowTracks << ","
+      << t.flow_ms << "\n";
 }
 }  // namespace
 

@@ -29,9 +29,10 @@ struct TVariant
 /** "strict" ([FrontEnd] strict_roi = true and roi_feature_cap = roi: no
  *  fallback, N features in the ROI, the dissertation's behaviour), "fallback"
  *  (strict_roi = false, roi_feature_cap = image: our default), "roicap"
- *  (fallback with N features in the ROI) and "region" (fallback, stage 2 on
+ *  (fallback with N features in the ROI), "region" (fallback, stage 2 on
  *  the tracking region only: roi_extraction = region, roi_extension_scale =
- *  0.5). */
+ *  0.5) and "flow" (fallback, ordinary frames describe their ROI and follow
+ *  the rest by optical flow: roi_extraction = flow). */
 std::vector<TVariant> defaultVariants();
 
 /** Test 1's: "hue" ([RoiDetector] verify_hue = true: the ROI verified by the

@@ -63,8 +63,24 @@
  *                             image plus the N strongest inside the ROI are
  *                             kept: the dissertation's "N features in the ROI"
  *                             (it matters with small N, Test 3's 50).
- *  - roi_extraction           region|image (image): non-strict ROI modes,
- *                             where stage 2 runs. region: only in the
+ *  - roi_extraction           flow|region|image (image): non-strict ROI modes,
+ *                             where stage 2 runs. flow: an ordinary frame
+ *                             describes its ROI only (at the image's feature
+ *                             density: max_features x the ROI's share of the
+ *                             image, at least min_roi_features), a frame
+ *                             without a ROI nothing; the rest of the view
+ *                             comes from the reference keyframe's anchors
+ *                             (Shi-Tomasi corners with depth, a 21-px
+ *                             window apart, found when the keyframe is made)
+ *                             followed by pyramidal Lucas-Kanade optical flow
+ *                             from where the predicted motion puts them; they
+ *                             join the ROI's matches as known pairs in one
+ *                             RANSAC and refinement (FlowTracking.h). A frame
+ *                             is still extended (at most once) when its
+ *                             registration fails or is weak, or it becomes a
+ *                             keyframe; keyframes describe the whole image as
+ *                             in region mode. Needs keyframe_full_features.
+ *                             region: only in the
  *                             tracking region (the ROI grown as below, plus
  *                             the detector's support margin), extended to the
  *                             rest of the image lazily, at most once, when the
@@ -384,8 +400,21 @@ class CRgbdOdometry : public mrpt::system::COutputLogger
   /** ROI-only frames: describes the rest of the image too (once; nothing
    *  already described again), lifts it and rebuilds the whole-image set. */
   void extendToImage(TFrameWork& w, EExtension reason) const;
-  /** Non-strict ROI mode with roi_extraction = region. */
+  /** Non-strict ROI mode with roi_extraction = region or flow. */
   bool describesRegions() const;
+  /** roi_extraction = flow (non-strict ROI modes). */
+  bool followsWithFlow() const;
+  /** The frame can follow its reference keyframe by optical flow (both
+   *  pyramids exist). */
+  bool flowAvailable(const TFrameWork& w) const;
+  /** roi_extraction = flow: follows the reference keyframe's features
+   *  outside the region into the frame and makes w.cur the region's set
+   *  plus theirs (FlowTracking.h). */
+  void followReference(TFrameWork& w) const;
+  /** w.cur from w.regionSet and the followed features, as lifted now. */
+  void rebuildFollowedSet(TFrameWork& w) const;
+  /** roi_extraction = flow: the new keyframe's anchors (FlowTracking.h). */
+  void setAnchors(TKeyframe& kf, TFrameWork& w) const;
   void startMap(TFrameWork& w);
   void predictMotion(TFrameWork& w) const;
   void trackFeatures(TFrameWork& w);

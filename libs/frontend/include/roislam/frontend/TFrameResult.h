@@ -143,6 +143,7 @@ struct TStageTimes
   double extract_ms = 0;   //!< feature detection + description (once per frame)
   double lift_ms = 0;      //!< undistortion + depth lookup of keypoints
   double match_ms = 0;     //!< descriptor matching (all keyframes tried)
+  double flow_ms = 0;      //!< optical flow of keyframe features (roi_extraction = flow)
   double ransac_ms = 0;    //!< 3-D RANSAC + refinement
   double icp_ms = 0;       //!< depth ICP fallback (and ICP maps of new keyframes)
   double keyframe_ms = 0;  //!< new keyframe: constraints to recent keyframes
@@ -191,8 +192,11 @@ struct TFrameResult
   std::size_t featuresWithDepth = 0;  //!< of those, with valid depth
   std::size_t roiFeatures = 0;        //!< with valid depth inside the ROI
   std::size_t trackingFeatures = 0;   //!< the set actually matched
-  std::size_t matches = 0;            //!< ratio-test matches to the reference
-  std::size_t inliers = 0;            //!< after RANSAC + refinement (ICP: pairs)
+  /** roi_extraction = flow: reference-keyframe features followed into the
+   *  frame by optical flow (outside the region; not described, not matched). */
+  std::size_t flowTracks = 0;
+  std::size_t matches = 0;  //!< ratio-test matches to the reference
+  std::size_t inliers = 0;  //!< after RANSAC + refinement (ICP: pairs)
   /** The ROI found in this frame: ROI modes, and keyframes of the
    *  traditional mode (their ROI is the back end's landmark). */
   std::optional<cv::Rect> roi;

@@ -51,5 +51,13 @@ struct TKeyframe
    *  its features, metres. */
   cv::Rect region;
   double regionDepth = 0;
+
+  /** roi_extraction = flow: corners good to track (Shi-Tomasi) with valid
+   *  depth, which later frames follow by optical flow instead of describing
+   *  the image (FlowTracking.h): their (distorted) image positions, 3-D
+   *  points in this keyframe's optical frame and undistorted pixels. */
+  std::vector<cv::Point2f> anchorKeypoints;
+  std::vector<mrpt::math::TPoint3D> anchorPoints;
+  std::vector<cv::Point2f> anchorPixels;
 };
 }  // namespace roislam::frontend

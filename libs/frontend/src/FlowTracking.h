@@ -1,0 +1,67 @@
+/* Private: the ROI modes' way to see the rest of the image without describing
+ * it (roi_extraction = flow). A keyframe keeps, besides its described
+ * features, corners good to track (Shi-Tomasi, the corners Lucas-Kanade is
+ * exact on) with their depth: its anchors. An ordinary frame describes its
+ * ROI only; the reference keyframe's anchors are followed into it by
+ * pyramidal Lucas-Kanade optical flow, each started where the predicted
+ * motion puts its 3-D point. Their correspondence is known, so they are not
+ * matched: they join the ROI's matches in one RANSAC and refinement. The
+ * work is the ROI's description plus a few hundred 21 x 21 patches, not the
+ * image's detection and description.
+ */
+#pragma once
+
+#include <mrpt/poses/CPose3D.h>
+#include <roislam/features/TFeatureSet.h>
+#include <roislam/frontend/TKeyframe.h>
+
+#include <opencv2/core.hpp>
+#include <vector>
+
+namespace roislam::frontend::detail
+{
+/** Lucas-Kanade settings: a 21 x 21 window over 4 pyramid levels follows
+ *  about 8 x 10 px of motion beyond the prediction. Anchors are at least a
+ *  window apart, so that no two share their window. */
+struct TFlowParams
+{
+  int window = 21;
+  int levels = 3;  //!< maxLevel: levels + 1 pyramid images
+  /** Shi-Tomasi quality: corners weaker than this share of the frame's
+   *  strongest are not anchors (OpenCV's customary 0.01). */
+  double anchorQuality = 0.01;
+};
+
+/** An image pyramid as cv::buildOpticalFlowPyramid makes it. */
+using TFlowPyramid = std::vector<cv::Mat>;
+
+TFlowPyramid flowPyramid(const cv::Mat& grey, const TFlowParams& p);
+
+/** Candidate anchors of a keyframe image: Shi-Tomasi corners, a
+ *  window apart, as keypoints (size 0: not described). */
+features::TFeatureSet anchorCandidates(const cv::Mat& grey, const TFlowParams& p);
+
+/** The keyframe's anchors followed into the current frame. */
+struct TFlowTracks
+{
+  /** Keypoints at the followed (distorted) positions; descriptors are zero
+   *  rows of the keyframe features' type (never matched). */
+  features::TFeatureSet set;
+  /** For each followed anchor, its index in the keyframe's anchors. */
+  std::vector<int> anchorIndex;
+};
+
+/** Follows kf's anchors whose predicted position lies inside the image from
+ *  kf's image (kfPyramid) into the current one. predictedRel: the current
+ *  frame's pose relative to kf; K, dist: the colour camera (OpenCV layout;
+ *  images are distorted). */
+TFlowTracks followAnchors(
+    const TKeyframe& kf, const TFlowPyramid& kfPyramid, const TFlowPyramid& curPyramid,
+    const mrpt::poses::CPose3D& predictedRel, const cv::Mat& K, const cv::Mat& dist,
+    const TFlowParams& p);
+
+/** kf as the registration against its anchors sees it: its features'
+ *  points and pixels followed by its anchors' (the anchors' pair indices
+ *  are kf.points.size() + anchor index). */
+TKeyframe withAnchors(const TKeyframe& kf);
+}  // namespace roislam::frontend::detail

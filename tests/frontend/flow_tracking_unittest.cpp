@@ -1,0 +1,122 @@
+// The optical flow of keyframe anchors (libs/frontend/src FlowTracking.h): a
+// textured plane seen by a pinhole camera, then by the camera moved; the
+// anchors found on the first image, started where the predicted motion puts
+// them, land where the true motion projects them, also when the prediction
+// is off by a few pixels.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <opencv2/calib3d.hpp>
+#include <opencv2/imgproc.hpp>
+#include <random>
+
+#include "FlowTracking.h"
+
+using namespace roislam::frontend::detail;
+using roislam::frontend::TKeyframe;
+
+namespace
+{
+constexpr int kW = 640, kH = 480;
+constexpr double kF = 520, kCx = 319.5, kCy = 239.5, kZ = 2.0;
+
+/** Random blobs: a texture with corners at every scale. */
+cv::Mat texture(int w, int h)
+{
+  cv::Mat t(h, w, CV_8UC1, cv::Scalar(128));
+  std::mt19937 rng(7);
+  std::uniform_int_distribution<int> x(0, w - 1), y(0, h - 1), r(2, 12), g(0, 255);
+  for (int i = 0; i < 4000; ++i)
+    cv::rectangle(t, cv::Rect(x(rng), y(rng), r(rng), r(rng)), cv::Scalar(g(rng)), cv::FILLED);
+  cv::GaussianBlur(t, t, cv::Size(3, 3), 0.8);
+  return t;
+}
+
+/** The plane z = kZ (in the first camera's frame) seen by a camera at
+ *  `pose` (its pose in the first camera's frame): a homography of the
+ *  texture, which covers the plane 1.5x the first view. */
+cv::Mat render(const cv::Mat& tex, const mrpt::poses::CPose3D& pose)
+{
+  // Texture pixel (u, v) is the plane point ((u - tw/2) s, (v - th/2) s, kZ).
+  const double s = 1.5 * kZ / kF;
+  const cv::Matx33d K(kF, 0, kCx, 0, kF, kCy, 0, 0, 1);
+  const mrpt::poses::CPose3D inv = -pose;
+  const auto R = inv.getRotationMatrix();
+  cv::Matx33d M;  // texture (u, v, 1) -> camera point
+  for (int r = 0; r < 3; ++r)
+  {
+    M(r, 0) = R(r, 0) * s;
+    M(r, 1) = R(r, 1) * s;
+    M(r, 2) = R(r, 0) * (-tex.cols / 2.0 * s) + R(r, 1) * (-tex.rows / 2.0 * s) + R(r, 2) * kZ +
+              inv.m_coords[r];
+  }
+  cv::Mat out;
+  cv::warpPerspective(tex, out, cv::Mat(K * M), cv::Size(kW, kH), cv::INTER_LINEAR);
+  return out;
+}
+
+TKeyframe keyframeWithAnchors(const cv::Mat& grey, const TFlowParams& p)
+{
+  TKeyframe kf;
+  for (const auto& k : anchorCandidates(grey, p).keypoints)
+  {
+    kf.anchorKeypoints.push_back(k.pt);
+    kf.anchorPoints.emplace_back((k.pt.x - kCx) / kF * kZ, (k.pt.y - kCy) / kF * kZ, kZ);
+    kf.anchorPixels.push_back(k.pt);
+  }
+  return kf;
+}
+}  // namespace
+
+TEST(FlowTracking, AnchorsLandWhereTheMotionProjectsThem)
+{
+  const TFlowParams p;
+  const cv::Mat tex = texture(2 * kW, 2 * kH);
+  const mrpt::poses::CPose3D moved(0.05, -0.03, 0.04, 0.03, -0.02, 0.04);
+  const cv::Mat a = render(tex, mrpt::poses::CPose3D()), b = render(tex, moved);
+  const TKeyframe kf = keyframeWithAnchors(a, p);
+  ASSERT_GT(kf.anchorPoints.size(), 150u);
+  // A window apart at least.
+  for (std::size_t i = 1; i < 50; ++i)
+    for (std::size_t j = 0; j < i; ++j)
+      EXPECT_GE(cv::norm(kf.anchorKeypoints[i] - kf.anchorKeypoints[j]), p.window - 1e-3);
+
+  const cv::Mat K = (cv::Mat_<double>(3, 3) << kF, 0, kCx, 0, kF, kCy, 0, 0, 1);
+  const cv::Mat dist = cv::Mat::zeros(1, 5, CV_64F);
+  const auto pa = flowPyramid(a, p), pb = flowPyramid(b, p);
+  // Exact prediction, and one off by about 6 px (a 0.7 deg error).
+  for (const auto& prediction : {moved, moved + mrpt::poses::CPose3D(0, 0, 0, 0.012, 0, 0)})
+  {
+    const TFlowTracks t = followAnchors(kf, pa, pb, prediction, K, dist, p);
+    ASSERT_GT(t.set.size(), kf.anchorPoints.size() * 8 / 10);
+    ASSERT_EQ(t.anchorIndex.size(), t.set.size());
+    std::vector<double> err;
+    for (std::size_t j = 0; j < t.set.size(); ++j)
+    {
+      const auto& X = kf.anchorPoints[static_cast<std::size_t>(t.anchorIndex[j])];
+      double x, y, z;
+      moved.inverseComposePoint(X.x, X.y, X.z, x, y, z);
+      const cv::Point2d truth(kF * x / z + kCx, kF * y / z + kCy);
+      err.push_back(cv::norm(cv::Point2d(t.set.keypoints[j].pt) - truth));
+    }
+    std::sort(err.begin(), err.end());
+    EXPECT_LT(err[err.size() / 2], 0.3);       // median
+    EXPECT_LT(err[err.size() * 9 / 10], 1.0);  // 90th percentile
+  }
+}
+
+TEST(FlowTracking, RegistrationViewAppendsTheAnchors)
+{
+  TKeyframe kf;
+  kf.points = {{0, 0, 1}, {1, 0, 1}};
+  kf.pixels = {{1, 1}, {2, 2}};
+  kf.anchorPoints = {{0, 1, 2}};
+  kf.anchorPixels = {{3, 3}};
+  kf.anchorKeypoints = {{3, 3}};
+  const TKeyframe v = withAnchors(kf);
+  ASSERT_EQ(v.points.size(), 3u);
+  EXPECT_EQ(v.points[2].y, 1);
+  EXPECT_EQ(v.pixels[2], cv::Point2f(3, 3));
+  EXPECT_EQ(v.features.size(), kf.features.size());
+}
