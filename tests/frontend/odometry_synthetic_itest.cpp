@@ -30,6 +30,14 @@ CRgbdOdometry::TOptions orb(EFrontEndMode mode)
   o.extractor.max_features = 600;
   return o;
 }
+
+/** region grown by the detector's support m on every side, clipped to the
+ *  image: the pixels a region-only extraction may read. */
+cv::Rect paddedRegion(const cv::Rect& region, int m, const cv::Size& image)
+{
+  return cv::Rect(region.x - m, region.y - m, region.width + 2 * m, region.height + 2 * m) &
+         cv::Rect(0, 0, image.width, image.height);
+}
 }  // namespace
 
 TEST(OdometrySynthetic, TexturedTraditionalAndRoi)
@@ -77,10 +85,7 @@ TEST(OdometrySynthetic, RegionFramesDescribeOnlyTheirRegion)
         ++roiOnly;
         ASSERT_FALSE(w.region.empty()) << "frame " << r.frameIndex;
         const int m = 31;  // ORB's support (CFeatureExtractor::supportPx)
-        const cv::Rect padded =
-            cv::Rect(
-                w.region.x - m, w.region.y - m, w.region.width + 2 * m, w.region.height + 2 * m) &
-            cv::Rect(0, 0, image.width, image.height);
+        const cv::Rect padded = paddedRegion(w.region, m, image);
         EXPECT_EQ(w.regionPixels, static_cast<std::size_t>(padded.area()));
         EXPECT_EQ(w.extensionPixels, 0u);
         EXPECT_EQ(w.extensionFeatures, 0u);
@@ -170,10 +175,7 @@ TEST(OdometrySynthetic, FlowFramesDescribeOnlyTheirRoi)
         {
           EXPECT_EQ(w.region, *r.roi & cv::Rect(0, 0, image.width, image.height));
           const int m = 31;  // ORB's support (CFeatureExtractor::supportPx)
-          const cv::Rect padded =
-              cv::Rect(
-                  w.region.x - m, w.region.y - m, w.region.width + 2 * m, w.region.height + 2 * m) &
-              cv::Rect(0, 0, image.width, image.height);
+          const cv::Rect padded = paddedRegion(w.region, m, image);
           EXPECT_EQ(w.regionPixels, static_cast<std::size_t>(padded.area()));
           // The image's density: the ROI's share of max_features (at least
           // min_roi_features).

@@ -106,6 +106,9 @@ struct CRgbdOdometry::TFrameWork
   features::TFeatureSet all;
   /** Stage 2 ran on the region only so far (ROI-only, may be extended). */
   bool regionOnly = false;
+  /** Flow mode with the reference keyframe's anchors at hand: the frame
+   *  describes its ROI only and follows the rest (decided once, here). */
+  bool flowFrame = false;
   // liftFeatures
   detail::TLiftedFeatures lifted;
   /** Features tracked with (indices into all, a subset of lifted.valid):

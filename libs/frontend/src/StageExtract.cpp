@@ -111,7 +111,8 @@ void CRgbdOdometry::extractFeatures(TFrameWork& w) const
   // a new one from stage 1 when it is lost (or at the start).
   const auto& o = m_options;
   const double minArea = std::min(1.0, o.roi_min_area_fraction * I.regionGrowth);
-  const bool flow = followsWithFlow() && flowAvailable(w);
+  w.flowFrame = followsWithFlow() && flowAvailable(w);
+  const bool flow = w.flowFrame;
   int regionCap = o.extractor.max_features;
   if (flow)
   {
@@ -195,7 +196,7 @@ void CRgbdOdometry::liftFeatures(TFrameWork& w) const
     res.roiFeatures = inRoi.size();
     // Flow: few ROI features are no reason to describe more, the followed
     // keyframe features carry the pose.
-    const bool flow = followsWithFlow() && w.regionOnly && flowAvailable(w);
+    const bool flow = w.flowFrame;
     const bool enough = static_cast<int>(inRoi.size()) >= o.min_roi_features;
     if (enough || o.strict_roi || flow)
       w.chosen = std::move(inRoi);  // strict with too few: the frame will be Lost
