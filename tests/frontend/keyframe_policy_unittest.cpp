@@ -2,12 +2,14 @@
 // overlap) on ray-cast frames of a box room with known poses: the view
 // overlap itself, a revisit that re-uses the keyframes made on the way out
 // (the motion policy makes new ones), and a view change beyond the overlap
-// threshold that makes a keyframe.
+// threshold that makes a keyframe; and the motion policy's place limit
+// (keyframe_place_limit), under which repeated passes stop adding keyframes.
 #include <gtest/gtest.h>
 #include <mrpt/config/CConfigFileMemory.h>
 #include <roislam/frontend/CRgbdOdometry.h>
 
 #include <cmath>
+#include <deque>
 #include <string>
 #include <vector>
 
@@ -112,6 +114,68 @@ TEST(KeyframePolicy, RevisitReusesKeyframes)
   EXPECT_GT(endM, outM);
 }
 
+/** The motion policy with keyframe_place_limit = `limit` over `passes`
+ *  passes of the pan (out, back, out, ...): the keyframe count after each. */
+std::vector<std::size_t> panPasses(int limit, std::size_t passes)
+{
+  auto o = overlapOptions();
+  o.keyframe_policy = "motion";
+  o.keyframe_translation_m = 0.10;
+  o.keyframe_rotation_deg = 10;
+  o.keyframe_place_limit = limit;
+  CRgbdOdometry odo(o);
+  constexpr std::size_t n = 30;
+  odo.setInitialPose(panPose(0));
+  std::vector<std::size_t> counts;
+  std::size_t frame = 0;
+  for (std::size_t p = 0; p < passes; ++p)
+  {
+    for (std::size_t i = p == 0 ? 0 : 1; i < n; ++i, ++frame)
+    {
+      const std::size_t k = p % 2 == 0 ? i : n - 1 - i;
+      const auto r = odo.process(renderRoom(panPose(k), 100, frame, 0.1 * frame));
+      EXPECT_TRUE(r.pose.has_value());
+      if (r.pose)
+        EXPECT_LT((*r.pose - panPose(k)).translation().norm(), 0.03) << "frame " << frame;
+    }
+    counts.push_back(odo.keyframes().size());
+  }
+  return counts;
+}
+
+TEST(KeyframePolicy, KeyframesNearArePlacesNearestFirst)
+{
+  std::deque<TKeyframe> kfs(4);
+  const CPose3D poses[] = {
+      CPose3D(0, 0, 0, 0, 0, 0), CPose3D(0.05, 0, 0, 0, 0, 0), CPose3D(0, 0, 0, 0.15, 0, 0),
+      CPose3D(0.01, 0, 0, 0, 0, 0)};
+  for (std::size_t i = 0; i < kfs.size(); ++i)
+  {
+    kfs[i].id = i;
+    kfs[i].pose = poses[i];
+  }
+  // Bounds 0.1 m and 0.1 rad: keyframe 2 (0.15 rad) is outside; 3 is nearest.
+  const auto near = detail::keyframesNear(kfs, CPose3D(0.01, 0, 0, 0, 0, 0), 0.1, 0.1);
+  EXPECT_EQ(near, (std::vector<std::size_t>{3, 0, 1}));
+  EXPECT_TRUE(detail::keyframesNear(kfs, CPose3D(1, 0, 0, 0, 0, 0), 0.1, 0.1).empty());
+}
+
+TEST(KeyframePolicy, PlaceLimitStopsRevisitsAddingKeyframes)
+{
+  // Without a limit every pass over the same views adds keyframes (the
+  // motion policy measures from the newest keyframe only).
+  const auto free = panPasses(0, 4);
+  for (std::size_t p = 1; p < free.size(); ++p)
+    EXPECT_GT(free[p], free[p - 1]) << "pass " << p;
+  // With a limit of 2 a place keeps at most about two views: the last
+  // passes add none, and the map stays well below the unlimited one.
+  const auto limited = panPasses(2, 4);
+  EXPECT_EQ(limited[0], free[0]) << "new ground is mapped as without a limit";
+  EXPECT_EQ(limited[3], limited[2]);
+  EXPECT_LE(limited[3], 2 * limited[0] + 1);
+  EXPECT_LT(limited[3], free[3]);
+}
+
 TEST(KeyframePolicy, ViewChangeBeyondTheOverlapMakesAKeyframe)
 {
   // By frame 40 (60 deg) the first view is mostly gone.
@@ -168,6 +232,7 @@ TEST(KeyframePolicy, OptionsAreValidated)
   expectError([](auto& b) { b.keyframe_policy = "sometimes"; }, "keyframe_policy");
   expectError([](auto& b) { b.keyframe_min_overlap = 1.0; }, "keyframe_min_overlap");
   expectError([](auto& b) { b.keyframe_min_overlap = -0.1; }, "keyframe_min_overlap");
+  expectError([](auto& b) { b.keyframe_place_limit = -1; }, "keyframe_place_limit");
   expectError([](auto& b) { b.keyframe_rotation_deg = -1; }, "keyframe_rotation_deg");
   // The motion policy needs its thresholds.
   expectError(

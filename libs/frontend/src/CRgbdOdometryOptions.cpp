@@ -112,6 +112,7 @@ void CRgbdOdometry::TOptions::loadFromConfigFile(
   keyframe_min_inliers = c.read_int(s, "keyframe_min_inliers", keyframe_min_inliers);
   keyframe_policy = c.read_string(s, "keyframe_policy", keyframe_policy);
   keyframe_min_overlap = c.read_double(s, "keyframe_min_overlap", keyframe_min_overlap);
+  keyframe_place_limit = c.read_int(s, "keyframe_place_limit", keyframe_place_limit);
   recent_keyframes = c.read_int(s, "recent_keyframes", recent_keyframes);
   ransac_threshold_m = c.read_double(s, "ransac_threshold_m", ransac_threshold_m);
   ransac_max_iterations = c.read_int(s, "ransac_max_iterations", ransac_max_iterations);
@@ -162,6 +163,7 @@ void CRgbdOdometry::TOptions::saveToConfigFile(
   c.write(s, "keyframe_min_inliers", keyframe_min_inliers);
   c.write(s, "keyframe_policy", keyframe_policy);
   c.write(s, "keyframe_min_overlap", keyframe_min_overlap);
+  c.write(s, "keyframe_place_limit", keyframe_place_limit);
   c.write(s, "recent_keyframes", recent_keyframes);
   c.write(s, "ransac_threshold_m", ransac_threshold_m);
   c.write(s, "ransac_max_iterations", ransac_max_iterations);
@@ -223,6 +225,8 @@ void CRgbdOdometry::TOptions::validate(const std::string& s) const
         "unknown value '" + keyframe_policy + "' (expected motion or overlap)");
   if (!(keyframe_min_overlap >= 0 && keyframe_min_overlap < 1))
     common::throwBadIniKey(s, "keyframe_min_overlap", "must be in [0, 1)");
+  if (keyframe_place_limit < 0)
+    common::throwBadIniKey(s, "keyframe_place_limit", "must be >= 0 (0 = no limit)");
   // With the overlap policy the motion thresholds are optional bounds.
   const bool motionPolicy = keyframe_policy == "motion";
   if (motionPolicy ? !(keyframe_translation_m > 0) : !(keyframe_translation_m >= 0))

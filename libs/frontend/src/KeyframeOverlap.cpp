@@ -58,4 +58,25 @@ std::vector<std::size_t> referenceCandidates(
     ids.push_back(others[i].second);
   return ids;
 }
+
+std::vector<std::size_t> keyframesNear(
+    const std::deque<TKeyframe>& keyframes, const mrpt::poses::CPose3D& pose, double maxDistance,
+    double maxAngleRad)
+{
+  std::vector<std::pair<double, std::size_t>> near;
+  for (const TKeyframe& kf : keyframes)
+  {
+    const mrpt::poses::CPose3D rel = pose - kf.pose;
+    const double d = rel.translation().norm() / maxDistance;
+    const double a = rotationAngle(rel) / maxAngleRad;
+    if (d <= 1 && a <= 1)
+      near.emplace_back(std::max(d, a), kf.id);
+  }
+  std::stable_sort(
+      near.begin(), near.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
+  std::vector<std::size_t> ids;
+  for (const auto& n : near)
+    ids.push_back(n.second);
+  return ids;
+}
 }  // namespace roislam::frontend::detail

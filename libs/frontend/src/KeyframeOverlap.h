@@ -53,4 +53,11 @@ struct TReferenceGate
 std::vector<std::size_t> referenceCandidates(
     const std::deque<TKeyframe>& keyframes, const mrpt::poses::CPose3D& predicted,
     const TViewModel& view, const TReferenceGate& gate, std::size_t n, std::size_t samples);
+
+/** The keyframes within `maxDistance` [m] and `maxAngleRad` of world pose
+ *  `pose`, nearest first: by the larger of the distance and the angle, each
+ *  as a share of its bound (the motion policy's "place"). */
+std::vector<std::size_t> keyframesNear(
+    const std::deque<TKeyframe>& keyframes, const mrpt::poses::CPose3D& pose, double maxDistance,
+    double maxAngleRad);
 }  // namespace roislam::frontend::detail

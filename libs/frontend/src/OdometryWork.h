@@ -137,6 +137,10 @@ struct CRgbdOdometry::TFrameWork
   /** keyframe_policy = overlap: the keyframes to track against, best
    *  overlapping the predicted view first (empty: the recent ones). */
   std::vector<std::size_t> candidates;
+  /** keyframe_place_limit: the predicted pose's place has its keyframes,
+   *  the candidates are they, nearest first, and the frame adds none while
+   *  it stays within the motion bounds of its reference. */
+  bool placeFull = false;
 
   // trackFeatures (roi_extraction = flow): the reference keyframe's
   // features followed into the frame outside its region. w.cur is then the

@@ -87,13 +87,15 @@ bool CRgbdOdometry::needsKeyframe(const TFrameWork& w) const
   // and whether the last keyframe still registered. Overlap policy: on what
   // the frame still sees of its reference keyframe (wherever that was made),
   // the inliers, and the motion since the reference as optional bounds.
-  const TKeyframe& from = m_keyframes[overlap ? w.ref : w.lastKf];
+  // A full place (keyframe_place_limit): on the motion since the reference,
+  // one of the place's keyframes, wherever it was made.
+  const TKeyframe& from = m_keyframes[overlap || w.placeFull ? w.ref : w.lastKf];
   const mrpt::poses::CPose3D since = *w.res.pose - from.pose;
   const double dist = since.translation().norm();
   const double angDeg = detail::rotationAngle(since) * 180.0 / M_PI;
   if (!overlap)
     return dist > o.keyframe_translation_m || angDeg > o.keyframe_rotation_deg ||
-           w.ref != w.lastKf || fewInliers;
+           (w.ref != w.lastKf && !w.placeFull) || fewInliers;
   if ((o.keyframe_translation_m > 0 && dist > o.keyframe_translation_m) ||
       (o.keyframe_rotation_deg > 0 && angDeg > o.keyframe_rotation_deg) || fewInliers)
     return true;

@@ -15,15 +15,16 @@ namespace roislam::frontend
 {
 namespace
 {
-/** Overlap policy: whether a registration against a keyframe may make it the
- *  reference. A keyframe without an ICP map (not a recent one: a revisited
- *  place) cannot have a poorly determined registration refined with depth
- *  (refineWithDepth), so it must not need that: at most icp_refine_sigma_m
- *  along its worst direction, and enough inliers not to make a keyframe. */
+/** Overlap policy, or a full place (keyframe_place_limit): whether a
+ *  registration against a keyframe may make it the reference. A keyframe
+ *  without an ICP map (not a recent one: a revisited place) cannot have a
+ *  poorly determined registration refined with depth (refineWithDepth), so
+ *  it must not need that: at most icp_refine_sigma_m along its worst
+ *  direction, and enough inliers not to make a keyframe. */
 bool acceptsReference(
-    bool hasIcpMap, const detail::TRegistration& r, const CRgbdOdometry::TOptions& o)
+    bool revisit, bool hasIcpMap, const detail::TRegistration& r, const CRgbdOdometry::TOptions& o)
 {
-  if (o.keyframe_policy != "overlap" || hasIcpMap)
+  if (!revisit || hasIcpMap)
     return true;
   if (static_cast<int>(r.inliers) < o.keyframe_min_inliers)
     return false;
@@ -57,7 +58,8 @@ void CRgbdOdometry::registerWithRecent(const TKeyframe& query, TFrameWork& w) co
     if (k == 0 || w.reg)
       w.res.matches = nm;
     if (w.reg && k + 1 < order.size() &&
-        !acceptsReference(m_impl->icpMaps.count(id) > 0, *w.reg, m_options))
+        !acceptsReference(
+            usesOverlapPolicy() || w.placeFull, m_impl->icpMaps.count(id) > 0, *w.reg, m_options))
     {
       // Kept in case no later candidate registers.
       if (!fallback)
@@ -86,13 +88,34 @@ void CRgbdOdometry::predictMotion(TFrameWork& w) const
     w.lastWorld = m_keyframes[I.lastRef].pose + I.lastRel;
   w.predictedWorld = w.lastWorld + I.velocity;
   w.predictedRel = w.predictedWorld - m_keyframes[w.lastKf].pose;
+  const std::size_t nTry = 1 + static_cast<std::size_t>(m_options.recent_keyframes);
   if (!usesOverlapPolicy())
+  {
+    const auto limit = static_cast<std::size_t>(m_options.keyframe_place_limit);
+    if (limit == 0)
+      return;
+    // A place that has its keyframes (a revisit): the nearest are the
+    // candidates. Otherwise the last keyframe, unless the previous frame
+    // still tracked an older one (it has just left a full place): the
+    // keyframe this frame will make is then tied to that one.
+    const auto place = detail::keyframesNear(
+        m_keyframes, w.predictedWorld, m_options.keyframe_translation_m,
+        m_options.keyframe_rotation_deg * M_PI / 180.0);
+    if (place.size() >= limit)
+    {
+      w.placeFull = true;
+      w.candidates.assign(place.begin(), place.begin() + std::min(nTry, place.size()));
+    }
+    else if (I.haveLast && I.lastRef != w.lastKf)
+      w.candidates = {I.lastRef};
+    if (!w.candidates.empty())
+      w.ref = w.candidates.front();
     return;
+  }
   // The reference: the newest keyframe whose view still overlaps the
   // predicted one enough (and within the motion bounds), else the one that
   // overlaps best, wherever it was made: a revisit tracks against the old
   // keyframes. 100 points per keyframe give the overlap to about 5 %.
-  const std::size_t nTry = 1 + static_cast<std::size_t>(m_options.recent_keyframes);
   const detail::TReferenceGate gate{
       m_options.keyframe_min_overlap, m_options.keyframe_translation_m,
       m_options.keyframe_rotation_deg * M_PI / 180.0};

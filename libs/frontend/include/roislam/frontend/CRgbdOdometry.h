@@ -133,6 +133,26 @@
  *                             its inliers below keyframe_min_inliers; the
  *                             motion thresholds, when > 0, stay upper bounds
  *                             (measured from the reference keyframe)
+ *  - keyframe_place_limit     int >= 0 (8; 0 = none): keyframe_policy = motion,
+ *                             the most keyframes a place may have, a place
+ *                             being the keyframes within keyframe_translation_m
+ *                             and keyframe_rotation_deg of the frame's
+ *                             predicted pose. Where it has that many, the
+ *                             frame is tracked against the nearest of them
+ *                             (an old keyframe is accepted as for the overlap
+ *                             policy) and becomes a keyframe only beyond the
+ *                             motion thresholds from it or below
+ *                             keyframe_min_inliers. New ground and the first
+ *                             few revisits are mapped as with no limit, so a
+ *                             place seen from several passes keeps several
+ *                             views (edges, loop closures); a long run that
+ *                             replays the same places stops adding keyframes
+ *                             there, and the map, memory and the back end's
+ *                             cost stop growing (tests/graphslam/soak_slowtest).
+ *                             8 is more views than the shared fr1 excerpts
+ *                             give any place (their results are those of no
+ *                             limit; 3 and 5 cost up to 9 % ATE there), and
+ *                             bounds the soak's map (README "Soak")
  *  - keyframe_min_overlap     [0, 1) (0.5): keyframe_policy = overlap, the
  *                             share of the reference keyframe's feature points
  *                             the frame's view must still contain (projected
@@ -273,6 +293,7 @@ class CRgbdOdometry : public mrpt::system::COutputLogger
     int keyframe_min_inliers = 20;
     std::string keyframe_policy = "motion";
     double keyframe_min_overlap = 0.5;
+    int keyframe_place_limit = 8;
     int recent_keyframes = 3;
     double ransac_threshold_m = 0.03;
     int ransac_max_iterations = 200;
