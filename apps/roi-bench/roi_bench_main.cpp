@@ -1,6 +1,7 @@
 // roi-bench: runs the dissertation's Tests 1-3 on the given sequences and
 // writes results.csv, charts and report.md (logic in roislam::bench::CBenchApp).
 #include <roislam/bench/CBenchApp.h>
+#include <roislam/common/ProcessTuning.h>
 
 #include <CLI/CLI.hpp>
 #include <iostream>
@@ -25,6 +26,11 @@ int main(int argc, char** argv)
   cli.add_option("--bin-dir", o.binDir, "Folder with roi-landmarks / roi-graphslam / cv-odometry");
   cli.add_option("--config-dir", o.configDir, "Folder with the apps' .ini files");
   cli.add_option("--reference", o.reference, "The dissertation's numbers (dissertation.json)");
+  cli.add_option(
+         "--speed-passes", o.speedPasses,
+         "Passes of the paired speed measurement after the runs (Test-2 versions stepped in "
+         "turn frame by frame; 0 = off: speed table from the single runs)")
+      ->capture_default_str();
   cli.add_option("--timeout", o.timeoutS, "Seconds per run before it is killed (0 = none)");
   cli.add_flag("--retry-failed", o.retryFailed, "Rerun runs recorded as failed");
   cli.add_option("--variant", o.variantSpecs, "Extra variant name:Section.key=value[,...]");
@@ -53,6 +59,9 @@ int main(int argc, char** argv)
   if (!o.planFile.empty() && cli.count("--tests") == 0)
     o.tests.clear();  // the plan file's tests
   o.charts = !noCharts;
+  // As the SLAM apps do, so that the paired speed measurement (in this
+  // process) times the pipelines as roi-graphslam runs them.
+  roislam::common::tuneAllocatorForImages();
   try
   {
     roislam::bench::CBenchApp app(o);

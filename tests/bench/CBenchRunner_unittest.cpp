@@ -4,6 +4,7 @@
 #include <roislam/bench/CProgressBar.h>
 #include <roislam/bench/CResultsCollector.h>
 #include <roislam/bench/ProcessUtils.h>
+#include <roislam/bench/TPairedCost.h>
 #include <roislam/testing/TestData.h>
 
 #include <filesystem>
@@ -48,6 +49,7 @@ struct Fixture
     o.charts = false;
     o.selfExe = "/usr/local/bin/roi-bench";
     o.referenceMethods = "none";  // the reference rows have their own test
+    o.speedPasses = 0;            // the paired speed stage has its own test
     return o;
   }
 };
@@ -129,6 +131,78 @@ TEST(CBenchRunner, runsResumesAndRecordsFailures)
   EXPECT_NE(
       csv.find(",failed,exit code 1: roi-graphslam: error: no ROI in frame 0,"), std::string::npos);
   EXPECT_TRUE(fs::exists(out + "/report.md"));
+}
+
+// The paired speed stage on the fake apps: it cannot measure (the fake
+// configs are no SLAM configs), which must be a recorded, reported failure
+// naming the config, with the strict ROI versions that failed left out.
+TEST(CBenchApp, pairedSpeedStageRecordsWhatItCouldNotMeasure)
+{
+  Fixture fx;
+  const std::string out = fx.tmp + "/out";
+  auto o = fx.appOptions(out);
+  o.tests = "2";
+  o.plan.features = {"orb"};
+  o.speedPasses = 1;
+  std::ostringstream sout, serr;
+  ASSERT_EQ(CBenchApp(o).run(sout, serr), 0) << serr.str();
+  const auto costs = loadPairedCosts(out + "/speed.json");
+  ASSERT_EQ(costs.size(), 2u);  // per sequence x extractor
+  for (const auto& c : costs)
+  {
+    EXPECT_EQ(c.feature, "orb");
+    EXPECT_EQ(c.passes, 1);
+    EXPECT_FALSE(c.ok());
+    EXPECT_NE(c.error.find(fx.tmp + "/config/"), std::string::npos) << c.error;
+    // Traditional first, then the ROI versions whose Test-2 run succeeded.
+    ASSERT_FALSE(c.versions.empty());
+    EXPECT_EQ(c.versions.front().key, "traditional");
+    const std::size_t left = c.sequence == "featureless" ? 2 : 0;
+    EXPECT_EQ(c.leftOut.size(), left) << c.sequence;
+    EXPECT_EQ(c.versions.size(), 11 - left) << c.sequence;
+    for (const auto& [key, why] : c.leftOut)
+    {
+      EXPECT_NE(key.find("/strict"), std::string::npos) << key;
+      EXPECT_NE(why.find("no ROI"), std::string::npos) << why;
+    }
+  }
+  EXPECT_NE(serr.str().find("warning: paired speed measurement textured, orb"), std::string::npos)
+      << serr.str();
+  const std::string md = readFile(out + "/report.md");
+  EXPECT_NE(md.find("- featureless, ORB: paired measurement FAILED: "), std::string::npos) << md;
+  EXPECT_NE(md.find("- featureless, ORB: roi_big/strict left out"), std::string::npos) << md;
+
+  // Resumed: the failed measurements are kept, unless --retry-failed.
+  std::ostringstream s2, e2;
+  ASSERT_EQ(CBenchApp(o).run(s2, e2), 0);
+  EXPECT_EQ(e2.str().find("paired speed measurement"), std::string::npos) << e2.str();
+  o.retryFailed = true;
+  std::ostringstream s3, e3;
+  ASSERT_EQ(CBenchApp(o).run(s3, e3), 0);
+  EXPECT_NE(e3.str().find("paired speed measurement"), std::string::npos) << e3.str();
+
+  // --speed-passes 0: no speed stage, and a malformed speed.json is the
+  // report's one-line error naming it.
+  o.retryFailed = false;
+  o.speedPasses = 0;
+  writeFileAtomically(out + "/speed.json", "{not json");
+  std::ostringstream s4, e4;
+  try
+  {
+    CBenchApp(o).run(s4, e4);
+    ADD_FAILURE() << "no error for a malformed speed.json";
+  }
+  catch (const std::runtime_error& e)
+  {
+    EXPECT_EQ(std::string(e.what()).rfind(out + "/speed.json: ", 0), 0u) << e.what();
+  }
+  EXPECT_THROW(
+      {
+        auto bad = o;
+        bad.speedPasses = -1;
+        CBenchApp app(bad);
+      },
+      std::invalid_argument);
 }
 
 TEST(CBenchApp, referenceRowsInReportAndCsv)

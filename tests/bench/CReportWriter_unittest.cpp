@@ -5,6 +5,7 @@
 #include <roislam/testing/TestData.h>
 
 #include <filesystem>
+#include <fstream>
 
 #include "FakeApps.h"
 
@@ -181,6 +182,108 @@ TEST(CReportWriter, tablesHaveOurAndDissertationCells)
               "0.0200 / 1.20 |"),
       std::string::npos)
       << md;
+}
+
+namespace
+{
+/** A paired cost entry for sequence `seq`, SURF: traditional and big ROI. */
+TPairedCost pairedEntry(const std::string& seq, double roiFrontMs)
+{
+  TPairedCost c;
+  c.sequence = seq;
+  c.sequencePath = "/data/" + seq;
+  c.feature = "surf";
+  c.maxFeatures = 600;
+  c.passes = 1;
+  TPairedCost::TVersion t;
+  t.key = "traditional";
+  t.frames = 10;
+  t.wallMsPerFrame = 50;
+  t.cpuMsPerFrame = 80;
+  t.frontEndMsPerFrame = 40;
+  t.fps = 20;
+  t.ateRmse = 0.01;
+  TPairedCost::TVersion b = t;
+  b.key = "roi_big/fallback";
+  b.wallMsPerFrame = 40;
+  b.cpuMsPerFrame = 60;
+  b.frontEndMsPerFrame = roiFrontMs;
+  b.fps = 25;
+  b.wallRatio = 0.8;
+  b.cpuRatio = 0.75;
+  b.frontEndRatio = roiFrontMs / 40;
+  c.versions = {t, b};
+  return c;
+}
+}  // namespace
+
+TEST(CReportWriter, speedTableFromThePairedFile)
+{
+  const std::string tmp = roislam::testing::makeTempDir("bench_paired");
+  auto a = pairedEntry("a", 20);
+  auto b = pairedEntry("b", 30);
+  b.leftOut.emplace_back("roi_big/strict", "its Test-2 run failed: exit code 1: no ROI");
+  TPairedCost failed;
+  failed.sequence = "b";
+  failed.feature = "orb";
+  failed.passes = 1;
+  failed.error = "roi_big: boom";
+  savePairedCosts({a, b, failed}, tmp + "/speed.json");
+  // Round trip.
+  const auto loaded = loadPairedCosts(tmp + "/speed.json");
+  ASSERT_EQ(loaded.size(), 3u);
+  EXPECT_EQ(loaded[1].toJson(), b.toJson());
+  EXPECT_FALSE(loaded[2].ok());
+
+  CReportWriter::TOptions o;
+  o.pairedCostFile = tmp + "/speed.json";
+  const std::string md = CReportWriter(o, reference()).render(fakeResults());
+  EXPECT_NE(md.find("## Speed (Test 2 versions, paired measurement)"), std::string::npos) << md;
+  EXPECT_NE(md.find("Figures from `speed.json`"), std::string::npos);
+  // Front end mean over the sequences, ratio of the sums (50 / 80), fps,
+  // wall and CPU cost ratios, peak RSS from the Test-2 runs (none: n/a).
+  EXPECT_NE(
+      md.find("| big ROI + fallback (**ours**) | SURF | 25.0 ± 7.1 (n=2) | 0.62 | 25.00 ± 0.00 "
+              "(n=2) | 0.80 | 0.75 | n/a |"),
+      std::string::npos)
+      << md;
+  EXPECT_NE(
+      md.find("| traditional | SURF | 40.0 ± 0.0 (n=2) | 1.00 | 20.00 ± 0.00 (n=2) | 1.00 | 1.00 "
+              "| n/a |"),
+      std::string::npos)
+      << md;
+  EXPECT_NE(
+      md.find("- b, SURF: roi_big/strict left out (its Test-2 run failed: exit code 1: no ROI)"),
+      std::string::npos)
+      << md;
+  EXPECT_NE(md.find("- b, ORB: paired measurement FAILED: roi_big: boom"), std::string::npos) << md;
+  // The single runs' table is not rendered.
+  EXPECT_EQ(md.find("wall time ratio vs traditional"), std::string::npos);
+
+  // Missing or malformed file: a one-line error naming it.
+  for (const std::string& text :
+       {std::string(), std::string("{\"runs\": 3"),
+        std::string("{\"format\": \"other\", \"runs\": []}"),
+        std::string("{\"format\": \"roi-bench paired cost 1\", "
+                    "\"runs\": [{\"sequence\": \"a\"}]}")})
+  {
+    const std::string file = tmp + (text.empty() ? "/missing.json" : "/bad.json");
+    if (!text.empty())
+      std::ofstream(file) << text;
+    o.pairedCostFile = file;
+    try
+    {
+      CReportWriter(o, reference());
+      ADD_FAILURE() << "no error for " << text;
+    }
+    catch (const std::runtime_error& e)
+    {
+      const std::string m = e.what();
+      EXPECT_EQ(m.rfind(file + ": ", 0), 0u) << m;
+      EXPECT_EQ(m.find('\n'), std::string::npos) << m;
+    }
+  }
+  fs::remove_all(tmp);
 }
 
 TEST(CDissertationReference, lookups)

@@ -25,7 +25,8 @@
  * (the three modes' odometries fed each frame in turn, so machine load hits
  * them alike: the ratio to trust on a shared machine); then the peak resident
  * memory (getrusage ru_maxrss). With --paired-slam-passes n, also the paired
- * end-to-end comparison of roi-graphslam's timed loop (CSlamPipeline: decoding
+ * end-to-end comparison of roi-graphslam's timed loop (bench::CPairedSlamCost,
+ * the measurement roi-bench's speed table uses; CSlamPipeline: decoding
  * and the ROI one frame ahead, front end, back end, final optimisation; the
  * shipped config/<mode>.ini with 600 features): fps, cost ratio
  * mode / traditional (the ROI modes' <= 1.05 target) and ATE per mode. The
@@ -60,15 +61,12 @@
  * Select stages with --benchmark_filter (e.g. 'FrontEnd', 'Extract/orb').
  */
 #include <benchmark/benchmark.h>
-#include <mrpt/config/CConfigFile.h>
+#include <roislam/bench/CPairedSlamCost.h>
 #include <roislam/common/ProcessTuning.h>
-#include <roislam/evaluation/CTrajectoryEvaluator.h>
 #include <roislam/features/CFeatureExtractor.h>
 #include <roislam/frontend/CRgbdOdometry.h>
-#include <roislam/graphslam/CSlamPipeline.h>
 #include <roislam/io/CFrameSource.h>
 #include <roislam/io/CameraPresets.h>
-#include <roislam/io/TumTrajectory.h>
 #include <roislam/matching/CFeatureMatcher.h>
 #include <roislam/matching/CHomographyLocator.h>
 #include <roislam/roi/CRoiDetector.h>
@@ -734,13 +732,11 @@ void printPairedTable(const CCollectingReporter& rep, int passes)
   std::cout << "ratio = cost(traditional) / cost(mode): > 1 means the ROI mode is faster.\n";
 }
 
-/** Paired end-to-end comparison, what roi-graphslam's fps measures: one
- *  CSlamPipeline per mode, configured by the shipped config/<mode>.ini (600
- *  features of the benchmarked type), each decoding its own copy of the
- *  sequence (and in ROI modes detecting the ROI) one frame ahead on a second
- *  thread, stepped in turn frame by frame (order rotated), timing each step
- *  plus the wait for its next frame, and the final optimisation. Prints wall
- *  and process-CPU cost per frame and the cost ratio mode / traditional. */
+/** Paired end-to-end comparison, what roi-graphslam's fps measures:
+ *  bench::CPairedSlamCost on the modes benchmarked, each configured by the
+ *  shipped config/<mode>.ini (600 features of the benchmarked type), stepped
+ *  in turn frame by frame (order rotated). Prints wall and process-CPU cost
+ *  per frame, the front end's own time and the cost ratios mode / traditional. */
 void printPairedSlamTable(const CCollectingReporter& rep, int passes, const std::string& configDir)
 {
   if (rep.frontEnd.empty() || passes <= 0)
@@ -767,89 +763,38 @@ void printPairedSlamTable(const CCollectingReporter& rep, int passes, const std:
     const std::vector<std::size_t> used = modesRun(rep, type);
     if (used.empty())
       continue;
-    double wallMs[3] = {0, 0, 0}, cpuMs[3] = {0, 0, 0}, frontMs[3] = {0, 0, 0};
-    std::size_t frames[3] = {0, 0, 0};
-    std::optional<double> ate[3];
-    for (int pass = 0; pass < passes; ++pass)
-    {
-      std::vector<std::unique_ptr<roislam::graphslam::CSlamPipeline>> pipe(3);
-      for (const std::size_t m : used)
-      {
-        const std::string ini = configDir + "/" + roislam::frontend::toString(modes[m]) + ".ini";
-        if (!fs::exists(ini))
-          throw std::runtime_error(ini + ": no such config");
-        const mrpt::config::CConfigFile file(ini);
-        auto cfg = roislam::graphslam::CSlamContext::loadConfig(file, ini);
-        cfg.frontEnd.extractor.feature_type = type;
-        cfg.frontEnd.extractor.max_features = kMatchCap;
-        auto source = roislam::io::CFrameSource::open(d.path);
-        // As roi-graphslam: the readout is the sensor's unless the ini sets it.
-        if (!file.keyExists("FrontEnd", "rolling_shutter_ms"))
-          cfg.frontEnd.rolling_shutter_ms = source->sensor().sensor.frameReadoutMs();
-        pipe[m] = std::make_unique<roislam::graphslam::CSlamPipeline>(cfg, std::move(source));
-        pipe[m]->waitForPrefetch();
-      }
-      bool more = true;
-      for (std::size_t k = 0; more && k < d.frames.size(); ++k)
-        for (std::size_t j = 0; j < used.size(); ++j)
-        {
-          const std::size_t m = used[(j + k) % used.size()];
-          timed(
-              [&]
-              {
-                more = pipe[m]->step() && more;
-                pipe[m]->waitForPrefetch();
-              },
-              wallMs[m], cpuMs[m]);
-        }
-      for (const std::size_t m : used)
-      {
-        timed([&] { pipe[m]->finish(); }, wallMs[m], cpuMs[m]);
-        frames[m] += pipe[m]->records().size();
-        // The front end's own time (frames.csv frontend_ms: decode excluded).
-        for (const auto& r : pipe[m]->records())
-          frontMs[m] += r.result.times.total_ms;
-        // Same figure as roi-graphslam's: the runs are the app's runs.
-        const auto gt = pipe[m]->source().groundTruthFile();
-        if (gt && fs::exists(*gt))
-        {
-          try
-          {
-            ate[m] = roislam::evaluation::CTrajectoryEvaluator()
-                         .evaluate(roislam::io::loadTumTrajectory(*gt), pipe[m]->trajectory())
-                         .ate.rmse;
-          }
-          catch (const std::exception&)
-          {
-            ate[m].reset();  // too short for the evaluation: no figure
-          }
-        }
-      }
-    }
-    const bool haveTrad = used.front() == 0;
+    roislam::bench::CPairedSlamCost::TOptions o;
+    o.sequence = d.path;
+    o.feature = type;
+    o.max_features = kMatchCap;
+    o.passes = passes;
+    o.max_frames = d.frames.size();
     for (const std::size_t m : used)
     {
-      const double n = static_cast<double>(std::max<std::size_t>(frames[m], 1));
-      std::cout << std::left << std::setw(12) << roislam::frontend::toString(modes[m])
-                << std::setw(8) << toString(type) << std::right << std::fixed
-                << std::setprecision(1) << std::setw(8) << 1e3 * n / wallMs[m]
-                << std::setprecision(2) << std::setw(14) << wallMs[m] / n;
-      if (haveTrad)
-        std::cout << std::setw(16) << wallMs[m] / wallMs[0];
-      else
-        std::cout << std::setw(16) << "n/a";
-      std::cout << std::setw(18) << cpuMs[m] / n;
-      if (haveTrad)
-        std::cout << std::setw(20) << cpuMs[m] / cpuMs[0];
-      else
-        std::cout << std::setw(20) << "n/a";
-      std::cout << std::setw(14) << frontMs[m] / n;
-      if (haveTrad)
-        std::cout << std::setw(16) << frontMs[m] / frontMs[0];
-      else
-        std::cout << std::setw(16) << "n/a";
-      if (ate[m])
-        std::cout << std::setprecision(4) << std::setw(8) << *ate[m];
+      const std::string mode = roislam::frontend::toString(modes[m]);
+      o.versions.push_back({mode, "", configDir + "/" + mode + ".ini", {}});
+    }
+    const auto cost = roislam::bench::CPairedSlamCost(o).run();
+    // The ratios are to the first mode run: shown only when it is traditional.
+    const bool haveTrad = used.front() == 0;
+    const auto ratio = [&](double r) -> std::string
+    {
+      if (!haveTrad)
+        return "n/a";
+      std::ostringstream ss;
+      ss << std::fixed << std::setprecision(2) << r;
+      return ss.str();
+    };
+    for (const auto& v : cost.versions)
+    {
+      std::cout << std::left << std::setw(12) << v.key << std::setw(8) << toString(type)
+                << std::right << std::fixed << std::setprecision(1) << std::setw(8) << v.fps
+                << std::setprecision(2) << std::setw(14) << v.wallMsPerFrame << std::setw(16)
+                << ratio(v.wallRatio) << std::setw(18) << v.cpuMsPerFrame << std::setw(20)
+                << ratio(v.cpuRatio) << std::setw(14) << v.frontEndMsPerFrame << std::setw(16)
+                << ratio(v.frontEndRatio);
+      if (v.ateRmse)
+        std::cout << std::setprecision(4) << std::setw(8) << *v.ateRmse;
       else
         std::cout << std::setw(8) << "n/a";
       std::cout << "\n";

@@ -2,6 +2,7 @@
 
 #include <roislam/bench/CChartWriter.h>
 #include <roislam/bench/CDissertationReference.h>
+#include <roislam/bench/CPairedSlamCost.h>
 #include <roislam/bench/CProgressBar.h>
 #include <roislam/bench/CReportWriter.h>
 #include <roislam/bench/CResultsCollector.h>
@@ -36,9 +37,9 @@ void checkBenchFolder(const std::string& dir)
 {
   common::COutputFolder::TOptions o;
   o.overwrite = true;
-  o.known = {"runs", "configs", "results.csv", "report.md", "charts"};
-  // Temporary names of results.csv / report.md being written.
-  o.knownPrefixes = {"results.csv.", "report.md."};
+  o.known = {"runs", "configs", "results.csv", "report.md", "charts", "speed.json"};
+  // Temporary names of results.csv / report.md / speed.json being written.
+  o.knownPrefixes = {"results.csv.", "report.md.", "speed.json."};
   common::COutputFolder::checkReplaceable(dir, o);
 }
 }  // namespace
@@ -49,6 +50,8 @@ CBenchApp::CBenchApp(const TOptions& options) : m_options(options)
     throw std::invalid_argument("--output-dir is required");
   if (m_options.jobs < 1)
     throw std::invalid_argument("--jobs must be >= 1");
+  if (m_options.speedPasses < 0)
+    throw std::invalid_argument("--speed-passes must be >= 0");
   if (m_options.selfExe.empty())
     m_options.selfExe = selfExecutablePath();
   // A bare --merge (re-make the report of --output-dir) may arrive as one empty value.
@@ -190,6 +193,8 @@ void CBenchApp::writeOutputs(const std::vector<TRunRecord>& records, std::ostrea
   CResultsCollector::writeCsv(records, (out / "results.csv").string());
   CReportWriter::TOptions ro;
   ro.jobs = m_options.jobs;
+  if (fs::exists(out / "speed.json"))
+    ro.pairedCostFile = (out / "speed.json").string();
   if (m_options.charts)
   {
     CChartWriter charts;
@@ -217,12 +222,177 @@ void CBenchApp::writeOutputs(const std::vector<TRunRecord>& records, std::ostrea
   CReportWriter(ro, ref).write(records, (out / "report.md").string());
 }
 
+namespace
+{
+/** The measurement CBenchApp would make now for an entry, to compare with one
+ *  found in speed.json. */
+bool sameMeasurement(const TPairedCost& a, const TPairedCost& b)
+{
+  if (a.sequencePath != b.sequencePath || a.feature != b.feature ||
+      a.maxFeatures != b.maxFeatures || a.passes != b.passes || a.maxFrames != b.maxFrames ||
+      a.versions.size() != b.versions.size())
+    return false;
+  for (std::size_t k = 0; k < a.versions.size(); ++k)
+    if (a.versions[k].key != b.versions[k].key || a.versions[k].iniFile != b.versions[k].iniFile)
+      return false;
+  return true;
+}
+}  // namespace
+
+void CBenchApp::measurePairedCosts(const std::vector<TRunRecord>& records, std::ostream& err) const
+{
+  // Test-2 records grouped by sequence x extractor, in plan order.
+  std::vector<std::vector<const TRunRecord*>> groups;
+  for (const auto& r : records)
+  {
+    if (r.run.test != 2)
+      continue;
+    auto g = std::find_if(
+        groups.begin(), groups.end(),
+        [&](const auto& grp)
+        {
+          return grp.front()->run.sequence == r.run.sequence &&
+                 grp.front()->run.feature == r.run.feature;
+        });
+    if (g == groups.end())
+      groups.push_back({&r});
+    else
+      g->push_back(&r);
+  }
+  if (groups.empty())
+    return;
+  const std::string file = (fs::path(m_options.outputDir) / "speed.json").string();
+  std::vector<TPairedCost> previous;
+  if (fs::exists(file))
+    previous = loadPairedCosts(file);
+  std::vector<TPairedCost> costs;
+  for (const auto& group : groups)
+  {
+    const TRunRecord& first = *group.front();
+    TPairedCost planned;
+    planned.sequence = first.run.sequence;
+    planned.sequencePath = first.run.sequencePath;
+    planned.feature = first.run.feature;
+    planned.maxFeatures = first.run.maxFeatures;
+    planned.passes = m_options.speedPasses;
+    // Traditional first: the ratios' reference.
+    std::vector<const TRunRecord*> ordered;
+    for (const auto* r : group)
+      if (r->run.mode == "traditional")
+        ordered.insert(ordered.begin(), r);
+      else
+        ordered.push_back(r);
+    CPairedSlamCost::TOptions o;
+    o.sequence = planned.sequencePath;
+    o.max_features = planned.maxFeatures > 0 ? planned.maxFeatures : -1;
+    o.passes = planned.passes;
+    for (const auto* r : ordered)
+    {
+      // A version that could not run the whole sequence alone (the strict
+      // ROI when it loses frames) has no cost to compare.
+      if (!r->ok)
+      {
+        planned.leftOut.emplace_back(
+            r->run.versionKey(), "its Test-2 run failed: " + r->failureReason);
+        continue;
+      }
+      CPairedSlamCost::TVersion v;
+      v.key = r->run.versionKey();
+      v.label = CReportWriter::versionLabel(*r);
+      v.iniFile = r->run.baseIni;
+      v.overrides = r->run.iniOverrides;
+      // As the app's --mode, which overrides the ini's.
+      v.overrides.push_back({"FrontEnd", "mode", r->run.mode});
+      o.versions.push_back(v);
+      TPairedCost::TVersion pv;
+      pv.key = v.key;
+      pv.iniFile = v.iniFile;
+      planned.versions.push_back(pv);
+    }
+    const std::string what = planned.sequence + ", " + planned.feature;
+    if (ordered.front()->run.mode != "traditional" || !ordered.front()->ok)
+    {
+      planned.versions.clear();
+      planned.error = "no successful traditional Test-2 run to compare with";
+    }
+    else if (planned.versions.size() < 2)
+    {
+      planned.versions.clear();
+      planned.error = "no ROI version to compare with traditional";
+    }
+    // Measured before for the same versions and passes: kept (a failed
+    // measurement too, unless --retry-failed).
+    const auto kept = std::find_if(
+        previous.begin(), previous.end(),
+        [&](const TPairedCost& p)
+        {
+          return planned.error.empty() && p.sequence == planned.sequence &&
+                 sameMeasurement(p, planned) && (p.ok() || !m_options.retryFailed);
+        });
+    if (kept != previous.end())
+    {
+      costs.push_back(*kept);
+      savePairedCosts(costs, file);
+      continue;
+    }
+    if (planned.error.empty())
+    {
+      err << "roi-bench: paired speed measurement " << what << ": " << o.versions.size()
+          << " versions, " << o.passes << " pass(es)\n";
+      try
+      {
+        o.feature = features::featureTypeFromString(planned.feature);
+        const TPairedCost measured = CPairedSlamCost(o).run();
+        planned.versions = measured.versions;
+      }
+      catch (const std::exception& e)
+      {
+        // The versions stay (without figures) to tell what was measured.
+        planned.error = e.what();
+      }
+    }
+    if (!planned.error.empty())
+      err << "roi-bench: warning: paired speed measurement " << what << ": " << planned.error
+          << "\n";
+    costs.push_back(planned);
+    savePairedCosts(costs, file);
+  }
+}
+
+void CBenchApp::mergePairedCosts() const
+{
+  std::vector<TPairedCost> costs;
+  bool any = false;
+  for (const auto& dir : m_options.mergeDirs)
+  {
+    const fs::path f = fs::path(dir) / "speed.json";
+    if (!fs::exists(f))
+      continue;
+    any = true;
+    for (auto& c : loadPairedCosts(f.string()))
+    {
+      // A later folder's entry for the same sequence and extractor wins.
+      const auto same = std::find_if(
+          costs.begin(), costs.end(),
+          [&](const TPairedCost& p) { return p.sequence == c.sequence && p.feature == c.feature; });
+      if (same != costs.end())
+        *same = std::move(c);
+      else
+        costs.push_back(std::move(c));
+    }
+  }
+  // Without any, the output's own speed.json (if any) stays.
+  if (any)
+    savePairedCosts(costs, (fs::path(m_options.outputDir) / "speed.json").string());
+}
+
 int CBenchApp::run(std::ostream& out, std::ostream& err)
 {
   if (m_options.merge)
   {
     checkBenchFolder(m_options.outputDir);
     auto records = CResultsCollector::merge(m_options.mergeDirs, m_options.outputDir);
+    mergePairedCosts();
     if (!m_options.datasets.empty())
       records = CResultsCollector::orderByPlan(records, plan());
     writeOutputs(records, err);
@@ -248,6 +418,9 @@ int CBenchApp::run(std::ostream& out, std::ostream& err)
   std::size_t failed = 0;
   for (const auto& r : records)
     failed += r.ok ? 0 : 1;
+  // Only a whole plan has every version of a sequence to pair.
+  if (m_options.speedPasses > 0 && m_options.only.empty())
+    measurePairedCosts(records, err);
   if (!m_options.noReport)
     writeOutputs(records, err);
   out << records.size() << " runs, " << failed << " failed; results in " << m_options.outputDir

@@ -261,6 +261,8 @@ std::string oneLine(std::string s)
 CReportWriter::CReportWriter(const TOptions& options, const CDissertationReference& reference)
     : m_options(options), m_ref(reference)
 {
+  if (!m_options.pairedCostFile.empty())
+    m_paired = loadPairedCosts(m_options.pairedCostFile);
 }
 
 std::string CReportWriter::versionLabel(const TRunRecord& rec)
@@ -630,7 +632,125 @@ void CReportWriter::renderTest3(std::ostream& md, const TRecordList& t3) const
 
 void CReportWriter::renderSpeed(std::ostream& md, const TRecordList& t2) const
 {
+  if (m_paired.empty())
+    renderSpeedUnpaired(md, t2);
+  else
+    renderSpeedPaired(md, t2);
+}
+
+void CReportWriter::renderSpeedPaired(std::ostream& md, const TRecordList& t2) const
+{
+  int passes = 0;
+  for (const auto& c : m_paired)
+    passes = std::max(passes, c.passes);
+  md << "## Speed (Test 2 versions, paired measurement)\n\n"
+        "Figures from `speed.json`, not from the Test-2 runs: per sequence and extractor, "
+        "roi-bench ran traditional and every Test-2 ROI version again in one process, each "
+        "as roi-graphslam runs it (CSlamPipeline: decoding and the ROI one frame ahead, front "
+        "end, back end, final optimisation; the run's ini, variant overrides and feature cap), "
+        "stepped in turn frame by frame with the order rotated, so load on the machine hits "
+        "every version alike ("
+     << passes
+     << " pass(es); bench::CPairedSlamCost, the measurement of `roislam-stage-bench "
+        "--paired-slam-passes`). A version whose Test-2 run failed on a sequence (the strict "
+        "ROI when it loses frames) is left out of that sequence's measurement.\n\n"
+        "front end = the front end's own time per frame, decoding excluded (frames.csv "
+        "frontend_ms), mean over the sequences; front-end ratio = its sum over the sequences "
+        "over traditional's on the same sequences; fps = frames / wall time of the version's "
+        "steps (waiting for its next frame included) and final optimisation, mean over the "
+        "sequences; cost ratio = the same ratio for that wall time (< 1: cheaper than "
+        "traditional); CPU cost ratio = the same for process CPU time. Peak RSS = largest "
+        "peak RSS of the version's Test-2 runs (each alone in its process).\n\n"
+        "| version | extractor | front end (ms/frame) | front-end ratio vs traditional | fps "
+        "| cost ratio vs traditional | CPU cost ratio | peak RSS (MiB) "
+        "|\n|---|---|---|---|---|---|---|---|\n";
+  // Versions in the report's order (traditional, small, big; plan order
+  // within), then any only the paired file knows.
+  std::vector<std::string> keys = versionKeys(t2);
+  std::vector<std::string> feats;
+  for (const auto& f : kFeatures)
+    for (const auto& c : m_paired)
+      if (c.feature == f && std::find(feats.begin(), feats.end(), f) == feats.end())
+        feats.push_back(f);
+  for (const auto& c : m_paired)
+  {
+    for (const auto& v : c.versions)
+      if (std::find(keys.begin(), keys.end(), v.key) == keys.end())
+        keys.push_back(v.key);
+    if (std::find(feats.begin(), feats.end(), c.feature) == feats.end())
+      feats.push_back(c.feature);
+  }
+  for (const auto& vk : keys)
+    for (const auto& f : feats)
+    {
+      std::vector<double> front, fps;
+      double feV = 0, feT = 0, wallV = 0, wallT = 0, cpuV = 0, cpuT = 0;
+      std::string label;
+      for (const auto& c : m_paired)
+      {
+        if (c.feature != f || !c.ok())
+          continue;
+        for (const auto& v : c.versions)
+        {
+          if (v.key != vk)
+            continue;
+          const auto& t = c.versions.front();  // traditional
+          front.push_back(v.frontEndMsPerFrame);
+          fps.push_back(v.fps);
+          feV += v.frontEndMsPerFrame;
+          feT += t.frontEndMsPerFrame;
+          wallV += v.wallMsPerFrame;
+          wallT += t.wallMsPerFrame;
+          cpuV += v.cpuMsPerFrame;
+          cpuT += t.cpuMsPerFrame;
+          if (label.empty())
+            label = v.label;
+        }
+      }
+      if (front.empty())
+        continue;
+      double rss = 0;
+      for (const auto* r : t2)
+        if (r->run.versionKey() == vk && r->run.feature == f)
+          rss = std::max(rss, r->number("peak_rss_mb").value_or(r->maxRssMb));
+      const auto cell = [](const std::vector<double>& values, int decimals)
+      {
+        const auto ms = *meanStd(values);
+        return num(ms.mean, decimals) + (ms.n > 1 ? " ± " + num(ms.std, decimals) : "") +
+               " (n=" + std::to_string(ms.n) + ")";
+      };
+      const auto ratio = [](double a, double b) { return b > 0 ? num(a / b, 2) : "n/a"; };
+      const std::string recLabel = labelOf(t2, vk);
+      md << "| " << (recLabel != vk || label.empty() ? recLabel : label) << " | "
+         << mrpt::system::upperCase(f) << " | " << cell(front, 1) << " | " << ratio(feV, feT)
+         << " | " << cell(fps, 2) << " | " << ratio(wallV, wallT) << " | " << ratio(cpuV, cpuT)
+         << " | " << (rss > 0 ? num(rss, 0) : std::string("n/a")) << " |\n";
+    }
+  md << "\n";
+  bool notes = false;
+  for (const auto& c : m_paired)
+  {
+    const std::string where = c.sequence + ", " + mrpt::system::upperCase(c.feature);
+    if (!c.error.empty())
+    {
+      md << "- " << where << ": paired measurement FAILED: " << oneLine(c.error) << "\n";
+      notes = true;
+    }
+    for (const auto& [key, why] : c.leftOut)
+    {
+      md << "- " << where << ": " << key << " left out (" << oneLine(why) << ")\n";
+      notes = true;
+    }
+  }
+  if (notes)
+    md << "\n";
+}
+
+void CReportWriter::renderSpeedUnpaired(std::ostream& md, const TRecordList& t2) const
+{
   md << "## Speed (Test 2 runs, measured in this benchmark)\n\n"
+        "No paired measurement in this folder (roi-bench --speed-passes 0, or runs merged "
+        "without one): every figure below is from the Test-2 runs themselves.\n\n"
         "fps = frames / wall time of the app (summary.json); ratio = sum of this version's "
         "wall time over the sum of the traditional version's, on the sequences where both "
         "succeeded; peak memory = largest peak RSS (app's figure, else wait4's). Each figure "

@@ -13,8 +13,18 @@
  * source tree's share/roi-bench/dissertation.json, else
  * <prefix>/share/roislam/roi-bench/dissertation.json.
  *
+ * Speed: after the runs, for each Test-2 sequence x extractor, a paired cost
+ * measurement (CPairedSlamCost, in this process) of traditional and every
+ * Test-2 ROI version whose Test-2 run on it succeeded, `speedPasses` passes,
+ * written to speed.json (entry by entry, so an interrupted stage keeps what
+ * it measured); report.md's speed table comes from it. Not with --only or
+ * --emit-jobs (a part of the runs); --merge combines the folders' speed.json.
+ * An entry already in speed.json for the same versions and passes is kept
+ * (a failed one is measured again with --retry-failed).
+ *
  * Output folder: resumable, so an existing one is used again when it holds
- * only roi-bench's entries (runs/, configs/, results.csv, report.md, charts/);
+ * only roi-bench's entries (runs/, configs/, results.csv, report.md, charts/,
+ * speed.json);
  * anything else is refused. A run's folder is complete when its run.json,
  * written last, exists (a run without it is redone from scratch, the app
  * writing its own output folder complete or absent); results.csv and
@@ -59,6 +69,9 @@ class CBenchApp
     /** cv-odometry methods of the reference rows, "none" = no reference rows
      *  (CExperimentPlan::parseReferenceMethods). */
     std::string referenceMethods = "rgbd,icp,rgbdicp";
+    /** Passes of the paired speed measurement after the runs (0 = none:
+     *  the speed table from the Test-2 runs alone). */
+    int speedPasses = 1;
     std::string selfExe;             //!< path of roi-bench ("" = /proc/self/exe)
     CExperimentPlan::TOptions plan;  //!< tests/variants are set from the fields above
   };
@@ -82,5 +95,9 @@ class CBenchApp
  private:
   TOptions m_options;
   void writeOutputs(const std::vector<TRunRecord>& records, std::ostream& err) const;
+  /** The paired speed stage: speed.json from the Test-2 records. */
+  void measurePairedCosts(const std::vector<TRunRecord>& records, std::ostream& err) const;
+  /** --merge: the merged folders' speed.json entries into the output's. */
+  void mergePairedCosts() const;
 };
 }  // namespace roislam::bench

@@ -3,12 +3,15 @@
  * mean +- std of ATE / RPE per version x extractor, durations, per-sequence
  * table; Test 3; Test 4, EKF-SLAM vs odometry vs graph SLAM; the reference rows,
  * OpenCV's cv::rgbd odometries beside our best and worst run; speed) from run records,
- * each figure next to the dissertation's. Failed runs appear as failures,
- * never dropped. Called by CBenchApp after the runs.
+ * each figure next to the dissertation's. The speed table comes from the
+ * paired measurement (speed.json, CPairedSlamCost) when there is one, else
+ * from the Test-2 runs' own summaries. Failed runs appear as failures, never
+ * dropped. Called by CBenchApp after the runs.
  */
 #pragma once
 
 #include <roislam/bench/CDissertationReference.h>
+#include <roislam/bench/TPairedCost.h>
 #include <roislam/bench/TRunRecord.h>
 
 #include <functional>
@@ -34,8 +37,13 @@ class CReportWriter
   {
     int jobs = 1;                     //!< parallel runs used (timings are per run, under that load)
     std::vector<std::string> charts;  //!< PNG paths relative to the report, embedded
+    /** roi-bench's speed.json (paired cost per sequence x extractor); "" =
+     *  none: the speed table from the Test-2 runs' single measurements. */
+    std::string pairedCostFile;
   };
 
+  /** Reads options.pairedCostFile when set: throws std::runtime_error
+   *  "<file>: ..." (one line) when it is missing or malformed. */
   CReportWriter(const TOptions& options, const CDissertationReference& reference);
 
   /** The markdown text for these records (in plan order). */
@@ -71,10 +79,14 @@ class CReportWriter
       const std::string& refLabel, int decimals, const TGetter& get, const TReference& ref) const;
   void renderTest2PerSequence(std::ostream& md, const TRecordList& t2) const;
   void renderTest3(std::ostream& md, const TRecordList& t3) const;
+  /** From the paired figures when there are some, else renderSpeedUnpaired. */
   void renderSpeed(std::ostream& md, const TRecordList& t2) const;
+  void renderSpeedPaired(std::ostream& md, const TRecordList& t2) const;
+  void renderSpeedUnpaired(std::ostream& md, const TRecordList& t2) const;
   void renderFailures(std::ostream& md, const std::vector<TRunRecord>& records) const;
 
   TOptions m_options;
   CDissertationReference m_ref;
+  std::vector<TPairedCost> m_paired;  //!< from options.pairedCostFile
 };
 }  // namespace roislam::bench
