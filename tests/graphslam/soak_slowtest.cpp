@@ -11,23 +11,32 @@
  *    shipped keyframe_place_limit stops revisits adding keyframes);
  *  - the last block's per-frame cost exceeds 1.5 x that of frames
  *    1000-2000 + 2 ms (the machine is shared; a cost growing with the map
- *    doubles).
+ *    doubles);
+ *  - the last block's ATE (final trajectory against the ground truth of the
+ *    frames it replays) exceeds 1.5 x the first block's + 5 mm: revisits
+ *    tracked against old keyframes must keep the map as accurate.
  * ROISLAM_SOAK_INI replaces the configuration (another mode or keyframe
  * policy). ROISLAM_SOAK_FRAMES overrides the length (at least 2000, e.g. for
  * a quick look). Label slow: 10 000 frames take about 4 min per sequence on
  * one core of an idle machine. */
 #include <gtest/gtest.h>
 #include <roislam/common/CStrictIniFile.h>
+#include <roislam/evaluation/CTrajectoryEvaluator.h>
 #include <roislam/graphslam/CSlamPipeline.h>
 #include <roislam/io/CPingPongFrameSource.h>
+#include <roislam/io/TumTrajectory.h>
 #include <roislam/testing/TestData.h>
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
+#include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -56,7 +65,74 @@ struct TCheckpoint
   /** The back end's parts (edges and loop closures, optimiser), and MRPT's
    *  spanning-tree pass after each new node (in the wall time only). */
   double edgeMs = 0, optimizerMs = 0, treeMs = 0;
+  /** ATE RMSE of the block's frames in the final trajectory (after the
+   *  last optimisation) against the ground truth of the frames they replay,
+   *  each block aligned on its own, m; NaN without ground truth. */
+  double ateM = std::nan("");
 };
+
+/** Ground truth of every delivered frame of a there-and-back run, stamped
+ *  with the delivered (remapped) stamps: the replayed frame's pose, its
+ *  colour stamp associated with the sequence's ground truth as the TUM
+ *  tools do (nearest, within 20 ms). Empty without ground truth. */
+roislam::io::TTrajectory pingPongTruth(
+    const std::string& sequence, const roislam::io::CPingPongFrameSource& played,
+    const roislam::io::TTrajectory& estimate)
+{
+  auto original = roislam::io::CFrameSource::open(sequence);
+  const auto gtFile = original->groundTruthFile();
+  if (!gtFile)
+    return {};
+  const roislam::io::TTrajectory gt = roislam::io::loadTumTrajectory(*gtFile);
+  std::map<double, mrpt::poses::CPose3D> byStamp;
+  for (const auto& g : gt)
+    byStamp.emplace(g.timestamp, g.pose);
+  std::vector<std::optional<mrpt::poses::CPose3D>> truthOfSource;
+  while (const auto f = original->next())
+  {
+    std::optional<mrpt::poses::CPose3D> best;
+    double bestDt = 0.02;
+    const auto it = byStamp.lower_bound(f->timestamp);
+    for (auto c = it == byStamp.begin() ? it : std::prev(it); c != byStamp.end(); ++c)
+    {
+      const double dt = std::abs(c->first - f->timestamp);
+      if (dt <= bestDt)
+      {
+        bestDt = dt;
+        best = c->second;
+      }
+      if (c->first > f->timestamp)
+        break;
+    }
+    truthOfSource.push_back(best);
+  }
+  roislam::io::TTrajectory out;
+  for (std::size_t k = 0; k < estimate.size(); ++k)
+  {
+    const std::size_t i = played.sourceIndex(k);
+    if (i < truthOfSource.size() && truthOfSource[i])
+      out.push_back({estimate[k].timestamp, *truthOfSource[i]});
+  }
+  return out;
+}
+
+/** ATE RMSE of the estimate's poses with stamps in [from, to) against
+ *  `truth`, aligned on their own; NaN when too few. */
+double blockAte(
+    const roislam::io::TTrajectory& truth, const roislam::io::TTrajectory& estimate, double from,
+    double to)
+{
+  roislam::io::TTrajectory gt, est;
+  for (const auto& t : truth)
+    if (t.timestamp >= from && t.timestamp < to)
+      gt.push_back(t);
+  for (const auto& e : estimate)
+    if (e.timestamp >= from && e.timestamp < to)
+      est.push_back(e);
+  if (gt.size() < 10 || est.size() < 10)
+    return std::nan("");
+  return roislam::evaluation::CTrajectoryEvaluator().evaluate(gt, est).ate.rmse;
+}
 
 std::vector<TCheckpoint> soak(const std::string& sequence, std::size_t frames)
 {
@@ -64,11 +140,10 @@ std::vector<TCheckpoint> soak(const std::string& sequence, std::size_t frames)
   const std::string ini = env ? env : roislam::testing::sourceDir() + "/config/roi_big.ini";
   const auto config =
       graphslam::CSlamContext::loadConfig(roislam::common::CStrictIniFile(ini), ini);
-  graphslam::CSlamPipeline p(
-      config,
-      std::make_unique<roislam::io::CPingPongFrameSource>(
-          roislam::io::CFrameSource::open(sequence), frames),
-      ini);
+  auto played = std::make_unique<roislam::io::CPingPongFrameSource>(
+      roislam::io::CFrameSource::open(sequence), frames);
+  const roislam::io::CPingPongFrameSource& playedRef = *played;
+  graphslam::CSlamPipeline p(config, std::move(played), ini);
   std::vector<TCheckpoint> out;
   std::vector<double> wall;
   wall.reserve(frames);
@@ -110,18 +185,47 @@ std::vector<TCheckpoint> soak(const std::string& sequence, std::size_t frames)
   }
   EXPECT_EQ(p.records().size(), frames);
   EXPECT_EQ(p.context().odometry().stats().lost, 0u);
+  // Accuracy over the run: the final trajectory, block by block, against the
+  // ground truth of the frames each block replays.
+  p.finish();
+  const roislam::io::TTrajectory estimate = p.trajectory();
+  EXPECT_EQ(estimate.size(), frames);
+  const roislam::io::TTrajectory truth = pingPongTruth(sequence, playedRef, estimate);
+  for (std::size_t b = 0; b < out.size() && truth.size() == estimate.size(); ++b)
+  {
+    const std::size_t from = b == 0 ? 0 : out[b - 1].frames, to = out[b].frames;
+    const double t1 = to < estimate.size() ? estimate[to].timestamp : estimate.back().timestamp + 1;
+    out[b].ateM = blockAte(truth, estimate, estimate[from].timestamp, t1);
+    std::printf(
+        "%-36s frames %5zu-%5zu  ATE %.4f m (final trajectory, block aligned on its own)\n",
+        fs::path(sequence).filename().c_str(), from, to, out[b].ateM);
+  }
+  if (truth.size() == estimate.size())
+    std::printf(
+        "%-36s all %zu frames  ATE %.4f m\n", fs::path(sequence).filename().c_str(),
+        estimate.size(),
+        roislam::evaluation::CTrajectoryEvaluator().evaluate(truth, estimate).ate.rmse);
+  std::fflush(stdout);
   return out;
 }
 
 /** Peak RSS growth allowed after the first 1000 frames (MiB). */
 constexpr double kRssGrowthMb = 128;
 
+/** How much worse the last block's ATE may be than the first's: 1.5 x + 5 mm
+ *  (a map that drifts or breaks on revisits is worse by far). */
+constexpr double kAteGrowthFactor = 1.5, kAteGrowthM = 0.005;
+
 void check(const std::vector<TCheckpoint>& c)
 {
   ASSERT_GE(c.size(), 2u);
-  const TCheckpoint& first = c[0];   // frames 0-1000: RSS reference
+  const TCheckpoint& first = c[0];   // frames 0-1000: RSS and ATE reference
   const TCheckpoint& steady = c[1];  // frames 1000-2000: cost reference, past the start-up
   const TCheckpoint& last = c.back();
+  if (!std::isnan(first.ateM))
+    EXPECT_LT(last.ateM, kAteGrowthFactor * first.ateM + kAteGrowthM)
+        << "the map degrades: ATE " << first.ateM << " m over the first " << first.frames
+        << " frames, " << last.ateM << " m over the last block";
   EXPECT_LT(last.costMs, 1.5 * steady.costMs + 2.0)
       << "per-frame cost grows: " << steady.costMs << " ms at " << steady.frames << " frames, "
       << last.costMs << " ms at " << last.frames;
