@@ -24,6 +24,7 @@
 #include <roislam/evaluation/CTrajectoryEvaluator.h>
 #include <roislam/graphslam/CSlamPipeline.h>
 #include <roislam/io/CPingPongFrameSource.h>
+#include <roislam/io/StampAssociation.h>
 #include <roislam/io/TumTrajectory.h>
 #include <roislam/testing/TestData.h>
 
@@ -34,8 +35,6 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
-#include <iterator>
-#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -74,7 +73,7 @@ struct TCheckpoint
 /** Ground truth of every delivered frame of a there-and-back run, stamped
  *  with the delivered (remapped) stamps: the replayed frame's pose, its
  *  colour stamp associated with the sequence's ground truth as the TUM
- *  tools do (nearest, within 20 ms). Empty without ground truth. */
+ *  tools do (io::associateStamps, within 20 ms). Empty without ground truth. */
 roislam::io::TTrajectory pingPongTruth(
     const std::string& sequence, const roislam::io::CPingPongFrameSource& played,
     const roislam::io::TTrajectory& estimate)
@@ -84,28 +83,14 @@ roislam::io::TTrajectory pingPongTruth(
   if (!gtFile)
     return {};
   const roislam::io::TTrajectory gt = roislam::io::loadTumTrajectory(*gtFile);
-  std::map<double, mrpt::poses::CPose3D> byStamp;
-  for (const auto& g : gt)
-    byStamp.emplace(g.timestamp, g.pose);
-  std::vector<std::optional<mrpt::poses::CPose3D>> truthOfSource;
+  std::vector<double> frameStamps, gtStamps;
   while (const auto f = original->next())
-  {
-    std::optional<mrpt::poses::CPose3D> best;
-    double bestDt = 0.02;
-    const auto it = byStamp.lower_bound(f->timestamp);
-    for (auto c = it == byStamp.begin() ? it : std::prev(it); c != byStamp.end(); ++c)
-    {
-      const double dt = std::abs(c->first - f->timestamp);
-      if (dt <= bestDt)
-      {
-        bestDt = dt;
-        best = c->second;
-      }
-      if (c->first > f->timestamp)
-        break;
-    }
-    truthOfSource.push_back(best);
-  }
+    frameStamps.push_back(f->timestamp);
+  for (const auto& g : gt)
+    gtStamps.push_back(g.timestamp);
+  std::vector<std::optional<mrpt::poses::CPose3D>> truthOfSource(frameStamps.size());
+  for (const auto& [i, j] : roislam::io::associateStamps(frameStamps, gtStamps, 0.02))
+    truthOfSource[i] = gt[j].pose;
   roislam::io::TTrajectory out;
   for (std::size_t k = 0; k < estimate.size(); ++k)
   {
