@@ -62,6 +62,7 @@
  */
 #include <benchmark/benchmark.h>
 #include <roislam/bench/CPairedSlamCost.h>
+#include <roislam/bench/CostTiming.h>
 #include <roislam/common/ProcessTuning.h>
 #include <roislam/features/CFeatureExtractor.h>
 #include <roislam/frontend/CRgbdOdometry.h>
@@ -71,7 +72,6 @@
 #include <roislam/matching/CHomographyLocator.h>
 #include <roislam/roi/CRoiDetector.h>
 #include <sys/resource.h>
-#include <time.h>
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
@@ -100,6 +100,8 @@
 namespace
 {
 namespace fs = std::filesystem;
+using roislam::bench::processCpuMs;
+using roislam::bench::timed;
 using roislam::features::CFeatureExtractor;
 using roislam::features::EFeatureType;
 using roislam::features::TFeatureSet;
@@ -476,28 +478,6 @@ void bmHomographyLocate(benchmark::State& state, EFeatureType type)
         state.counters["inliers"] =
             located ? static_cast<double>(inliers) / static_cast<double>(located) : 0.0;
       });
-}
-
-/** CPU time of the whole process (all OpenCV worker threads), ms: a cost
- *  figure that, unlike wall time, does not grow when other programs share the
- *  cores. */
-double processCpuMs()
-{
-  timespec t{};
-  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
-  return static_cast<double>(t.tv_sec) * 1e3 + static_cast<double>(t.tv_nsec) * 1e-6;
-}
-
-/** Runs f, adding its wall-clock and process-CPU milliseconds to the sums. */
-template <class F>
-void timed(F&& f, double& wallMs, double& cpuMs)
-{
-  const double cpu0 = processCpuMs();
-  const auto t0 = std::chrono::steady_clock::now();
-  f();
-  wallMs +=
-      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-  cpuMs += processCpuMs() - cpu0;
 }
 
 void bmFrontEnd(benchmark::State& state, EFrontEndMode mode, EFeatureType type)

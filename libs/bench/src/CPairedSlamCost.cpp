@@ -1,5 +1,6 @@
 #include "roislam/bench/CPairedSlamCost.h"
 
+#include <roislam/bench/CostTiming.h>
 #include <roislam/common/CStrictIniFile.h>
 #include <roislam/common/TextFiles.h>
 #include <roislam/evaluation/CTrajectoryEvaluator.h>
@@ -8,7 +9,6 @@
 #include <roislam/graphslam/SensorFacts.h>
 #include <roislam/io/CFrameSource.h>
 #include <roislam/io/TumTrajectory.h>
-#include <time.h>
 
 #include <algorithm>
 #include <chrono>
@@ -46,25 +46,6 @@ TLoadedVersion loadVersion(const CPairedSlamCost::TVersion& v, const CPairedSlam
   return out;
 }
 
-double processCpuMs()
-{
-  timespec t{};
-  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
-  return static_cast<double>(t.tv_sec) * 1e3 + static_cast<double>(t.tv_nsec) * 1e-6;
-}
-
-/** Runs f, adding its wall-clock and process-CPU milliseconds to the sums. */
-template <class F>
-void timed(F&& f, double& wallMs, double& cpuMs)
-{
-  const double cpu0 = processCpuMs();
-  const auto t0 = std::chrono::steady_clock::now();
-  f();
-  wallMs +=
-      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-  cpuMs += processCpuMs() - cpu0;
-}
-
 /** Sums over the passes of one version. */
 struct TSums
 {
@@ -72,6 +53,72 @@ struct TSums
   std::size_t frames = 0, lastFrames = 0, lastLost = 0;
   std::optional<double> ate;
 };
+
+/** Adds a finished pass of one version to its sums: frames, lost frames,
+ *  front-end time, and the ATE of this pass. */
+void addPass(const graphslam::CSlamPipeline& p, TSums& s)
+{
+  const auto& records = p.records();
+  s.frames += records.size();
+  s.lastFrames = records.size();
+  s.lastLost = static_cast<std::size_t>(
+      std::count_if(records.begin(), records.end(), [](const auto& r) { return !r.result.pose; }));
+  // The front end's own time (frames.csv frontend_ms: decode excluded).
+  for (const auto& r : records)
+    s.frontMs += r.result.times.total_ms;
+  // Same figure as roi-graphslam's: the runs are the app's runs.
+  s.ate.reset();
+  const auto gt = p.source().groundTruthFile();
+  if (gt && fs::exists(*gt))
+  {
+    try
+    {
+      s.ate = evaluation::CTrajectoryEvaluator()
+                  .evaluate(io::loadTumTrajectory(*gt), p.trajectory())
+                  .ate.rmse;
+    }
+    catch (const std::exception&)
+    {
+      // Too short for the evaluation: no figure.
+    }
+  }
+}
+
+/** The measurement's result from the versions' sums: per-frame figures
+ *  and ratios to the first version. */
+TPairedCost summarize(const CPairedSlamCost::TOptions& o, const std::vector<TSums>& sums)
+{
+  const auto& versions = o.versions;
+  TPairedCost out;
+  out.sequencePath = o.sequence;
+  out.feature = features::toString(o.feature);
+  out.maxFeatures = o.max_features;
+  out.passes = o.passes;
+  out.maxFrames = o.max_frames;
+  const auto ratio = [](double a, double b) { return b > 0 ? a / b : 0.0; };
+  for (std::size_t m = 0; m < sums.size(); ++m)
+  {
+    const TSums& s = sums[m];
+    const double frames = static_cast<double>(std::max<std::size_t>(s.frames, 1));
+    TPairedCost::TVersion v;
+    v.key = versions[m].key;
+    v.label = versions[m].label;
+    v.iniFile = versions[m].iniFile;
+    v.overrides = versions[m].overrides;
+    v.frames = s.lastFrames;
+    v.lostFrames = s.lastLost;
+    v.wallMsPerFrame = s.wallMs / frames;
+    v.cpuMsPerFrame = s.cpuMs / frames;
+    v.frontEndMsPerFrame = s.frontMs / frames;
+    v.fps = s.wallMs > 0 ? 1e3 * frames / s.wallMs : 0;
+    v.ateRmse = s.ate;
+    v.wallRatio = ratio(s.wallMs, sums[0].wallMs);
+    v.cpuRatio = ratio(s.cpuMs, sums[0].cpuMs);
+    v.frontEndRatio = ratio(s.frontMs, sums[0].frontMs);
+    out.versions.push_back(std::move(v));
+  }
+  return out;
+}
 }  // namespace
 
 CPairedSlamCost::CPairedSlamCost(TOptions options) : m_options(std::move(options))
@@ -135,61 +182,10 @@ TPairedCost CPairedSlamCost::run() const
     for (std::size_t m = 0; m < n; ++m)
     {
       guarded(m, [&] { timed([&] { pipe[m]->finish(); }, sums[m].wallMs, sums[m].cpuMs); });
-      const auto& records = pipe[m]->records();
-      sums[m].frames += records.size();
-      sums[m].lastFrames = records.size();
-      sums[m].lastLost = static_cast<std::size_t>(std::count_if(
-          records.begin(), records.end(), [](const auto& r) { return !r.result.pose; }));
-      // The front end's own time (frames.csv frontend_ms: decode excluded).
-      for (const auto& r : records)
-        sums[m].frontMs += r.result.times.total_ms;
-      // Same figure as roi-graphslam's: the runs are the app's runs.
-      sums[m].ate.reset();
-      const auto gt = pipe[m]->source().groundTruthFile();
-      if (gt && fs::exists(*gt))
-      {
-        try
-        {
-          sums[m].ate = evaluation::CTrajectoryEvaluator()
-                            .evaluate(io::loadTumTrajectory(*gt), pipe[m]->trajectory())
-                            .ate.rmse;
-        }
-        catch (const std::exception&)
-        {
-          // Too short for the evaluation: no figure.
-        }
-      }
+      addPass(*pipe[m], sums[m]);
     }
   }
 
-  TPairedCost out;
-  out.sequencePath = m_options.sequence;
-  out.feature = features::toString(m_options.feature);
-  out.maxFeatures = m_options.max_features;
-  out.passes = m_options.passes;
-  out.maxFrames = m_options.max_frames;
-  const auto ratio = [](double a, double b) { return b > 0 ? a / b : 0.0; };
-  for (std::size_t m = 0; m < n; ++m)
-  {
-    const TSums& s = sums[m];
-    const double frames = static_cast<double>(std::max<std::size_t>(s.frames, 1));
-    TPairedCost::TVersion v;
-    v.key = versions[m].key;
-    v.label = versions[m].label;
-    v.iniFile = versions[m].iniFile;
-    v.overrides = versions[m].overrides;
-    v.frames = s.lastFrames;
-    v.lostFrames = s.lastLost;
-    v.wallMsPerFrame = s.wallMs / frames;
-    v.cpuMsPerFrame = s.cpuMs / frames;
-    v.frontEndMsPerFrame = s.frontMs / frames;
-    v.fps = s.wallMs > 0 ? 1e3 * frames / s.wallMs : 0;
-    v.ateRmse = s.ate;
-    v.wallRatio = ratio(s.wallMs, sums[0].wallMs);
-    v.cpuRatio = ratio(s.cpuMs, sums[0].cpuMs);
-    v.frontEndRatio = ratio(s.frontMs, sums[0].frontMs);
-    out.versions.push_back(std::move(v));
-  }
-  return out;
+  return summarize(m_options, sums);
 }
 }  // namespace roislam::bench
