@@ -24,6 +24,7 @@
 #include <roislam/evaluation/CTrajectoryEvaluator.h>
 #include <roislam/graphslam/CSlamPipeline.h>
 #include <roislam/io/CPingPongFrameSource.h>
+#include <roislam/io/CTumFrameSource.h>
 #include <roislam/io/StampAssociation.h>
 #include <roislam/io/TumTrajectory.h>
 #include <roislam/testing/TestData.h>
@@ -70,6 +71,24 @@ struct TCheckpoint
   double ateM = std::nan("");
 };
 
+/** The colour stamps of a source's frames in delivery order: a TUM folder's
+ *  from its associated index (CTumFrameSource::entries(), the stamps next()
+ *  gives), without decoding an image; any other source (a rawlog) by reading
+ *  it through. */
+std::vector<double> frameStampsOf(roislam::io::CFrameSource& source)
+{
+  std::vector<double> stamps;
+  if (const auto* tum = dynamic_cast<const roislam::io::CTumFrameSource*>(&source))
+  {
+    for (const auto& e : tum->entries())
+      stamps.push_back(e.rgbStamp);
+    return stamps;
+  }
+  while (const auto f = source.next())
+    stamps.push_back(f->timestamp);
+  return stamps;
+}
+
 /** Ground truth of every delivered frame of a there-and-back run, stamped
  *  with the delivered (remapped) stamps: the replayed frame's pose, its
  *  colour stamp associated with the sequence's ground truth as the TUM
@@ -83,9 +102,8 @@ roislam::io::TTrajectory pingPongTruth(
   if (!gtFile)
     return {};
   const roislam::io::TTrajectory gt = roislam::io::loadTumTrajectory(*gtFile);
-  std::vector<double> frameStamps, gtStamps;
-  while (const auto f = original->next())
-    frameStamps.push_back(f->timestamp);
+  const std::vector<double> frameStamps = frameStampsOf(*original);
+  std::vector<double> gtStamps;
   for (const auto& g : gt)
     gtStamps.push_back(g.timestamp);
   std::vector<std::optional<mrpt::poses::CPose3D>> truthOfSource(frameStamps.size());

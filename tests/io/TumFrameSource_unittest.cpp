@@ -121,6 +121,19 @@ TEST(TumFrameSource, AssociationIsGreedyOneToOneWithinWindow)
   EXPECT_FALSE(src.groundTruthFile());
   EXPECT_FALSE(src.accelerometerFile());
 
+  // next() stamps each frame with its entry's stamps, so entries() gives a
+  // sequence's frame stamps without decoding (as the soak test reads them).
+  for (std::size_t k = 0; k < e.size(); ++k)
+  {
+    const auto frame = src.next();
+    ASSERT_TRUE(frame);
+    EXPECT_EQ(frame->index, k);
+    EXPECT_EQ(frame->timestamp, e[k].rgbStamp);
+    EXPECT_EQ(frame->depthTimestamp, e[k].depthStamp);
+  }
+  EXPECT_FALSE(src.next());
+  src.rewind();
+
   // Frames carry the images of the associated files (depth image index 1 for
   // the second frame) and metres = raw / 5000.
   src.next();

@@ -224,24 +224,9 @@ void CBenchApp::writeOutputs(const std::vector<TRunRecord>& records, std::ostrea
 
 namespace
 {
-/** The measurement CBenchApp would make now for an entry, to compare with one
- *  found in speed.json. */
-bool sameMeasurement(const TPairedCost& a, const TPairedCost& b)
+/** Test-2 records grouped by sequence x extractor, in plan order. */
+std::vector<std::vector<const TRunRecord*>> test2Groups(const std::vector<TRunRecord>& records)
 {
-  if (a.sequencePath != b.sequencePath || a.feature != b.feature ||
-      a.maxFeatures != b.maxFeatures || a.passes != b.passes || a.maxFrames != b.maxFrames ||
-      a.versions.size() != b.versions.size())
-    return false;
-  for (std::size_t k = 0; k < a.versions.size(); ++k)
-    if (a.versions[k].key != b.versions[k].key || a.versions[k].iniFile != b.versions[k].iniFile)
-      return false;
-  return true;
-}
-}  // namespace
-
-void CBenchApp::measurePairedCosts(const std::vector<TRunRecord>& records, std::ostream& err) const
-{
-  // Test-2 records grouped by sequence x extractor, in plan order.
   std::vector<std::vector<const TRunRecord*>> groups;
   for (const auto& r : records)
   {
@@ -259,6 +244,134 @@ void CBenchApp::measurePairedCosts(const std::vector<TRunRecord>& records, std::
     else
       g->push_back(&r);
   }
+  return groups;
+}
+
+/** One group's measurement as planned: its speed.json entry (the versions
+ *  to measure, those left out and why, or the error when there is nothing
+ *  to compare) and the options that measure it. */
+struct TPairedCostPlan
+{
+  TPairedCost entry;
+  CPairedSlamCost::TOptions options;
+};
+
+/** The versions of one sequence x extractor to measure, traditional first
+ *  (the ratios' reference), `passes` passes. */
+TPairedCostPlan planGroup(const std::vector<const TRunRecord*>& group, int passes)
+{
+  const TRunRecord& first = *group.front();
+  TPairedCostPlan plan;
+  TPairedCost& planned = plan.entry;
+  planned.sequence = first.run.sequence;
+  planned.sequencePath = first.run.sequencePath;
+  planned.feature = first.run.feature;
+  planned.maxFeatures = first.run.maxFeatures;
+  planned.passes = passes;
+  std::vector<const TRunRecord*> ordered;
+  for (const auto* r : group)
+    if (r->run.mode == "traditional")
+      ordered.insert(ordered.begin(), r);
+    else
+      ordered.push_back(r);
+  CPairedSlamCost::TOptions& o = plan.options;
+  o.sequence = planned.sequencePath;
+  o.max_features = planned.maxFeatures > 0 ? planned.maxFeatures : -1;
+  o.passes = planned.passes;
+  for (const auto* r : ordered)
+  {
+    // A version that could not run the whole sequence alone (the strict
+    // ROI when it loses frames) has no cost to compare.
+    if (!r->ok)
+    {
+      planned.leftOut.emplace_back(
+          r->run.versionKey(), "its Test-2 run failed: " + r->failureReason);
+      continue;
+    }
+    CPairedSlamCost::TVersion v;
+    v.key = r->run.versionKey();
+    v.label = CReportWriter::versionLabel(*r);
+    v.iniFile = r->run.baseIni;
+    v.overrides = r->run.iniOverrides;
+    // As the app's --mode, which overrides the ini's.
+    v.overrides.push_back({"FrontEnd", "mode", r->run.mode});
+    o.versions.push_back(v);
+    TPairedCost::TVersion pv;
+    pv.key = v.key;
+    pv.iniFile = v.iniFile;
+    planned.versions.push_back(pv);
+  }
+  if (ordered.front()->run.mode != "traditional" || !ordered.front()->ok)
+  {
+    planned.versions.clear();
+    planned.error = "no successful traditional Test-2 run to compare with";
+  }
+  else if (planned.versions.size() < 2)
+  {
+    planned.versions.clear();
+    planned.error = "no ROI version to compare with traditional";
+  }
+  return plan;
+}
+
+/** The measurement CBenchApp would make now for an entry, to compare with one
+ *  found in speed.json. */
+bool sameMeasurement(const TPairedCost& a, const TPairedCost& b)
+{
+  if (a.sequencePath != b.sequencePath || a.feature != b.feature ||
+      a.maxFeatures != b.maxFeatures || a.passes != b.passes || a.maxFrames != b.maxFrames ||
+      a.versions.size() != b.versions.size())
+    return false;
+  for (std::size_t k = 0; k < a.versions.size(); ++k)
+    if (a.versions[k].key != b.versions[k].key || a.versions[k].iniFile != b.versions[k].iniFile)
+      return false;
+  return true;
+}
+
+/** The speed.json entry of a planned group: the one in `previous` for the
+ *  same versions and passes when there is one (a failed one too, unless
+ *  retryFailed), else measured now; a failed measurement keeps its versions
+ *  (without figures) to tell what was tried. Progress and warnings to err. */
+TPairedCost measureOrKeep(
+    TPairedCostPlan plan, const std::vector<TPairedCost>& previous, bool retryFailed,
+    std::ostream& err)
+{
+  TPairedCost& planned = plan.entry;
+  CPairedSlamCost::TOptions& o = plan.options;
+  const auto kept = std::find_if(
+      previous.begin(), previous.end(),
+      [&](const TPairedCost& p)
+      {
+        return planned.error.empty() && p.sequence == planned.sequence &&
+               sameMeasurement(p, planned) && (p.ok() || !retryFailed);
+      });
+  if (kept != previous.end())
+    return *kept;
+  const std::string what = planned.sequence + ", " + planned.feature;
+  if (planned.error.empty())
+  {
+    err << "roi-bench: paired speed measurement " << what << ": " << o.versions.size()
+        << " versions, " << o.passes << " pass(es)\n";
+    try
+    {
+      o.feature = features::featureTypeFromString(planned.feature);
+      const TPairedCost measured = CPairedSlamCost(o).run();
+      planned.versions = measured.versions;
+    }
+    catch (const std::exception& e)
+    {
+      planned.error = e.what();
+    }
+  }
+  if (!planned.error.empty())
+    err << "roi-bench: warning: paired speed measurement " << what << ": " << planned.error << "\n";
+  return planned;
+}
+}  // namespace
+
+void CBenchApp::measurePairedCosts(const std::vector<TRunRecord>& records, std::ostream& err) const
+{
+  const auto groups = test2Groups(records);
   if (groups.empty())
     return;
   const std::string file = (fs::path(m_options.outputDir) / "speed.json").string();
@@ -268,93 +381,9 @@ void CBenchApp::measurePairedCosts(const std::vector<TRunRecord>& records, std::
   std::vector<TPairedCost> costs;
   for (const auto& group : groups)
   {
-    const TRunRecord& first = *group.front();
-    TPairedCost planned;
-    planned.sequence = first.run.sequence;
-    planned.sequencePath = first.run.sequencePath;
-    planned.feature = first.run.feature;
-    planned.maxFeatures = first.run.maxFeatures;
-    planned.passes = m_options.speedPasses;
-    // Traditional first: the ratios' reference.
-    std::vector<const TRunRecord*> ordered;
-    for (const auto* r : group)
-      if (r->run.mode == "traditional")
-        ordered.insert(ordered.begin(), r);
-      else
-        ordered.push_back(r);
-    CPairedSlamCost::TOptions o;
-    o.sequence = planned.sequencePath;
-    o.max_features = planned.maxFeatures > 0 ? planned.maxFeatures : -1;
-    o.passes = planned.passes;
-    for (const auto* r : ordered)
-    {
-      // A version that could not run the whole sequence alone (the strict
-      // ROI when it loses frames) has no cost to compare.
-      if (!r->ok)
-      {
-        planned.leftOut.emplace_back(
-            r->run.versionKey(), "its Test-2 run failed: " + r->failureReason);
-        continue;
-      }
-      CPairedSlamCost::TVersion v;
-      v.key = r->run.versionKey();
-      v.label = CReportWriter::versionLabel(*r);
-      v.iniFile = r->run.baseIni;
-      v.overrides = r->run.iniOverrides;
-      // As the app's --mode, which overrides the ini's.
-      v.overrides.push_back({"FrontEnd", "mode", r->run.mode});
-      o.versions.push_back(v);
-      TPairedCost::TVersion pv;
-      pv.key = v.key;
-      pv.iniFile = v.iniFile;
-      planned.versions.push_back(pv);
-    }
-    const std::string what = planned.sequence + ", " + planned.feature;
-    if (ordered.front()->run.mode != "traditional" || !ordered.front()->ok)
-    {
-      planned.versions.clear();
-      planned.error = "no successful traditional Test-2 run to compare with";
-    }
-    else if (planned.versions.size() < 2)
-    {
-      planned.versions.clear();
-      planned.error = "no ROI version to compare with traditional";
-    }
-    // Measured before for the same versions and passes: kept (a failed
-    // measurement too, unless --retry-failed).
-    const auto kept = std::find_if(
-        previous.begin(), previous.end(),
-        [&](const TPairedCost& p)
-        {
-          return planned.error.empty() && p.sequence == planned.sequence &&
-                 sameMeasurement(p, planned) && (p.ok() || !m_options.retryFailed);
-        });
-    if (kept != previous.end())
-    {
-      costs.push_back(*kept);
-      savePairedCosts(costs, file);
-      continue;
-    }
-    if (planned.error.empty())
-    {
-      err << "roi-bench: paired speed measurement " << what << ": " << o.versions.size()
-          << " versions, " << o.passes << " pass(es)\n";
-      try
-      {
-        o.feature = features::featureTypeFromString(planned.feature);
-        const TPairedCost measured = CPairedSlamCost(o).run();
-        planned.versions = measured.versions;
-      }
-      catch (const std::exception& e)
-      {
-        // The versions stay (without figures) to tell what was measured.
-        planned.error = e.what();
-      }
-    }
-    if (!planned.error.empty())
-      err << "roi-bench: warning: paired speed measurement " << what << ": " << planned.error
-          << "\n";
-    costs.push_back(planned);
+    costs.push_back(measureOrKeep(
+        planGroup(group, m_options.speedPasses), previous, m_options.retryFailed, err));
+    // Entry by entry: an interrupted stage keeps what it measured.
     savePairedCosts(costs, file);
   }
 }

@@ -3,17 +3,18 @@
 #include <mrpt/system/string_utils.h>
 #include <roislam/bench/ProcessUtils.h>
 
-#include <algorithm>
 #include <array>
 #include <cmath>
-#include <functional>
-#include <iomanip>
 #include <map>
-#include <set>
 #include <sstream>
+
+#include "CSpeedTableWriter.h"
+#include "ReportTables.h"
 
 namespace roislam::bench
 {
+using namespace report;
+
 std::optional<TMeanStd> meanStd(const std::vector<double>& values)
 {
   if (values.empty())
@@ -35,93 +36,9 @@ std::optional<TMeanStd> meanStd(const std::vector<double>& values)
 
 namespace
 {
-const std::vector<std::string> kFeatures{"surf", "sift", "orb"};
-
-std::string num(double v, int decimals)
-{
-  std::ostringstream ss;
-  ss << std::fixed << std::setprecision(decimals) << v;
-  return ss.str();
-}
-
 std::string optNum(const std::optional<double>& v, int decimals)
 {
   return v ? num(*v, decimals) : "n/a";
-}
-
-/** Ordered distinct values of f(record). */
-template <class F>
-std::vector<std::string> distinct(const std::vector<const TRunRecord*>& recs, F f)
-{
-  std::vector<std::string> out;
-  for (const auto* r : recs)
-  {
-    const std::string v = f(*r);
-    if (std::find(out.begin(), out.end(), v) == out.end())
-      out.push_back(v);
-  }
-  return out;
-}
-
-/** Features present, in the dissertation's order SURF, SIFT, ORB. */
-std::vector<std::string> featuresOf(const std::vector<const TRunRecord*>& recs)
-{
-  std::vector<std::string> out;
-  for (const auto& f : kFeatures)
-    for (const auto* r : recs)
-      if (r->run.feature == f)
-      {
-        out.push_back(f);
-        break;
-      }
-  return out;
-}
-
-int modeRank(const std::string& mode)
-{
-  if (mode == "traditional")
-    return 0;
-  if (mode == "roi_small")
-    return 1;
-  if (mode == "roi_big")
-    return 2;
-  return 3;
-}
-
-/** Aggregated figure over sequences for one table cell. */
-struct TCell
-{
-  std::vector<double> values;
-  std::size_t failed = 0, total = 0, missingValue = 0;
-};
-
-std::string renderCell(const TCell& c, int decimals, bool withStd)
-{
-  if (c.total == 0)
-    return "—";
-  if (c.values.empty())
-  {
-    if (c.failed == c.total)
-      return "FAILED (" + std::to_string(c.failed) + "/" + std::to_string(c.total) + ")";
-    return "n/a";
-  }
-  const auto ms = *meanStd(c.values);
-  std::string s = num(ms.mean, decimals);
-  if (withStd && ms.n > 1)
-    s += " ± " + num(ms.std, decimals);
-  std::string note = "n=" + std::to_string(ms.n);
-  if (c.failed)
-    note += ", " + std::to_string(c.failed) + " failed";
-  return s + " (" + note + ")";
-}
-
-double durationOf(const TRunRecord& r)
-{
-  if (auto w = r.number("wall_s"))
-    return *w;
-  if (auto d = r.number("duration_s"))
-    return *d;
-  return r.wallS;
 }
 
 /** Records of one test, in plan order. */
@@ -132,56 +49,6 @@ std::vector<const TRunRecord*> select(const std::vector<const TRunRecord*>& all,
     if (r->run.test == test)
       out.push_back(r);
   return out;
-}
-
-/** Version keys of records ordered traditional, small ROI, big ROI (plan order within). */
-std::vector<std::string> versionKeys(const std::vector<const TRunRecord*>& recs)
-{
-  auto keys = distinct(recs, [](const TRunRecord& r) { return r.run.versionKey(); });
-  std::stable_sort(
-      keys.begin(), keys.end(),
-      [](const std::string& a, const std::string& b)
-      { return modeRank(a.substr(0, a.find('/'))) < modeRank(b.substr(0, b.find('/'))); });
-  return keys;
-}
-
-using TGetter = std::function<std::optional<double>(const TRunRecord&)>;
-
-/** The figure `get` of the runs of one version and extractor. */
-TCell cellFor(
-    const std::vector<const TRunRecord*>& recs, const std::string& vk, const std::string& f,
-    const TGetter& get)
-{
-  TCell c;
-  for (const auto* r : recs)
-  {
-    if (r->run.versionKey() != vk || r->run.feature != f)
-      continue;
-    ++c.total;
-    if (!r->ok)
-    {
-      ++c.failed;
-      continue;
-    }
-    if (auto v = get(*r))
-      c.values.push_back(*v);
-    else
-      ++c.missingValue;
-  }
-  return c;
-}
-
-std::string labelOf(const std::vector<const TRunRecord*>& recs, const std::string& vk)
-{
-  for (const auto* r : recs)
-    if (r->run.versionKey() == vk)
-      return CReportWriter::versionLabel(*r);
-  return vk;
-}
-
-TGetter getter(const std::string& key)
-{
-  return [key](const TRunRecord& r) { return r.number(key); };
 }
 
 /** The record of one sequence, version and extractor, or null. */
@@ -248,14 +115,6 @@ std::string test1Cell(const TRunRecord* rec, std::array<std::vector<double>, 3>&
   }
   return cell;
 }
-
-std::string oneLine(std::string s)
-{
-  for (char& c : s)
-    if (c == '|' || c == '\n')
-      c = ' ';
-  return s;
-}
 }  // namespace
 
 CReportWriter::CReportWriter(const TOptions& options, const CDissertationReference& reference)
@@ -313,7 +172,7 @@ std::string CReportWriter::render(const std::vector<TRunRecord>& records) const
   if (!reference.empty())
     renderReference(md, reference, all);
   if (!t2.empty())
-    renderSpeed(md, t2);
+    CSpeedTableWriter(m_paired).render(md, t2);
   renderFailures(md, records);
   if (!m_options.charts.empty())
   {
@@ -627,184 +486,6 @@ void CReportWriter::renderTest3(std::ostream& md, const TRecordList& t3) const
        << renderCell(cellFor(t3, vk, f, [](const TRunRecord& r) { return durationOf(r); }), 1, true)
        << " | " << ref("duration_min", 2) << " |\n";
   }
-  md << "\n";
-}
-
-void CReportWriter::renderSpeed(std::ostream& md, const TRecordList& t2) const
-{
-  if (m_paired.empty())
-    renderSpeedUnpaired(md, t2);
-  else
-    renderSpeedPaired(md, t2);
-}
-
-void CReportWriter::renderSpeedPaired(std::ostream& md, const TRecordList& t2) const
-{
-  int passes = 0;
-  for (const auto& c : m_paired)
-    passes = std::max(passes, c.passes);
-  md << "## Speed (Test 2 versions, paired measurement)\n\n"
-        "Figures from `speed.json`, not from the Test-2 runs: per sequence and extractor, "
-        "roi-bench ran traditional and every Test-2 ROI version again in one process, each "
-        "as roi-graphslam runs it (CSlamPipeline: decoding and the ROI one frame ahead, front "
-        "end, back end, final optimisation; the run's ini, variant overrides and feature cap), "
-        "stepped in turn frame by frame with the order rotated, so load on the machine hits "
-        "every version alike ("
-     << passes
-     << " pass(es); bench::CPairedSlamCost, the measurement of `roislam-stage-bench "
-        "--paired-slam-passes`). A version whose Test-2 run failed on a sequence (the strict "
-        "ROI when it loses frames) is left out of that sequence's measurement.\n\n"
-        "front end = the front end's own time per frame, decoding excluded (frames.csv "
-        "frontend_ms), mean over the sequences; front-end ratio = its sum over the sequences "
-        "over traditional's on the same sequences; fps = frames / wall time of the version's "
-        "steps (waiting for its next frame included) and final optimisation, mean over the "
-        "sequences; cost ratio = the same ratio for that wall time (< 1: cheaper than "
-        "traditional); CPU cost ratio = the same for process CPU time. Peak RSS = largest "
-        "peak RSS of the version's Test-2 runs (each alone in its process).\n\n"
-        "| version | extractor | front end (ms/frame) | front-end ratio vs traditional | fps "
-        "| cost ratio vs traditional | CPU cost ratio | peak RSS (MiB) "
-        "|\n|---|---|---|---|---|---|---|---|\n";
-  // Versions in the report's order (traditional, small, big; plan order
-  // within), then any only the paired file knows.
-  std::vector<std::string> keys = versionKeys(t2);
-  std::vector<std::string> feats;
-  for (const auto& f : kFeatures)
-    for (const auto& c : m_paired)
-      if (c.feature == f && std::find(feats.begin(), feats.end(), f) == feats.end())
-        feats.push_back(f);
-  for (const auto& c : m_paired)
-  {
-    for (const auto& v : c.versions)
-      if (std::find(keys.begin(), keys.end(), v.key) == keys.end())
-        keys.push_back(v.key);
-    if (std::find(feats.begin(), feats.end(), c.feature) == feats.end())
-      feats.push_back(c.feature);
-  }
-  for (const auto& vk : keys)
-    for (const auto& f : feats)
-    {
-      std::vector<double> front, fps;
-      double feV = 0, feT = 0, wallV = 0, wallT = 0, cpuV = 0, cpuT = 0;
-      std::string label;
-      for (const auto& c : m_paired)
-      {
-        if (c.feature != f || !c.ok())
-          continue;
-        for (const auto& v : c.versions)
-        {
-          if (v.key != vk)
-            continue;
-          const auto& t = c.versions.front();  // traditional
-          front.push_back(v.frontEndMsPerFrame);
-          fps.push_back(v.fps);
-          feV += v.frontEndMsPerFrame;
-          feT += t.frontEndMsPerFrame;
-          wallV += v.wallMsPerFrame;
-          wallT += t.wallMsPerFrame;
-          cpuV += v.cpuMsPerFrame;
-          cpuT += t.cpuMsPerFrame;
-          if (label.empty())
-            label = v.label;
-        }
-      }
-      if (front.empty())
-        continue;
-      double rss = 0;
-      for (const auto* r : t2)
-        if (r->run.versionKey() == vk && r->run.feature == f)
-          rss = std::max(rss, r->number("peak_rss_mb").value_or(r->maxRssMb));
-      const auto cell = [](const std::vector<double>& values, int decimals)
-      {
-        const auto ms = *meanStd(values);
-        return num(ms.mean, decimals) + (ms.n > 1 ? " ± " + num(ms.std, decimals) : "") +
-               " (n=" + std::to_string(ms.n) + ")";
-      };
-      const auto ratio = [](double a, double b) { return b > 0 ? num(a / b, 2) : "n/a"; };
-      const std::string recLabel = labelOf(t2, vk);
-      md << "| " << (recLabel != vk || label.empty() ? recLabel : label) << " | "
-         << mrpt::system::upperCase(f) << " | " << cell(front, 1) << " | " << ratio(feV, feT)
-         << " | " << cell(fps, 2) << " | " << ratio(wallV, wallT) << " | " << ratio(cpuV, cpuT)
-         << " | " << (rss > 0 ? num(rss, 0) : std::string("n/a")) << " |\n";
-    }
-  md << "\n";
-  bool notes = false;
-  for (const auto& c : m_paired)
-  {
-    const std::string where = c.sequence + ", " + mrpt::system::upperCase(c.feature);
-    if (!c.error.empty())
-    {
-      md << "- " << where << ": paired measurement FAILED: " << oneLine(c.error) << "\n";
-      notes = true;
-    }
-    for (const auto& [key, why] : c.leftOut)
-    {
-      md << "- " << where << ": " << key << " left out (" << oneLine(why) << ")\n";
-      notes = true;
-    }
-  }
-  if (notes)
-    md << "\n";
-}
-
-void CReportWriter::renderSpeedUnpaired(std::ostream& md, const TRecordList& t2) const
-{
-  md << "## Speed (Test 2 runs, measured in this benchmark)\n\n"
-        "No paired measurement in this folder (roi-bench --speed-passes 0, or runs merged "
-        "without one): every figure below is from the Test-2 runs themselves.\n\n"
-        "fps = frames / wall time of the app (summary.json); ratio = sum of this version's "
-        "wall time over the sum of the traditional version's, on the sequences where both "
-        "succeeded; peak memory = largest peak RSS (app's figure, else wait4's). Each figure "
-        "comes from one run: on a shared machine single runs vary by 10-20 %, so ratios "
-        "within that band are not differences; `roislam-stage-bench --paired-passes 2 "
-        "--benchmark_filter=FrontEnd` interleaves the versions frame by frame for a robust "
-        "ratio.\n\n"
-        "front end = all front-end work per frame, decoding excluded (summary.json "
-        "frontend_ms_per_frame, mean over the sequences), and its ratio to the traditional "
-        "version's on the same sequences. The paired figures, which load cannot bias: "
-        "`roislam-stage-bench --paired-passes 0 --paired-slam-passes 1 --frames 250` "
-        "(fe_cost_vs_trad).\n\n"
-        "| version | extractor | fps | wall time ratio vs traditional | front end (ms/frame) | "
-        "front-end ratio vs traditional | peak RSS (MiB) "
-        "|\n|---|---|---|---|---|---|---|\n";
-  const auto feats = featuresOf(t2);
-  for (const auto& vk : versionKeys(t2))
-    for (const auto& f : feats)
-    {
-      const TCell fps = cellFor(t2, vk, f, getter("fps"));
-      const TCell front = cellFor(t2, vk, f, getter("frontend_ms_per_frame"));
-      double sumV = 0, sumT = 0, rss = 0, feV = 0, feT = 0;
-      bool any = false, anyFe = false;
-      for (const auto* r : t2)
-      {
-        if (r->run.versionKey() != vk || r->run.feature != f)
-          continue;
-        rss = std::max(rss, r->number("peak_rss_mb").value_or(r->maxRssMb));
-        if (!r->ok)
-          continue;
-        for (const auto* t : t2)
-          if (t->run.mode == "traditional" && t->run.feature == f &&
-              t->run.sequence == r->run.sequence && t->ok)
-          {
-            sumV += durationOf(*r);
-            sumT += durationOf(*t);
-            any = true;
-            const auto fv = r->number("frontend_ms_per_frame");
-            const auto ft = t->number("frontend_ms_per_frame");
-            if (fv && ft)
-            {
-              feV += *fv;
-              feT += *ft;
-              anyFe = true;
-            }
-          }
-      }
-      md << "| " << labelOf(t2, vk) << " | " << mrpt::system::upperCase(f) << " | "
-         << renderCell(fps, 2, true) << " | "
-         << (any && sumT > 0 ? num(sumV / sumT, 2) : std::string("n/a")) << " | "
-         << renderCell(front, 1, true) << " | "
-         << (anyFe && feT > 0 ? num(feV / feT, 2) : std::string("n/a")) << " | " << num(rss, 0)
-         << " |\n";
-    }
   md << "\n";
 }
 

@@ -5,8 +5,9 @@
  * OpenCV's cv::rgbd odometries beside our best and worst run; speed) from run records,
  * each figure next to the dissertation's. The speed table comes from the
  * paired measurement (speed.json, CPairedSlamCost) when there is one, else
- * from the Test-2 runs' own summaries. Failed runs appear as failures, never
- * dropped. Called by CBenchApp after the runs.
+ * from the Test-2 runs' own summaries (written by CSpeedTableWriter, private
+ * to libs/bench). Failed runs appear as failures, never dropped. Called by
+ * CBenchApp after the runs.
  */
 #pragma once
 
@@ -79,14 +80,10 @@ class CReportWriter
       const std::string& refLabel, int decimals, const TGetter& get, const TReference& ref) const;
   void renderTest2PerSequence(std::ostream& md, const TRecordList& t2) const;
   void renderTest3(std::ostream& md, const TRecordList& t3) const;
-  /** From the paired figures when there are some, else renderSpeedUnpaired. */
-  void renderSpeed(std::ostream& md, const TRecordList& t2) const;
-  void renderSpeedPaired(std::ostream& md, const TRecordList& t2) const;
-  void renderSpeedUnpaired(std::ostream& md, const TRecordList& t2) const;
   void renderFailures(std::ostream& md, const std::vector<TRunRecord>& records) const;
 
   TOptions m_options;
   CDissertationReference m_ref;
-  std::vector<TPairedCost> m_paired;  //!< from options.pairedCostFile
+  std::vector<TPairedCost> m_paired;  //!< from options.pairedCostFile, for the speed section
 };
 }  // namespace roislam::bench
