@@ -88,7 +88,7 @@ TEST(FlowTracking, AnchorsLandWhereTheMotionProjectsThem)
   // Exact prediction, and one off by about 6 px (a 0.7 deg error).
   for (const auto& prediction : {moved, moved + mrpt::poses::CPose3D(0, 0, 0, 0.012, 0, 0)})
   {
-    const TFlowTracks t = followAnchors(kf, pa, pb, prediction, K, dist, p);
+    const TFlowTracks t = followAnchors(kf, pa, pb, prediction, K, dist, cv::Rect(), p);
     ASSERT_GT(t.set.size(), kf.anchorPoints.size() * 8 / 10);
     ASSERT_EQ(t.anchorIndex.size(), t.set.size());
     std::vector<double> err;
@@ -104,6 +104,31 @@ TEST(FlowTracking, AnchorsLandWhereTheMotionProjectsThem)
     EXPECT_LT(err[err.size() / 2], 0.3);       // median
     EXPECT_LT(err[err.size() * 9 / 10], 1.0);  // 90th percentile
   }
+}
+
+TEST(FlowTracking, AnchorsAreNotFollowedWhereTheFrameWasDescribed)
+{
+  const TFlowParams p;
+  const cv::Mat tex = texture(2 * kW, 2 * kH);
+  const mrpt::poses::CPose3D moved(0.02, 0.01, 0.0, 0.01, 0.0, 0.0);
+  const cv::Mat a = render(tex, mrpt::poses::CPose3D()), b = render(tex, moved);
+  const TKeyframe kf = keyframeWithAnchors(a, p);
+  const cv::Mat K = (cv::Mat_<double>(3, 3) << kF, 0, kCx, 0, kF, kCy, 0, 0, 1);
+  const cv::Mat dist = cv::Mat::zeros(1, 5, CV_64F);
+  const auto pa = flowPyramid(a, p), pb = flowPyramid(b, p);
+  const TFlowTracks all = followAnchors(kf, pa, pb, moved, K, dist, cv::Rect(), p);
+  // The left half described (the frame's ROI): only the right half's
+  // anchors are followed, and about as many as lie there.
+  const cv::Rect left(0, 0, kW / 2, kH);
+  const TFlowTracks rest = followAnchors(kf, pa, pb, moved, K, dist, left, p);
+  std::size_t rightOfAll = 0;
+  for (const auto& k : all.set.keypoints)
+    rightOfAll += k.pt.x >= kW / 2.0f + 2;
+  ASSERT_GT(rightOfAll, 30u);
+  EXPECT_GE(rest.set.size(), rightOfAll);
+  EXPECT_LT(rest.set.size(), all.set.size() * 3 / 4);
+  for (const auto& k : rest.set.keypoints)
+    EXPECT_GE(k.pt.x, kW / 2.0f - 3) << "followed inside the described part";
 }
 
 TEST(FlowTracking, RegistrationViewAppendsTheAnchors)

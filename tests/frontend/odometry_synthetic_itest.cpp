@@ -101,7 +101,13 @@ TEST(OdometrySynthetic, RegionFramesDescribeOnlyTheirRegion)
         // Every pixel outside the region once, at the extension's
         // resolution, each of the four bands around the region with its
         // margin (ORB: 31 px at that resolution, clipped to the image).
-        if (w.extension != roislam::frontend::EExtension::NoRoi)
+        if (w.extension == roislam::frontend::EExtension::ExpectedKeyframe)
+        {
+          // Predicted to become a keyframe: the whole image, once.
+          EXPECT_EQ(w.regionPixels, 0u) << "frame " << r.frameIndex;
+          EXPECT_EQ(w.extensionPixels, static_cast<std::size_t>(image.area()));
+        }
+        else if (w.extension != roislam::frontend::EExtension::NoRoi)
         {
           const cv::Rect g = w.region;
           const double rest = image.area() - static_cast<double>(g.area());
@@ -114,11 +120,15 @@ TEST(OdometrySynthetic, RegionFramesDescribeOnlyTheirRegion)
                        std::min(scale * image.height, scale * band.height + 2 * 31 + 2);
           EXPECT_LE(w.extensionPixels, bound) << "frame " << r.frameIndex;
           if (scale == 1.0)
+          {
             EXPECT_GE(w.extensionPixels, rest) << "frame " << r.frameIndex;
+          }
         }
       }
       if (r.isNewKeyframe && r.method != ETrackingMethod::Initial)
+      {
         EXPECT_NE(w.extension, roislam::frontend::EExtension::None);
+      }
     }
     // The extension never describes the region again: no keypoint twice in
     // any keyframe (which stores the whole extended set).
@@ -197,7 +207,9 @@ TEST(OdometrySynthetic, FlowFramesDescribeOnlyTheirRoi)
       else
         EXPECT_EQ(r.features, w.regionFeatures + w.extensionFeatures) << "frame " << r.frameIndex;
       if (r.isNewKeyframe)
+      {
         EXPECT_NE(w.extension, roislam::frontend::EExtension::None);
+      }
     }
     // Keyframes store the whole image once, and their anchors.
     for (const auto& kf : s.keyframes)
@@ -223,6 +235,74 @@ TEST(OdometrySynthetic, FlowFramesDescribeOnlyTheirRoi)
               << s.stats.describedFractionSum / s.results.size() << "\n";
     EXPECT_LT(*s.ate, 0.05);
   }
+}
+
+TEST(OdometrySynthetic, ExpectedKeyframesDescribeTheWholeImageOnce)
+{
+  ROISLAM_REQUIRE_SYNTHETIC(dir, "textured");
+  // keyframe_prediction: a frame whose predicted pose meets the keyframe
+  // criteria describes the whole image in one pass and tracks with it,
+  // instead of its ROI and the flow first, then the rest band by band and a
+  // second registration after the decision.
+  for (auto mode : {EFrontEndMode::RoiBig, EFrontEndMode::RoiSmall})
+  {
+    SCOPED_TRACE(toString(mode));
+    auto o = orb(mode);
+    o.roi_extraction = "flow";
+    std::map<bool, std::size_t> extendedAfter;
+    for (const bool predict : {false, true})
+    {
+      o.keyframe_prediction = predict;
+      const auto s = runOdometry(dir, o);
+      ASSERT_TRUE(s.ate.has_value());
+      std::size_t expected = 0, expectedKeyframes = 0;
+      for (const auto& r : s.results)
+      {
+        const auto& w = r.work;
+        extendedAfter[predict] += w.extension == roislam::frontend::EExtension::Keyframe;
+        if (w.extension != roislam::frontend::EExtension::ExpectedKeyframe)
+          continue;
+        ++expected;
+        expectedKeyframes += r.isNewKeyframe;
+        // The whole image, once, before tracking.
+        EXPECT_EQ(w.regionPixels, 0u) << "frame " << r.frameIndex;
+        EXPECT_EQ(w.regionFeatures, 0u) << "frame " << r.frameIndex;
+        EXPECT_EQ(w.extensionPixels, static_cast<std::size_t>(r.imageSize.area()));
+        EXPECT_EQ(r.features, w.extensionFeatures) << "frame " << r.frameIndex;
+        // Tracked with every feature it described (that has depth), no
+        // followed anchors.
+        EXPECT_EQ(r.trackingFeatures, r.featuresWithDepth) << "frame " << r.frameIndex;
+        EXPECT_EQ(r.flowTracks, 0u) << "frame " << r.frameIndex;
+      }
+      std::cout << toString(mode) << " prediction " << predict << ": ATE " << *s.ate
+                << " m, keyframes " << s.keyframes.size() << ", expected " << expected
+                << " (became keyframes " << expectedKeyframes << "), extended after the decision "
+                << extendedAfter[predict] << "\n";
+      if (!predict)
+      {
+        EXPECT_EQ(expected, 0u);
+        EXPECT_GT(extendedAfter[predict], 0u);
+      }
+      else
+      {
+        // The prediction is right most of the time: most keyframes are made
+        // by frames that expected to be one, few expected frames are not.
+        EXPECT_GT(expected, 0u);
+        EXPECT_GT(2 * expectedKeyframes, expected);
+        EXPECT_LT(extendedAfter[true], extendedAfter[false]);
+      }
+      EXPECT_LT(*s.ate, 0.05);
+    }
+  }
+  // With the extension at half resolution its bands cost less than one
+  // whole-image pass: nothing is predicted.
+  auto o = orb(EFrontEndMode::RoiSmall);
+  o.roi_extraction = "flow";
+  o.roi_extension_scale = 0.5;
+  const auto s = runOdometry(dir, o);
+  for (const auto& r : s.results)
+    EXPECT_NE(r.work.extension, roislam::frontend::EExtension::ExpectedKeyframe)
+        << "frame " << r.frameIndex;
 }
 
 TEST(OdometrySynthetic, RollingShutterCorrectionRecoversTheSkewedFrames)

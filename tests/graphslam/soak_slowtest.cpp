@@ -225,10 +225,13 @@ void check(const std::vector<TCheckpoint>& c)
   const TCheckpoint& first = c[0];   // frames 0-1000: RSS and ATE reference
   const TCheckpoint& steady = c[1];  // frames 1000-2000: cost reference, past the start-up
   const TCheckpoint& last = c.back();
+  // Braces: EXPECT_LT expands to an if/else of its own (-Wdangling-else).
   if (!std::isnan(first.ateM))
+  {
     EXPECT_LT(last.ateM, kAteGrowthFactor * first.ateM + kAteGrowthM)
         << "the map degrades: ATE " << first.ateM << " m over the first " << first.frames
         << " frames, " << last.ateM << " m over the last block";
+  }
   EXPECT_LT(last.costMs, 1.5 * steady.costMs + 2.0)
       << "per-frame cost grows: " << steady.costMs << " ms at " << steady.frames << " frames, "
       << last.costMs << " ms at " << last.frames;

@@ -192,7 +192,10 @@ TFrameResult CRgbdOdometry::process(const TPreparedFrame& frame)
   m_impl->useCamera(frame.frame.camera, m_options);
   TFrameWork w(frame);
   if (!m_keyframes.empty())
+  {
     predictMotion(w);
+    w.keyframeExpected = expectsKeyframe(w);
+  }
   extractFeatures(w);
   liftFeatures(w);
   if (m_keyframes.empty() || w.strictLost)

@@ -79,6 +79,8 @@ std::string toString(EExtension e)
       return "roi_weak";
     case EExtension::Keyframe:
       return "keyframe";
+    case EExtension::ExpectedKeyframe:
+      return "expected_keyframe";
   }
   return "unknown";
 }
@@ -136,6 +138,7 @@ void CRgbdOdometry::TOptions::loadFromConfigFile(
   keyframe_full_features = c.read_bool(s, "keyframe_full_features", keyframe_full_features);
   keyframe_full_registration =
       c.read_bool(s, "keyframe_full_registration", keyframe_full_registration);
+  keyframe_prediction = c.read_bool(s, "keyframe_prediction", keyframe_prediction);
 
   roi.loadFromConfigFile(c, "RoiDetector");
   extractor.loadFromConfigFile(c, "FeatureExtractor");
@@ -183,6 +186,7 @@ void CRgbdOdometry::TOptions::saveToConfigFile(
   c.write(s, "icp_min_pairs", icp_min_pairs);
   c.write(s, "keyframe_full_features", keyframe_full_features);
   c.write(s, "keyframe_full_registration", keyframe_full_registration);
+  c.write(s, "keyframe_prediction", keyframe_prediction);
   c.write(s, "constant_velocity_information_scale", constant_velocity_information_scale);
   roi.saveToConfigFile(c, "RoiDetector");
   extractor.saveToConfigFile(c, "FeatureExtractor");

@@ -15,25 +15,39 @@ TFlowPyramid flowPyramid(const cv::Mat& grey, const TFlowParams& p)
 
 features::TFeatureSet anchorCandidates(const cv::Mat& grey, const TFlowParams& p)
 {
+  // Found at half resolution: Shi-Tomasi's eigenvalue image over the whole
+  // frame was most of a keyframe's flow work (640 x 480: 4.2-4.9 ms, at half
+  // resolution 0.55-0.8 ms). Where exactly in its corner an anchor sits
+  // matters little: Lucas-Kanade follows its window's texture from wherever
+  // the keyframe puts it.
+  cv::Mat half;
+  cv::resize(grey, half, cv::Size(), 0.5, 0.5, cv::INTER_AREA);
   std::vector<cv::Point2f> corners;
-  // A window apart: no two anchors share their window, the spacing bounds
-  // their number (about 700 on 640 x 480) and the quality keeps them to the
-  // textured parts. Measured on the fr1 excerpts (12 mode x extractor runs):
-  // half a window apart followed about 300 anchors a frame for the same
-  // accuracy as about 120 a window apart (mean ATE / traditional 1.07 both).
-  const double minDistance = p.window;
-  cv::goodFeaturesToTrack(grey, corners, 0, p.anchorQuality, minDistance);
+  // A window apart (at full resolution): no two anchors share their
+  // window, the spacing bounds their number (about 700 on 640 x 480) and
+  // the quality keeps them to the textured parts. Measured on the fr1
+  // excerpts (12 mode x extractor runs, full resolution): half a window
+  // apart followed about 300 anchors a frame for the same accuracy as about
+  // 120 a window apart (mean ATE / traditional 1.07 both).
+  const double minDistance = 0.5 * p.window;
+  cv::goodFeaturesToTrack(half, corners, 0, p.anchorQuality, minDistance);
   features::TFeatureSet s;
   s.keypoints.reserve(corners.size());
+  const cv::Rect2f image(0.0f, 0.0f, static_cast<float>(grey.cols), static_cast<float>(grey.rows));
   for (const auto& c : corners)
-    s.keypoints.emplace_back(c, 0.0f);
+  {
+    // Pixel centres: (u + 0.5) * 2 - 0.5.
+    const cv::Point2f full(2.0f * c.x + 0.5f, 2.0f * c.y + 0.5f);
+    if (image.contains(full))
+      s.keypoints.emplace_back(full, 0.0f);
+  }
   return s;
 }
 
 TFlowTracks followAnchors(
     const TKeyframe& kf, const TFlowPyramid& kfPyramid, const TFlowPyramid& curPyramid,
     const mrpt::poses::CPose3D& predictedRel, const cv::Mat& K, const cv::Mat& dist,
-    const TFlowParams& p)
+    const cv::Rect& described, const TFlowParams& p)
 {
   TFlowTracks out;
   out.set.type = kf.features.type;
@@ -60,11 +74,15 @@ TFlowTracks followAnchors(
   cv::projectPoints(inCurrent, cv::Vec3d(0, 0, 0), cv::Vec3d(0, 0, 0), K, dist, predicted);
   const cv::Size image = curPyramid[0].size();
   const cv::Rect2f inside(2.0f, 2.0f, image.width - 4.0f, image.height - 4.0f);
+  const cv::Rect2f describedBox(described);
   std::vector<cv::Point2f> from, to;
   std::vector<int> which;
   for (std::size_t j = 0; j < predicted.size(); ++j)
   {
-    if (!inside.contains(predicted[j]))
+    // Where the frame's own features were described, they carry the pose:
+    // following there too would only repeat it (a big ROI is most of the
+    // image, and its flow then cost as much as its description).
+    if (!inside.contains(predicted[j]) || describedBox.contains(predicted[j]))
       continue;
     from.push_back(kf.anchorKeypoints[static_cast<std::size_t>(idx[j])]);
     to.push_back(predicted[j]);

@@ -28,7 +28,12 @@ struct TFlowParams
   int window = 21;
   int levels = 3;  //!< maxLevel: levels + 1 pyramid images
   /** Shi-Tomasi quality: corners weaker than this share of the frame's
-   *  strongest are not anchors (OpenCV's customary 0.01). */
+   *  strongest are not anchors (OpenCV's customary 0.01). Anchors are found
+   *  at half resolution, which keeps fewer of them (fr1 excerpts, every
+   *  8th-12th frame: 158 / 181 a frame against 203 / 206 at full
+   *  resolution); 0.005 there keeps as many as at full resolution but
+   *  tracked worse (the odometry's ATE on 10 of 12 fr1 runs), the weak
+   *  corners being the ones Lucas-Kanade follows least well. */
   double anchorQuality = 0.01;
 };
 
@@ -37,8 +42,8 @@ using TFlowPyramid = std::vector<cv::Mat>;
 
 TFlowPyramid flowPyramid(const cv::Mat& grey, const TFlowParams& p);
 
-/** Candidate anchors of a keyframe image: Shi-Tomasi corners, a
- *  window apart, as keypoints (size 0: not described). */
+/** Candidate anchors of a keyframe image: Shi-Tomasi corners (found at
+ *  half resolution), a window apart, as keypoints (size 0: not described). */
 features::TFeatureSet anchorCandidates(const cv::Mat& grey, const TFlowParams& p);
 
 /** The keyframe's anchors followed into the current frame. */
@@ -51,14 +56,15 @@ struct TFlowTracks
   std::vector<int> anchorIndex;
 };
 
-/** Follows kf's anchors whose predicted position lies inside the image from
- *  kf's image (kfPyramid) into the current one. predictedRel: the current
- *  frame's pose relative to kf; K, dist: the colour camera (OpenCV layout;
- *  images are distorted). */
+/** Follows kf's anchors whose predicted position lies inside the image and
+ *  outside `described` from kf's image (kfPyramid) into the current one.
+ *  predictedRel: the current frame's pose relative to kf; K, dist: the
+ *  colour camera (OpenCV layout; images are distorted); described: the part
+ *  of the frame whose features were described (empty: none). */
 TFlowTracks followAnchors(
     const TKeyframe& kf, const TFlowPyramid& kfPyramid, const TFlowPyramid& curPyramid,
     const mrpt::poses::CPose3D& predictedRel, const cv::Mat& K, const cv::Mat& dist,
-    const TFlowParams& p);
+    const cv::Rect& described, const TFlowParams& p);
 
 /** kf as the registration against its anchors sees it: its features'
  *  points and pixels followed by its anchors' (the anchors' pair indices

@@ -141,6 +141,10 @@ struct CRgbdOdometry::TFrameWork
    *  the candidates are they, nearest first, and the frame adds none while
    *  it stays within the motion bounds of its reference. */
   bool placeFull = false;
+  /** keyframe_prediction: at the predicted pose the frame would become a
+   *  keyframe, so it describes the whole image at once and tracks with it
+   *  (decided before stage 2). */
+  bool keyframeExpected = false;
 
   // trackFeatures (roi_extraction = flow): the reference keyframe's
   // features followed into the frame outside its region. w.cur is then the

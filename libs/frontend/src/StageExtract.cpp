@@ -111,7 +111,8 @@ void CRgbdOdometry::extractFeatures(TFrameWork& w) const
   // a new one from stage 1 when it is lost (or at the start).
   const auto& o = m_options;
   const double minArea = std::min(1.0, o.roi_min_area_fraction * I.regionGrowth);
-  w.flowFrame = followsWithFlow() && flowAvailable(w);
+  // An expected keyframe describes the whole image at once (below).
+  w.flowFrame = followsWithFlow() && flowAvailable(w) && !w.keyframeExpected;
   const bool flow = w.flowFrame;
   int regionCap = o.extractor.max_features;
   if (flow)
@@ -140,7 +141,9 @@ void CRgbdOdometry::extractFeatures(TFrameWork& w) const
     if (describesRegions() && work.region.empty() && res.roi)
       work.region = detail::trackingRegion(*res.roi, grey.size(), minArea, o.roi_min_aspect);
   }
-  if (!work.region.empty())
+  // An expected keyframe keeps its region (the frames after it follow that)
+  // but describes the whole image at once.
+  if (!work.region.empty() && !w.keyframeExpected)
   {
     w.all = I.extractor.extractIn(grey, work.region, regionCap, &work.regionPixels);
     work.regionFeatures = w.all.size();
@@ -160,7 +163,9 @@ void CRgbdOdometry::extractFeatures(TFrameWork& w) const
       w.all = I.extractor.capWithRegion(w.all, res.roi.value_or(cv::Rect()));
     work.extensionPixels = static_cast<std::size_t>(grey.total());
     work.extensionFeatures = w.all.size();
-    work.extension = describesRegions() ? EExtension::NoRoi : EExtension::WholeImage;
+    work.extension = !describesRegions()  ? EExtension::WholeImage
+                     : w.keyframeExpected ? EExtension::ExpectedKeyframe
+                                          : EExtension::NoRoi;
   }
   res.times.extract_ms = msSince(t0);
   res.features = w.all.size();
@@ -198,7 +203,11 @@ void CRgbdOdometry::liftFeatures(TFrameWork& w) const
     // keyframe features carry the pose.
     const bool flow = w.flowFrame;
     const bool enough = static_cast<int>(inRoi.size()) >= o.min_roi_features;
-    if (enough || o.strict_roi || flow)
+    // An expected keyframe tracks with the whole image it described, as its
+    // keyframe edges would be computed anyway (keyframe_full_registration).
+    if (w.keyframeExpected)
+      w.fallback = true;
+    else if (enough || o.strict_roi || flow)
       w.chosen = std::move(inRoi);  // strict with too few: the frame will be Lost
     else
       w.fallback = true;

@@ -79,9 +79,29 @@ void CRgbdOdometry::startMap(TFrameWork& w)
 
 bool CRgbdOdometry::needsKeyframe(const TFrameWork& w) const
 {
+  const bool fewInliers = isFeatureMethod(w.res.method) &&
+                          static_cast<int>(w.res.inliers) < m_options.keyframe_min_inliers;
+  return keyframeCriteria(w, *w.res.pose, fewInliers);
+}
+
+bool CRgbdOdometry::expectsKeyframe(const TFrameWork& w) const
+{
+  // Only where a keyframe costs an extension at full resolution: the
+  // region (or ROI) first, then the rest of the image band by band, each
+  // band its own detection pass, and a second registration with the whole
+  // image's features. With roi_extension_scale < 1 the bands are cheaper
+  // than one whole-image pass. Without a velocity the prediction is the
+  // last pose: nothing expected.
   const TOptions& o = m_options;
-  const bool fewInliers =
-      isFeatureMethod(w.res.method) && static_cast<int>(w.res.inliers) < o.keyframe_min_inliers;
+  return o.keyframe_prediction && describesRegions() && o.keyframe_full_features &&
+         o.keyframe_full_registration && o.roi_extension_scale >= 1 && m_impl->velocityDt > 0 &&
+         keyframeCriteria(w, w.predictedWorld, false);
+}
+
+bool CRgbdOdometry::keyframeCriteria(
+    const TFrameWork& w, const mrpt::poses::CPose3D& pose, bool fewInliers) const
+{
+  const TOptions& o = m_options;
   const bool overlap = usesOverlapPolicy();
   // Motion policy: on the motion since the last keyframe, the inliers left,
   // and whether the last keyframe still registered. Overlap policy: on what
@@ -90,7 +110,7 @@ bool CRgbdOdometry::needsKeyframe(const TFrameWork& w) const
   // A full place (keyframe_place_limit): on the motion since the reference,
   // one of the place's keyframes, wherever it was made.
   const TKeyframe& from = m_keyframes[overlap || w.placeFull ? w.ref : w.lastKf];
-  const mrpt::poses::CPose3D since = *w.res.pose - from.pose;
+  const mrpt::poses::CPose3D since = pose - from.pose;
   const double dist = since.translation().norm();
   const double angDeg = detail::rotationAngle(since) * 180.0 / M_PI;
   if (!overlap)
@@ -179,8 +199,9 @@ void CRgbdOdometry::insertKeyframe(TFrameWork& w, const mrpt::poses::CPose3D& po
   // The next frames follow the region this keyframe described densely while
   // it tracked well; after a failure or a weak registration, a new one from
   // stage 1 (the frame's ROI grown as in StageExtract.cpp).
-  const bool regionTracked =
-      res.work.extension == EExtension::None || res.work.extension == EExtension::Keyframe;
+  const bool regionTracked = res.work.extension == EExtension::None ||
+                             res.work.extension == EExtension::Keyframe ||
+                             res.work.extension == EExtension::ExpectedKeyframe;
   setRegion(
       kf, regionTracked || !res.roi
               ? res.work.region

@@ -133,10 +133,12 @@ void CRgbdOdometry::followReference(TFrameWork& w) const
     return;
   const auto t0 = detail::Clock::now();
   const TKeyframe& kf = m_keyframes[w.ref];
-  // Everywhere, the ROI too: its described features alone may be few or
-  // crowded, and the followed anchors are as good there.
+  // Outside the ROI, unless its described features are too few to carry
+  // the pose there (then everywhere).
+  const cv::Rect described = w.flowFallback ? cv::Rect() : w.res.work.region;
   w.flow = detail::followAnchors(
-      kf, pyramid->second, w.in.flowPyramid, w.predictedWorld - kf.pose, I.K, I.dist, I.flowParams);
+      kf, pyramid->second, w.in.flowPyramid, w.predictedWorld - kf.pose, I.K, I.dist, described,
+      I.flowParams);
   // Lifted and corrected for the rolling shutter like the region's features.
   w.flowLifted = detail::liftFeatures(w.flow.set, w.in.frame.depth, I.K, I.dist, m_options);
   detail::rectifyRollingShutter(

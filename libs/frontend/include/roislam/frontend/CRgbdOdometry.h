@@ -218,6 +218,21 @@
  *                             the recent keyframes) from the whole image's
  *                             features, which it stores anyway; the ROI's
  *                             features track every frame in between.
+ *  - keyframe_prediction      bool (true): roi_extraction = region or flow: a
+ *                             frame whose predicted pose (constant velocity)
+ *                             already meets the keyframe criteria describes
+ *                             the whole image at once and tracks with it, as
+ *                             a traditional frame does (extension
+ *                             "expected_keyframe"), instead of its region and
+ *                             flow first, then the rest band by band and a
+ *                             second registration once it has become one: one
+ *                             detection pass instead of up to five, one
+ *                             registration instead of two. A wrong prediction
+ *                             costs one whole-image frame; a missed one, the
+ *                             extension after the decision. Only with
+ *                             roi_extension_scale = 1 (a lower resolution's
+ *                             bands cost less than the image). Measured:
+ *                             README "ROI that pays"
  * In non-strict ROI modes, when the ROI features do not register, the
  * whole-image features are tried before depth ICP (FullImageFallback).
  * Sub-component sections: [RoiDetector] (CRoiDetector::TOptions),
@@ -314,6 +329,7 @@ class CRgbdOdometry : public mrpt::system::COutputLogger
     double constant_velocity_information_scale = 1e-2;
     bool keyframe_full_features = true;
     bool keyframe_full_registration = true;
+    bool keyframe_prediction = true;
 
     /** The sensor's depth-noise model (not an ini key: a camera fact, set
      *  from the sensor description by whoever opens the source; default the
@@ -447,6 +463,13 @@ class CRgbdOdometry : public mrpt::system::COutputLogger
   /** Pose from the registration, or from the fallbacks; false when Lost. */
   bool resolvePose(TFrameWork& w);
   bool needsKeyframe(const TFrameWork& w) const;
+  /** The keyframe criteria for the frame at `pose` (its measured or its
+   *  predicted one), with `fewInliers` as measured. */
+  bool keyframeCriteria(
+      const TFrameWork& w, const mrpt::poses::CPose3D& pose, bool fewInliers) const;
+  /** keyframe_prediction: whether the predicted pose already meets the
+   *  keyframe criteria (region and flow extraction only). */
+  bool expectsKeyframe(const TFrameWork& w) const;
   /** keyframe_policy = overlap. */
   bool usesOverlapPolicy() const { return m_options.keyframe_policy == "overlap"; }
   void makeKeyframeConstraints(TFrameWork& w);

@@ -110,11 +110,15 @@ enum class EExtension
   RoiWeak,
   /** The frame became a keyframe (keyframes store the whole image's
    *  features, for later frames and loop closures). */
-  Keyframe
+  Keyframe,
+  /** keyframe_prediction: the predicted pose met the keyframe criteria, so
+   *  the whole image was described at once, before tracking, and tracked
+   *  with. */
+  ExpectedKeyframe
 };
 
 /** "none" | "whole_image" | "no_roi" | "few_roi_features" | "roi_failed" |
- *  "roi_weak" | "keyframe". */
+ *  "roi_weak" | "keyframe" | "expected_keyframe". */
 std::string toString(EExtension e);
 
 /** What stage 2 described for one frame: its cost scales with these. */
