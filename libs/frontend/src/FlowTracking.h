@@ -32,7 +32,7 @@ struct TFlowParams
    *  at half resolution, which keeps fewer of them (fr1 excerpts, every
    *  8th-12th frame: 158 / 181 a frame against 203 / 206 at full
    *  resolution); 0.005 there keeps as many as at full resolution but
-   *  tracked worse (the odometry's ATE on 10 of 12 fr1 runs), the weak
+   *  tracked worse (the odometry's ATE worse on 9 of 12 fr1 runs), the weak
    *  corners being the ones Lucas-Kanade follows least well. */
   double anchorQuality = 0.01;
 };
