@@ -64,7 +64,9 @@ std::pair<std::size_t, std::size_t> thereAndBack(CRgbdOdometry& odo, std::size_t
     const auto r = odo.process(renderRoom(panPose(k), 100, frame, 0.1 * frame));
     EXPECT_TRUE(r.pose.has_value());
     if (r.pose)
+    {
       EXPECT_LT((*r.pose - panPose(k)).translation().norm(), 0.03) << "frame " << frame;
+    }
   }
   return {out, odo.keyframes().size()};
 }
@@ -136,7 +138,9 @@ std::vector<std::size_t> panPasses(int limit, std::size_t passes)
       const auto r = odo.process(renderRoom(panPose(k), 100, frame, 0.1 * frame));
       EXPECT_TRUE(r.pose.has_value());
       if (r.pose)
+      {
         EXPECT_LT((*r.pose - panPose(k)).translation().norm(), 0.03) << "frame " << frame;
+      }
     }
     counts.push_back(odo.keyframes().size());
   }

@@ -110,10 +110,14 @@ TEST(KfSlamApp, SyntheticLoopRoundTripAndStockApp)
       EXPECT_EQ(obs->sensedData[0].landmarkID, ids[pairs]) << pairs;
     }
     else
+    {
       EXPECT_TRUE(obs->sensedData.empty()) << pairs;
+    }
     measurements += obs->sensedData.size();
     if (pairs > 0)
+    {
       EXPECT_GT(move->poseChange.cov(0, 0), 0) << pairs;
+    }
     composed = composed + move->poseChange.mean;
     EXPECT_LT((composed.translation() - odometry[pairs].pose.translation()).norm(), 1e-6) << pairs;
     ++pairs;
