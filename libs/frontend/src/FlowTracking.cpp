@@ -33,14 +33,10 @@ features::TFeatureSet anchorCandidates(const cv::Mat& grey, const TFlowParams& p
   cv::goodFeaturesToTrack(half, corners, 0, p.anchorQuality, minDistance);
   features::TFeatureSet s;
   s.keypoints.reserve(corners.size());
-  const cv::Rect2f image(0.0f, 0.0f, static_cast<float>(grey.cols), static_cast<float>(grey.rows));
+  // Pixel centres: (u + 0.5) * 2 - 0.5, inside the image for every u of the
+  // half-resolution one.
   for (const auto& c : corners)
-  {
-    // Pixel centres: (u + 0.5) * 2 - 0.5.
-    const cv::Point2f full(2.0f * c.x + 0.5f, 2.0f * c.y + 0.5f);
-    if (image.contains(full))
-      s.keypoints.emplace_back(full, 0.0f);
-  }
+    s.keypoints.emplace_back(cv::Point2f(2.0f * c.x + 0.5f, 2.0f * c.y + 0.5f), 0.0f);
   return s;
 }
 
