@@ -31,6 +31,14 @@ CRgbdOdometry::TOptions orb(EFrontEndMode mode)
   return o;
 }
 
+/** orb(mode) with roi_extraction = flow. */
+CRgbdOdometry::TOptions orbFlow(EFrontEndMode mode)
+{
+  auto o = orb(mode);
+  o.roi_extraction = "flow";
+  return o;
+}
+
 /** region grown by the detector's support m on every side, clipped to the
  *  image: the pixels a region-only extraction may read. */
 cv::Rect paddedRegion(const cv::Rect& region, int m, const cv::Size& image)
@@ -165,8 +173,7 @@ TEST(OdometrySynthetic, FlowFramesDescribeOnlyTheirRoi)
   for (auto mode : {EFrontEndMode::RoiBig, EFrontEndMode::RoiSmall})
   {
     SCOPED_TRACE(toString(mode));
-    auto o = orb(mode);
-    o.roi_extraction = "flow";
+    auto o = orbFlow(mode);
     o.roi_extension_scale = 0.5;
     const auto s = runOdometry(dir, o);
     ASSERT_TRUE(s.ate.has_value());
@@ -247,8 +254,7 @@ TEST(OdometrySynthetic, ExpectedKeyframesDescribeTheWholeImageOnce)
   for (auto mode : {EFrontEndMode::RoiBig, EFrontEndMode::RoiSmall})
   {
     SCOPED_TRACE(toString(mode));
-    auto o = orb(mode);
-    o.roi_extraction = "flow";
+    auto o = orbFlow(mode);
     std::map<bool, std::size_t> extendedAfter;
     for (const bool predict : {false, true})
     {
@@ -296,8 +302,7 @@ TEST(OdometrySynthetic, ExpectedKeyframesDescribeTheWholeImageOnce)
   }
   // With the extension at half resolution its bands cost less than one
   // whole-image pass: nothing is predicted.
-  auto o = orb(EFrontEndMode::RoiSmall);
-  o.roi_extraction = "flow";
+  auto o = orbFlow(EFrontEndMode::RoiSmall);
   o.roi_extension_scale = 0.5;
   const auto s = runOdometry(dir, o);
   for (const auto& r : s.results)
@@ -435,8 +440,7 @@ TEST(OdometrySynthetic, FeaturelessFlowModeIsNeverLost)
   // faces are few, and depth ICP carries the frames they cannot.
   for (auto mode : {EFrontEndMode::RoiBig, EFrontEndMode::RoiSmall})
   {
-    auto o = orb(mode);
-    o.roi_extraction = "flow";
+    auto o = orbFlow(mode);
     const auto s = runOdometry(dir, o);
     ASSERT_TRUE(s.ate.has_value());
     EXPECT_EQ(s.stats.lost, 0u) << toString(mode);
