@@ -1,12 +1,16 @@
 // The rolling-shutter correction of lifted keypoints (libs/frontend/src
 // RollingShutter.h): points observed by a moving rolling-shutter camera, each
 // at its own row's time, are carried exactly into the middle row's camera.
+// And the depth-time correction: a depth image taken after the colour image
+// is read where each point was at the depth's time.
 #include <gtest/gtest.h>
 
 #include <Eigen/Dense>
 #include <cmath>
+#include <opencv2/calib3d.hpp>
 #include <opencv2/core.hpp>
 #include <random>
+#include <utility>
 
 #include "RollingShutter.h"
 
@@ -183,4 +187,138 @@ TEST(RollingShutter, MiddleRowIsNotMoved)
   EXPECT_NEAR(lifted.undistorted[0].x, 100.f, 1e-4);
   EXPECT_NEAR(lifted.undistorted[0].y, kH / 2.f, 1e-4);
   EXPECT_NEAR(lifted.z[0], 2.0, 1e-6);
+}
+
+namespace
+{
+/** A slanted wall n.X = d (colour camera at the colour's time) seen by a depth
+ *  image taken dt seconds later, after the camera moved with rate: each depth
+ *  pixel holds the wall's depth along its (distorted) pixel's ray in the
+ *  depth-time camera. */
+struct TLateDepth
+{
+  Eigen::Vector3d n{0.3, -0.1, 1.0};
+  double d = 2.0;
+  TCameraRate rate;
+  double dt = 0.015;
+  cv::Mat K, dist;
+  cv::Mat depth;
+
+  /** Depth of the wall along the undistorted pixel u in the colour camera. */
+  double colourDepth(const cv::Point2f& u) const
+  {
+    const Eigen::Vector3d r((u.x - kCam.cx) / kCam.fx, (u.y - kCam.cy) / kCam.fy, 1);
+    return d / n.dot(r);
+  }
+
+  void render()
+  {
+    // The depth camera (time dt) in the colour one: X_c = R X_d + t.
+    const Eigen::Vector3d w = rate.omega * dt;
+    const Eigen::Matrix3d R = w.norm() > 0
+                                  ? Eigen::AngleAxisd(w.norm(), w.normalized()).toRotationMatrix()
+                                  : Eigen::Matrix3d::Identity();
+    const Eigen::Vector3d t = rate.linear * dt;
+    const Eigen::Vector3d nd = R.transpose() * n;
+    const double dd = d - n.dot(t);
+    std::vector<cv::Point2f> px, und;
+    for (int v = 0; v < kH; ++v)
+      for (int u = 0; u < kW; ++u)
+        px.emplace_back(static_cast<float>(u), static_cast<float>(v));
+    cv::undistortPoints(px, und, K, dist, cv::noArray(), K);
+    depth = cv::Mat::zeros(kH, kW, CV_32FC1);
+    for (std::size_t i = 0; i < px.size(); ++i)
+    {
+      const Eigen::Vector3d r((und[i].x - kCam.cx) / kCam.fx, (und[i].y - kCam.cy) / kCam.fy, 1);
+      depth.at<float>(static_cast<int>(px[i].y), static_cast<int>(px[i].x)) =
+          static_cast<float>(dd / nd.dot(r));
+    }
+  }
+};
+
+/** Keypoints on a grid over the image's inner part. */
+roislam::features::TFeatureSet gridKeypoints()
+{
+  roislam::features::TFeatureSet f;
+  for (int v = 60; v < kH - 60; v += 20)
+    for (int u = 60; u < kW - 60; u += 20)
+      f.keypoints.emplace_back(cv::Point2f(static_cast<float>(u), static_cast<float>(v)), 7.f);
+  f.descriptors = cv::Mat::zeros(static_cast<int>(f.keypoints.size()), 32, CV_8U);
+  return f;
+}
+
+/** Largest |z - the wall's depth at the colour's time| over the valid keypoints. */
+double worstDepthError(const TLiftedFeatures& l, const TLateDepth& s)
+{
+  double worst = 0;
+  for (int i : l.valid)
+  {
+    const auto k = static_cast<std::size_t>(i);
+    worst = std::max(worst, std::abs(l.rawZ[k] - s.colourDepth(l.rawUndistorted[k])));
+  }
+  return worst;
+}
+}  // namespace
+
+TEST(DepthTime, LateDepthIsReadWhereThePointWasThen)
+{
+  // Turning at 1 rad/s and moving 0.3 m/s, depth 15 ms late: the depth image
+  // is 8 px and 4.5 mm away from the colour image's view.
+  const roislam::geometry::TDepthRule rule;
+  for (const bool distorted : {false, true})
+  {
+    SCOPED_TRACE(distorted ? "fr1 distortion" : "no distortion");
+    TLateDepth s;
+    s.rate.omega = Eigen::Vector3d(0.2, 1.0, 0.1);
+    s.rate.linear = Eigen::Vector3d(0.1, 0.0, 0.3);
+    s.K = K();
+    s.dist = distorted ? (cv::Mat_<double>(1, 5) << 0.2624, -0.9531, -0.0054, 0.0026, 1.1633)
+                       : cv::Mat();
+    s.render();
+    const auto features = gridKeypoints();
+    const TLiftedFeatures raw = liftFeatures(features, s.depth, s.K, s.dist, options());
+    ASSERT_EQ(raw.valid.size(), features.size());
+    TLiftedFeatures aligned = raw;
+    alignDepthTime(aligned, s.depth, s.K, s.dist, rule, kCam, s.rate, s.dt, true);
+    // Every keypoint keeps a depth (the wall fills the image), the pixels stay.
+    EXPECT_GE(aligned.valid.size(), features.size() * 95 / 100);
+    for (int i : aligned.valid)
+      EXPECT_EQ(
+          aligned.rawUndistorted[static_cast<std::size_t>(i)],
+          raw.rawUndistorted[static_cast<std::size_t>(i)]);
+    const double before = worstDepthError(raw, s), after = worstDepthError(aligned, s);
+    // Read at the keypoint's own pixel the depth is centimetres off; read
+    // where the point was, within the pixel grid's rounding (~1 mm / px here).
+    EXPECT_GT(before, 0.01);
+    EXPECT_LT(after, 0.002) << "before " << before;
+    // Aligned again (a refined rate) it starts from the depth as read, not
+    // from the last alignment, and keeps the valid set: a wrong rate first,
+    // then the right one, ends where the right one alone does.
+    TLiftedFeatures again = aligned;
+    TCameraRate wrong;
+    wrong.omega = -s.rate.omega;
+    alignDepthTime(again, s.depth, s.K, s.dist, rule, kCam, wrong, s.dt, false);
+    EXPECT_EQ(again.valid, aligned.valid);
+    EXPECT_GT(worstDepthError(again, s), 0.01);
+    alignDepthTime(again, s.depth, s.K, s.dist, rule, kCam, s.rate, s.dt, false);
+    EXPECT_EQ(again.valid, aligned.valid);
+    EXPECT_LT(worstDepthError(again, s), 0.002);
+  }
+}
+
+TEST(DepthTime, NoOffsetOrNoMotionChangesNothing)
+{
+  TLateDepth s;
+  s.rate.omega = Eigen::Vector3d(0, 1.0, 0);
+  s.K = K();
+  s.render();
+  const auto features = gridKeypoints();
+  const TLiftedFeatures raw = liftFeatures(features, s.depth, s.K, s.dist, options());
+  for (const auto& [rate, dt] : {std::pair{s.rate, 0.0}, std::pair{TCameraRate{}, 0.015}})
+  {
+    TLiftedFeatures l = raw;
+    alignDepthTime(l, s.depth, s.K, s.dist, roislam::geometry::TDepthRule{}, kCam, rate, dt, true);
+    EXPECT_EQ(l.valid, raw.valid);
+    EXPECT_EQ(l.rawZ, raw.rawZ);
+  }
 }

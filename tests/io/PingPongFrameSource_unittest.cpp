@@ -64,3 +64,20 @@ TEST(PingPongFrameSource, PlaysThereAndBackWithIncreasingStamps)
   EXPECT_THROW(CPingPongFrameSource(nullptr, 5), std::invalid_argument);
   fs::remove_all(tmp);
 }
+
+TEST(PingPongFrameSource, DepthOffsetIsMirroredBackwards)
+{
+  // Depth 10 ms after colour: after it going forwards, before it backwards.
+  const auto tmp = roislam::testing::makeTempDir("io_pingpong_depth");
+  const auto dir = writeTumFolder(tmp, "seq", {1.0, 1.1, 1.3, 1.6}, {1.01, 1.11, 1.31, 1.61});
+  CPingPongFrameSource p(std::make_unique<CTumFrameSource>(dir, smallCamera()), 11);
+  // Frames 0 1 2 3 2 1 0 1 2 3 2: a frame reached by a step back is backwards.
+  const std::vector<double> sign{1, 1, 1, 1, -1, -1, -1, 1, 1, 1, -1};
+  for (std::size_t k = 0; k < sign.size(); ++k)
+  {
+    const auto f = p.next();
+    ASSERT_TRUE(f) << k;
+    EXPECT_NEAR(f->depthTimestamp - f->timestamp, sign[k] * 0.01, 1e-9) << k;
+  }
+  fs::remove_all(tmp);
+}

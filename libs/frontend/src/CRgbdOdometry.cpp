@@ -134,6 +134,7 @@ void CRgbdOdometry::reset()
   m_impl->velocityDt = 0;
   m_impl->haveStamp = false;
   m_impl->uncorrected.reset();
+  m_impl->depthTime.reset();
   m_impl->regionGrowth = 1;
   m_impl->lastFeaturePixels.clear();
 }
@@ -191,6 +192,11 @@ TFrameResult CRgbdOdometry::process(const TPreparedFrame& frame)
 {
   m_impl->useCamera(frame.frame.camera, m_options);
   TFrameWork w(frame);
+  // A frame without a depth stamp of its own (a rawlog's observation has one
+  // stamp) has no offset.
+  const io::TRGBDFrame& f = frame.frame;
+  if (m_options.depth_time_correction && f.depthTimestamp != 0)
+    w.depthDt = m_impl->depthTime.update(f.timestamp, f.depthTimestamp);
   if (!m_keyframes.empty())
   {
     predictMotion(w);

@@ -139,6 +139,7 @@ void CRgbdOdometry::TOptions::loadFromConfigFile(
   keyframe_full_registration =
       c.read_bool(s, "keyframe_full_registration", keyframe_full_registration);
   keyframe_prediction = c.read_bool(s, "keyframe_prediction", keyframe_prediction);
+  depth_time_correction = c.read_bool(s, "depth_time_correction", depth_time_correction);
 
   roi.loadFromConfigFile(c, "RoiDetector");
   extractor.loadFromConfigFile(c, "FeatureExtractor");
@@ -187,6 +188,7 @@ void CRgbdOdometry::TOptions::saveToConfigFile(
   c.write(s, "keyframe_full_features", keyframe_full_features);
   c.write(s, "keyframe_full_registration", keyframe_full_registration);
   c.write(s, "keyframe_prediction", keyframe_prediction);
+  c.write(s, "depth_time_correction", depth_time_correction);
   c.write(s, "constant_velocity_information_scale", constant_velocity_information_scale);
   roi.saveToConfigFile(c, "RoiDetector");
   extractor.saveToConfigFile(c, "FeatureExtractor");

@@ -23,6 +23,7 @@ TLiftedFeatures liftFeatures(
   out.valid = std::move(lifted.valid);
   out.rawUndistorted = std::move(lifted.undistorted);
   out.rawZ = std::move(lifted.z);
+  out.readZ = out.rawZ;
   // The depth image is registered to the (distorted) colour image, whose rows
   // are the ones read out in sequence.
   out.rowFraction.resize(pts.size());
@@ -68,6 +69,7 @@ void appendLifted(TLiftedFeatures& a, const TLiftedFeatures& b, int offset)
   append(a.z, b.z);
   append(a.rawUndistorted, b.rawUndistorted);
   append(a.rawZ, b.rawZ);
+  append(a.readZ, b.readZ);
   append(a.rowFraction, b.rowFraction);
 }
 }  // namespace roislam::frontend::detail

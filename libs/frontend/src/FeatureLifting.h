@@ -28,9 +28,12 @@ struct TLiftedFeatures
   /** Depth [m] of every extracted keypoint, corrected like undistorted; set
    *  at the indices in valid only. */
   std::vector<float> z;
-  /** The same before any rolling-shutter correction. */
+  /** The same before any rolling-shutter correction (after the depth-time
+   *  one, RollingShutter.h alignDepthTime). */
   std::vector<cv::Point2f> rawUndistorted;
   std::vector<float> rawZ;
+  /** Depth read at the keypoint's own pixel, before any correction. */
+  std::vector<float> readZ;
   /** Time of each keypoint's row relative to the middle row, as a fraction of
    *  the readout time: -0.5 (first row) .. 0.5 (last row). */
   std::vector<float> rowFraction;

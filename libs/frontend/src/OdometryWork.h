@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "CDepthIcp.h"
+#include "DepthTimeOffset.h"
 #include "FeatureLifting.h"
 #include "FlowTracking.h"
 #include "KeyframeOverlap.h"
@@ -59,6 +60,8 @@ struct CRgbdOdometry::TImpl
   /** The first keyframe is made before any velocity is known: its raw
    *  points wait here until the next frame measures one (rolling shutter). */
   std::optional<detail::TUncorrectedKeyframe> uncorrected;
+  /** depth_time_correction: the depth images' offset from the colour ones. */
+  detail::CDepthTimeOffset depthTime;
   /** roi_extraction = region: the tracking region's minimum area, as a
    *  multiple of roi_min_area_fraction. It grows after each region
    *  registration that failed or left the pose poorly determined, and
@@ -128,6 +131,9 @@ struct CRgbdOdometry::TFrameWork
    *  the one lifted's points carry now (the measured one after
    *  refineRollingShutter). */
   detail::TCameraRate ratePredicted, rateApplied;
+  /** Depth image's time minus the colour image's, s (depth_time_correction;
+   *  0 = none or unknown). */
+  double depthDt = 0;
 
   // predictMotion
   std::size_t lastKf = 0;

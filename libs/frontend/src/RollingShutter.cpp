@@ -4,6 +4,7 @@
 #include <roislam/geometry/Rotation.h>
 
 #include <cmath>
+#include <opencv2/calib3d.hpp>
 
 namespace roislam::frontend::detail
 {
@@ -50,6 +51,103 @@ void rectifyRollingShutter(
     lifted.z[k] = static_cast<float>(X.z());
     lifted.undistorted[k] = pinhole.project(X);
   }
+}
+
+void alignDepthTime(
+    TLiftedFeatures& lifted, const cv::Mat& depth, const cv::Mat& K, const cv::Mat& dist,
+    const geometry::TDepthRule& rule, const TPinhole& pinhole, const TCameraRate& rate, double dt,
+    bool dropUnread)
+{
+  if (dt == 0 || !std::isfinite(dt) || rate.isZero())
+  {
+    for (int i : lifted.valid)
+      lifted.rawZ[static_cast<std::size_t>(i)] = lifted.readZ[static_cast<std::size_t>(i)];
+    lifted.z = lifted.rawZ;
+    return;
+  }
+  // carryToReferenceRow(X, omega, v, dt) takes a point seen dt after the
+  // colour image into the colour's camera; its inverse finds where the
+  // colour's point was at the depth's time.
+  const Eigen::Matrix3d R = geometry::expSO3(rate.omega * dt);
+  const Eigen::Vector3d t = rate.linear * dt;
+  std::vector<cv::Point3f> atDepthTime;
+  std::vector<int> idx;
+  atDepthTime.reserve(lifted.valid.size());
+  idx.reserve(lifted.valid.size());
+  for (int i : lifted.valid)
+  {
+    const auto k = static_cast<std::size_t>(i);
+    const Eigen::Vector3d X = pinhole.backProject(lifted.rawUndistorted[k], lifted.readZ[k]);
+    const Eigen::Vector3d Xd = R.transpose() * (X - t);
+    if (!(Xd.z() > 0))
+      continue;
+    atDepthTime.emplace_back(
+        static_cast<float>(Xd.x()), static_cast<float>(Xd.y()), static_cast<float>(Xd.z()));
+    idx.push_back(i);
+  }
+  // The depth image is registered to the distorted colour image: read it at
+  // the distorted pixel of that point.
+  std::vector<cv::Point2f> pixels;
+  if (!atDepthTime.empty())
+  {
+    const cv::Mat zero = cv::Mat::zeros(3, 1, CV_64F);
+    cv::projectPoints(atDepthTime, zero, zero, K, dist, pixels);
+  }
+  const geometry::TLiftedPixels again = geometry::liftPixels(pixels, depth, K, dist, rule);
+  std::vector<char> read(lifted.rawZ.size(), 0);
+  for (int j : again.valid)
+  {
+    const auto jj = static_cast<std::size_t>(j);
+    const auto k = static_cast<std::size_t>(idx[jj]);
+    const Eigen::Vector3d X = R * pinhole.backProject(again.undistorted[jj], again.z[jj]) + t;
+    if (!(X.z() > 0))
+      continue;
+    // The colour's pixel stays: it measured the ray; the depth measured how
+    // far along it the point lies.
+    lifted.rawZ[k] = static_cast<float>(X.z());
+    read[k] = 1;
+  }
+  if (dropUnread)
+  {
+    std::vector<int> valid;
+    valid.reserve(lifted.valid.size());
+    for (int i : lifted.valid)
+      if (read[static_cast<std::size_t>(i)])
+        valid.push_back(i);
+    lifted.valid = std::move(valid);
+  }
+  lifted.z = lifted.rawZ;
+}
+
+namespace
+{
+geometry::TDepthRule depthRule(const CRgbdOdometry::TOptions& o)
+{
+  geometry::TDepthRule rule;
+  rule.min_depth_m = o.min_depth_m;
+  rule.max_depth_m = o.max_depth_m;
+  rule.depth_discontinuity_m = o.depth_discontinuity_m;
+  return rule;
+}
+}  // namespace
+
+TLiftedFeatures liftAtColourTime(
+    const io::TRGBDFrame& f, const features::TFeatureSet& set, const cv::Mat& K,
+    const cv::Mat& dist, const TPinhole& pinhole, const CRgbdOdometry::TOptions& o,
+    const TCameraRate& rate, double dt)
+{
+  TLiftedFeatures lifted = liftFeatures(set, f.depth, K, dist, o);
+  if (dt != 0)
+    alignDepthTime(lifted, f.depth, K, dist, depthRule(o), pinhole, rate, dt, true);
+  return lifted;
+}
+
+void realignDepthTime(
+    TLiftedFeatures& lifted, const io::TRGBDFrame& f, const cv::Mat& K, const cv::Mat& dist,
+    const TPinhole& pinhole, const CRgbdOdometry::TOptions& o, const TCameraRate& rate, double dt)
+{
+  if (dt != 0)
+    alignDepthTime(lifted, f.depth, K, dist, depthRule(o), pinhole, rate, dt, false);
 }
 
 TUncorrectedKeyframe uncorrectedKeyframe(

@@ -16,6 +16,7 @@
 
 #include <mrpt/poses/CPose3D.h>
 #include <roislam/frontend/TKeyframe.h>
+#include <roislam/geometry/KeypointLifting.h>
 
 #include <Eigen/Dense>
 #include <cstddef>
@@ -49,6 +50,35 @@ Eigen::Vector3d rectifyPoint(
  *  restores the raw values. */
 void rectifyRollingShutter(
     TLiftedFeatures& lifted, const TCameraRate& rate, double readout_s, const TPinhole& pinhole);
+
+/** Depth taken dt seconds after the colour image (its stamp minus the
+ *  colour's; a Kinect v1 streams them unsynchronised): the depth image saw
+ *  each point from where the camera was then. For every valid keypoint of
+ *  `lifted` (lifted from the same depth image), its point as first read
+ *  (readZ) is carried to the depth's time with `rate`, its depth is read
+ *  where it was then (the project's depth rule, at that distorted pixel) and
+ *  carried back to the colour's time: rawZ becomes the depth along the
+ *  keypoint's own ray at the colour's time. A keypoint whose depth-time pixel
+ *  has no depth by the rule is dropped from valid (dropUnread) or keeps its
+ *  rawZ. dt = 0 or a zero rate restores readZ. Runs before
+ *  rectifyRollingShutter (which starts from rawZ). */
+void alignDepthTime(
+    TLiftedFeatures& lifted, const cv::Mat& depth, const cv::Mat& K, const cv::Mat& dist,
+    const geometry::TDepthRule& rule, const TPinhole& pinhole, const TCameraRate& rate, double dt,
+    bool dropUnread);
+
+/** liftFeatures() of `set` with the frame's depth, then alignDepthTime() with
+ *  the frame's depth offset dt and `rate` (dropUnread). */
+TLiftedFeatures liftAtColourTime(
+    const io::TRGBDFrame& f, const features::TFeatureSet& set, const cv::Mat& K,
+    const cv::Mat& dist, const TPinhole& pinhole, const CRgbdOdometry::TOptions& o,
+    const TCameraRate& rate, double dt);
+
+/** alignDepthTime() again with a better rate, keeping the valid set (a
+ *  registration's matches index it). */
+void realignDepthTime(
+    TLiftedFeatures& lifted, const io::TRGBDFrame& f, const cv::Mat& K, const cv::Mat& dist,
+    const TPinhole& pinhole, const CRgbdOdometry::TOptions& o, const TCameraRate& rate, double dt);
 
 /** The camera's velocity during a motion that took dt seconds (motion maps
  *  the later camera into the earlier one); zero when dt <= 0 or the motion is

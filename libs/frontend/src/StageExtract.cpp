@@ -72,6 +72,7 @@ features::TFeatureSet describeOutside(
   }
   return ext.select(keep);
 }
+
 }  // namespace
 
 bool CRgbdOdometry::describesRegions() const
@@ -177,11 +178,12 @@ void CRgbdOdometry::liftFeatures(TFrameWork& w) const
   const TOptions& o = m_options;
   TFrameResult& res = w.res;
   const auto t0 = Clock::now();
-  // Undistorted pixel + depth at the (distorted) keypoint.
-  w.lifted = detail::liftFeatures(w.all, w.in.frame.depth, I.K, I.dist, o);
-  // Rolling shutter, first guess: the velocity of the last motion.
+  // Undistorted pixel + depth at the (distorted) keypoint; depth and rolling
+  // shutter, first guess: the velocity of the last motion.
   w.ratePredicted = detail::cameraRate(I.velocity, I.velocityDt);
   w.rateApplied = w.ratePredicted;
+  w.lifted = detail::liftAtColourTime(
+      w.in.frame, w.all, I.K, I.dist, I.pinhole, o, w.ratePredicted, w.depthDt);
   detail::rectifyRollingShutter(w.lifted, w.ratePredicted, o.rolling_shutter_ms * 1e-3, I.pinhole);
   // The corrections never change which keypoints are valid.
   const std::vector<int>& valid = w.lifted.valid;
@@ -259,7 +261,8 @@ void CRgbdOdometry::extendToImage(TFrameWork& w, EExtension reason) const
 
   // Lifted like the region's, with the rolling-shutter rate they carry now.
   t0 = Clock::now();
-  detail::TLiftedFeatures lifted = detail::liftFeatures(ext, w.in.frame.depth, I.K, I.dist, o);
+  detail::TLiftedFeatures lifted = detail::liftAtColourTime(
+      w.in.frame, ext, I.K, I.dist, I.pinhole, o, w.rateApplied, w.depthDt);
   detail::rectifyRollingShutter(lifted, w.rateApplied, o.rolling_shutter_ms * 1e-3, I.pinhole);
   detail::appendLifted(w.lifted, lifted, static_cast<int>(w.all.size()));
   w.all = features::concat(w.all, ext);

@@ -39,9 +39,10 @@ void CRgbdOdometry::setAnchors(TKeyframe& kf, TFrameWork& w) const
   const TImpl& I = *m_impl;
   const auto t0 = Clock::now();
   const features::TFeatureSet corners = detail::anchorCandidates(w.in.grey, I.flowParams);
-  // The keyframe's depth rule and rolling-shutter correction, as its features'.
-  detail::TLiftedFeatures lifted =
-      detail::liftFeatures(corners, w.in.frame.depth, I.K, I.dist, m_options);
+  // The keyframe's depth rule, depth-time and rolling-shutter corrections,
+  // as its features'.
+  detail::TLiftedFeatures lifted = detail::liftAtColourTime(
+      w.in.frame, corners, I.K, I.dist, I.pinhole, m_options, w.rateApplied, w.depthDt);
   detail::rectifyRollingShutter(
       lifted, w.rateApplied, m_options.rolling_shutter_ms * 1e-3, I.pinhole);
   kf.anchorKeypoints.clear();

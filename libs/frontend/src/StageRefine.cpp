@@ -46,18 +46,28 @@ void CRgbdOdometry::refineRollingShutter(TFrameWork& w)
     detail::updateFeatureSetPoints(
         w.cur, w.lifted, w.fallback ? w.lifted.valid : w.chosen, I.pinhole);
   };
-  detail::rectifyRollingShutter(w.lifted, rate, readout, I.pinhole);
-  if (w.flowRef)
-    detail::rectifyRollingShutter(w.flowLifted, rate, readout, I.pinhole);
+  // Depth taken at another time than colour is read again with it too.
+  auto correct = [&](const detail::TCameraRate& r)
+  {
+    detail::realignDepthTime(w.lifted, w.in.frame, I.K, I.dist, I.pinhole, m_options, r, w.depthDt);
+    detail::rectifyRollingShutter(w.lifted, r, readout, I.pinhole);
+    if (!w.flowRef)
+      return;
+    detail::realignDepthTime(
+        w.flowLifted, w.in.frame, I.K, I.dist, I.pinhole, m_options, r, w.depthDt);
+    detail::rectifyRollingShutter(w.flowLifted, r, readout, I.pinhole);
+  };
+  correct(rate);
   rebuild();
   if (auto again = detail::refineRegistration(
           w.reference(m_keyframes, w.ref), w.cur, *w.reg, I.pinhole, m_options))
+  {
     w.reg = std::move(again);
+    w.rateApplied = rate;
+  }
   else
   {
-    detail::rectifyRollingShutter(w.lifted, w.ratePredicted, readout, I.pinhole);
-    if (w.flowRef)
-      detail::rectifyRollingShutter(w.flowLifted, w.ratePredicted, readout, I.pinhole);
+    correct(w.ratePredicted);
     rebuild();
   }
 }

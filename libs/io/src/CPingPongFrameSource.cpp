@@ -45,7 +45,12 @@ std::optional<TRGBDFrame> CPingPongFrameSource::next()
   const double sourceStamp = f->timestamp;
   const double stamp =
       m_last ? m_lastStamp + std::abs(sourceStamp - m_lastSourceStamp) : sourceStamp;
-  f->depthTimestamp = stamp + (f->depthTimestamp - sourceStamp);
+  // Played backwards, time is mirrored: a depth image taken after its colour
+  // image was taken before it (the front end corrects for the offset). A
+  // frame reached by a step back is played backwards.
+  const bool backwards = m_last && i < *m_last;
+  const double depthOffset = f->depthTimestamp - sourceStamp;
+  f->depthTimestamp = stamp + (backwards ? -depthOffset : depthOffset);
   f->timestamp = stamp;
   f->index = m_delivered++;
   m_last = i;

@@ -285,7 +285,8 @@ struct CRgbdSimulator::TBands
 };
 
 CRgbdSimulator::TBands CRgbdSimulator::renderBands(
-    std::size_t i, const mrpt::poses::CPose3D& offset, double fx, double fy, double cx, double cy)
+    std::size_t i, const mrpt::poses::CPose3D& offset, double fx, double fy, double cx, double cy,
+    double dt)
 {
   const unsigned ss = m_opts.supersampling;
   const unsigned W = m_opts.width, H = m_opts.height;
@@ -295,7 +296,7 @@ CRgbdSimulator::TBands CRgbdSimulator::renderBands(
   // time (rolling shutter; one band = a global shutter). The band's frustum
   // is the full image's cut to its rows: the principal point moves up.
   const unsigned bandRows = bandHeight();
-  const double tFrame = static_cast<double>(i) / m_opts.fps;
+  const double tFrame = static_cast<double>(i) / m_opts.fps + dt;
   TBands out;
   out.rgbSS = cv::Mat(H * ss, W * ss, CV_8UC3);
   out.depthSS.setSize(H * ss, W * ss);
@@ -307,7 +308,7 @@ CRgbdSimulator::TBands CRgbdSimulator::renderBands(
     const double t = tFrame + (yMid / H - 0.5) * m_opts.rollingShutterMs * 1e-3;
     mrpt::opengl::CCamera cam;
     cam.set6DOFMode(true);
-    cam.setPose((bandRows == H ? groundTruthPose(i) : m_path.opticalPoseAt(t)) + offset);
+    cam.setPose((bandRows == H && dt == 0 ? groundTruthPose(i) : m_path.opticalPoseAt(t)) + offset);
     // OpenGL samples pixel (u, v) at (u + 0.5, v + 0.5): shift the principal
     // point so rays go through integer pixel centres as in MRPT/TUM. With
     // ss x ss supersampling, output pixel u is the block centred at
@@ -403,10 +404,16 @@ CRgbdSimulator::TFrame CRgbdSimulator::renderFrame(std::size_t i)
     cv::resize(colour.rgbSS, f.rgb, cv::Size(W, H), 0, 0, cv::INTER_AREA);
   // Unregistered depth: its own camera, rendered from where it sits on the
   // sensor, at the same row times (its rows read out with the colour's).
-  const TBands depth = m_opts.depthRegistered ? std::move(colour)
-                                              : renderBands(
-                                                    i, depthPoseInColour(), m_opts.depthFx,
-                                                    m_opts.depthFy, m_opts.depthCx, m_opts.depthCy);
+  // Depth stamped apart from colour: rendered at its own stamp.
+  const double dt = m_opts.depthTimeOffset;
+  const TBands depth = m_opts.depthRegistered
+                           ? (dt == 0 ? std::move(colour)
+                                      : renderBands(
+                                            i, mrpt::poses::CPose3D(), m_opts.fx, m_opts.fy,
+                                            m_opts.cx, m_opts.cy, dt))
+                           : renderBands(
+                                 i, depthPoseInColour(), m_opts.depthFx, m_opts.depthFy,
+                                 m_opts.depthCx, m_opts.depthCy, dt);
   f.depth = depthAtPixelCentres(depth.depthSS, ss, W, H);
   corrupt(f, i);
   return f;

@@ -195,6 +195,21 @@
  *                             (io::TSensorDescription; presets fr1/fr2/fr3: 25,
  *                             fr1/rpy, 9 runs: mean ATE 0.0265 m at 0, 0.0119 m
  *                             at 25); a value in [FrontEnd] overrides that
+ *  - depth_time_correction    bool (false): a depth image stamped dt seconds
+ *                             after its colour image (TRGBDFrame::depthTimestamp
+ *                             minus timestamp; a Kinect v1 streams them
+ *                             unsynchronised, up to half a frame apart: fr1/xyz
+ *                             -12 to -17 ms) saw the scene from where the
+ *                             camera was then. Each keypoint's depth is read
+ *                             where its point was at the depth's time and
+ *                             carried back to the colour's time with the
+ *                             velocity of the last motion, as for the rolling
+ *                             shutter (RollingShutter.h). No constant: the
+ *                             offset is estimated from the frames' own stamps
+ *                             (DepthTimeOffset.h; none for a rawlog, whose
+ *                             observation has one stamp). Off: measured
+ *                             better on fr1/xyz, mixed on fr1/rpy with ORB
+ *                             (README "Depth taken at another time")
  *  - icp_fallback             bool (true): depth ICP when features fail
  *  - icp_refine_sigma_m       [m] >= 0 (0.01; 0 = off): a feature
  *                             registration whose worst translation 1-sigma
@@ -330,6 +345,7 @@ class CRgbdOdometry : public mrpt::system::COutputLogger
     bool keyframe_full_features = true;
     bool keyframe_full_registration = true;
     bool keyframe_prediction = true;
+    bool depth_time_correction = false;
 
     /** The sensor's depth-noise model (not an ini key: a camera fact, set
      *  from the sensor description by whoever opens the source; default the

@@ -4,7 +4,9 @@
  * per frame over 10 000 frames of the shared 250-frame excerpt). Frames keep
  * their images; timestamps are remapped so that they keep increasing, each
  * step taking the original spacing of the two frames it moves between; a
- * frame's depth keeps its offset from its colour stamp. No ground truth
+ * frame's depth keeps its offset from its colour stamp, mirrored when played
+ * backwards (a depth image taken after its colour image then comes before
+ * it). No ground truth
  * applies to the remapped stamps (groundTruthFile() is empty). Played
  * backwards, a rolling-shutter camera reads its rows bottom to top (see the
  * README's "Rolling shutter").

@@ -32,6 +32,9 @@
  *   fps                frame rate, Hz, (0, 1000]                      [30]
  *   base_timestamp     stamp of frame 0, s                            [1000000000.0]
  *   depth_time_offset  depth stamp minus colour stamp, s, |.| < 0.02  [0.0]
+ *                      the depth image is rendered at its own stamp, from
+ *                      where the camera is then (as a Kinect v1 streams
+ *                      depth and colour unsynchronised: fr1/xyz +-15 ms)
  *   rolling_shutter_ms row readout time, top to bottom, ms            [25]
  *                      (0 = global shutter). Rows are rendered in bands of
  *                      8, each from the pose at its time; the middle row is
@@ -213,10 +216,11 @@ class CRgbdSimulator : public mrpt::system::COutputLogger
   struct Impl;
   struct TBands;
   /** The frame's bands rendered from (band pose (+) offset) with the pinhole
-   *  fx, fy, cx, cy (output pixels), supersampled. */
+   *  fx, fy, cx, cy (output pixels), supersampled; dt seconds after the
+   *  frame's colour time (the depth's depth_time_offset). */
   TBands renderBands(
-      std::size_t i, const mrpt::poses::CPose3D& offset, double fx, double fy, double cx,
-      double cy);
+      std::size_t i, const mrpt::poses::CPose3D& offset, double fx, double fy, double cx, double cy,
+      double dt = 0);
   /** Range limits and the options' noise model on a rendered frame. */
   void corrupt(TFrame& f, std::size_t i) const;
   TOptions m_opts;
