@@ -175,8 +175,10 @@ TPreparedFrame CRgbdOdometry::prepare(const io::TRGBDFrame& frame) const
     p.frame.depth = frame.depth.clone();
   const auto t0 = Clock::now();
   cv::cvtColor(frame.rgb, p.grey, cv::COLOR_BGR2GRAY);
-  // Stage 1: the ROI (traditional mode: only for keyframes, StageKeyframe.cpp).
-  if (isRoiMode(m_options.mode))
+  // Stage 1: the ROI (traditional mode: only for keyframes, StageKeyframe.cpp;
+  // flow: only where the reference keyframe's ROI cannot be followed,
+  // StageExtract.cpp, and for keyframes).
+  if (isRoiMode(m_options.mode) && !followsWithFlow())
   {
     p.roi = m_impl->roiDetector.detect(p.grey, frame.rgb);
     p.roiDetected = true;

@@ -134,6 +134,8 @@ struct CRgbdOdometry::TFrameWork
   /** Depth image's time minus the colour image's, s (depth_time_correction;
    *  0 = none or unknown). */
   double depthDt = 0;
+  /** Stage 1 ran on this frame (in prepare(), or later where needed). */
+  bool roiDetected = false;
 
   // predictMotion
   std::size_t lastKf = 0;

@@ -86,6 +86,19 @@ bool CRgbdOdometry::followsWithFlow() const
   return describesRegions() && m_options.roi_extraction == "flow";
 }
 
+void CRgbdOdometry::detectRoi(TFrameWork& w) const
+{
+  if (w.roiDetected)
+    return;
+  const auto t0 = Clock::now();
+  if (const auto r = m_impl->roiDetector.detect(w.in.grey, w.in.frame.rgb))
+    w.res.roi = r->box;
+  else
+    w.res.roi.reset();
+  w.res.times.roi_ms += msSince(t0);
+  w.roiDetected = true;
+}
+
 bool CRgbdOdometry::flowAvailable(const TFrameWork& w) const
 {
   return !m_keyframes.empty() && !w.in.flowPyramid.empty() && m_impl->flowPyramids.count(w.ref);
@@ -99,21 +112,39 @@ void CRgbdOdometry::extractFeatures(TFrameWork& w) const
   res.frameIndex = w.in.frame.index;
   res.timestamp = w.in.frame.timestamp;
   res.imageSize = grey.size();
+  w.roiDetected = w.in.roiDetected;
   if (w.in.roiDetected)
   {
     res.times.roi_ms = w.in.roi_ms;
     if (w.in.roi)
       res.roi = w.in.roi->box;
   }
+  const auto& o = m_options;
+  // An expected keyframe describes the whole image at once (below).
+  w.flowFrame = followsWithFlow() && flowAvailable(w) && !w.keyframeExpected;
+  if (followsWithFlow())
+  {
+    // The reference keyframe's ROI (its stage-1 ROI, StageKeyframe.cpp),
+    // moved by the predicted motion: the landmark stays the one the
+    // keyframe described, and stage 1 runs only when it leaves the view and
+    // on frames that are no flow frames.
+    if (w.flowFrame)
+    {
+      const TKeyframe& kf = m_keyframes[w.ref];
+      const cv::Rect followed =
+          detail::followRegion(kf, w.predictedWorld - kf.pose, I.pinhole, grey.size());
+      if (!followed.empty())
+        res.roi = followed;
+    }
+    if (!res.roi)
+      detectRoi(w);
+  }
   const auto t0 = Clock::now();
   auto& work = res.work;
   // The region: the reference keyframe's, followed with the predicted
   // motion, so that it stays on the landmark the keyframe described densely;
   // a new one from stage 1 when it is lost (or at the start).
-  const auto& o = m_options;
   const double minArea = std::min(1.0, o.roi_min_area_fraction * I.regionGrowth);
-  // An expected keyframe describes the whole image at once (below).
-  w.flowFrame = followsWithFlow() && flowAvailable(w) && !w.keyframeExpected;
   const bool flow = w.flowFrame;
   int regionCap = o.extractor.max_features;
   if (flow)

@@ -181,15 +181,10 @@ void CRgbdOdometry::insertKeyframe(TFrameWork& w, const mrpt::poses::CPose3D& po
   TImpl& I = *m_impl;
   const TOptions& o = m_options;
   TFrameResult& res = w.res;
-  if (!w.in.roiDetected)
-  {
-    // Traditional mode: stage 1 for keyframes only, whose ROI the back end
-    // uses as a landmark.
-    const auto t0 = Clock::now();
-    if (const auto r = I.roiDetector.detect(w.in.grey, w.in.frame.rgb))
-      res.roi = r->box;
-    res.times.roi_ms += msSince(t0);
-  }
+  // Traditional mode, and flow frames that followed their reference's ROI:
+  // stage 1 for keyframes, whose ROI the back end uses as a landmark (and
+  // the next flow frames follow).
+  detectRoi(w);
   const auto t0 = Clock::now();
   // Stored for later matching: the whole image's features (unless
   // keyframe_full_features is off), so that the next frames' ROI, which
@@ -204,7 +199,8 @@ void CRgbdOdometry::insertKeyframe(TFrameWork& w, const mrpt::poses::CPose3D& po
                              res.work.extension == EExtension::Keyframe ||
                              res.work.extension == EExtension::ExpectedKeyframe;
   setRegion(
-      kf, regionTracked || !res.roi
+      kf, followsWithFlow() && res.roi ? *res.roi & cv::Rect(cv::Point(0, 0), w.in.grey.size())
+          : regionTracked || !res.roi
               ? res.work.region
               : detail::trackingRegion(
                     *res.roi, w.in.grey.size(), o.roi_min_area_fraction, o.roi_min_aspect));

@@ -455,8 +455,12 @@ class CRgbdOdometry : public mrpt::system::COutputLogger
   void extendToImage(TFrameWork& w, EExtension reason) const;
   /** Non-strict ROI mode with roi_extraction = region or flow. */
   bool describesRegions() const;
-  /** roi_extraction = flow (non-strict ROI modes). */
+  /** roi_extraction = flow (non-strict ROI modes). Flow frames also follow
+   *  the reference keyframe's ROI with the predicted motion; stage 1 runs
+   *  only where it cannot, and for keyframes. */
   bool followsWithFlow() const;
+  /** Stage 1 on the frame now, if prepare() did not run it. */
+  void detectRoi(TFrameWork& w) const;
   /** The frame can follow its reference keyframe by optical flow (both
    *  pyramids exist). */
   bool flowAvailable(const TFrameWork& w) const;
