@@ -4,6 +4,15 @@
 
 namespace roislam::frontend::detail
 {
+geometry::TDepthRule depthRule(const CRgbdOdometry::TOptions& o)
+{
+  geometry::TDepthRule rule;
+  rule.min_depth_m = o.min_depth_m;
+  rule.max_depth_m = o.max_depth_m;
+  rule.depth_discontinuity_m = o.depth_discontinuity_m;
+  return rule;
+}
+
 TLiftedFeatures liftFeatures(
     const features::TFeatureSet& all, const cv::Mat& depth, const cv::Mat& K, const cv::Mat& dist,
     const CRgbdOdometry::TOptions& o)
@@ -15,11 +24,7 @@ TLiftedFeatures liftFeatures(
   pts.reserve(all.size());
   for (const auto& k : all.keypoints)
     pts.push_back(k.pt);
-  geometry::TDepthRule rule;
-  rule.min_depth_m = o.min_depth_m;
-  rule.max_depth_m = o.max_depth_m;
-  rule.depth_discontinuity_m = o.depth_discontinuity_m;
-  geometry::TLiftedPixels lifted = geometry::liftPixels(pts, depth, K, dist, rule);
+  geometry::TLiftedPixels lifted = geometry::liftPixels(pts, depth, K, dist, depthRule(o));
   out.valid = std::move(lifted.valid);
   out.rawUndistorted = std::move(lifted.undistorted);
   out.rawZ = std::move(lifted.z);

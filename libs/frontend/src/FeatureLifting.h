@@ -8,6 +8,7 @@
 #include <roislam/features/TFeatureSet.h>
 #include <roislam/frontend/CRgbdOdometry.h>
 #include <roislam/frontend/TKeyframe.h>
+#include <roislam/geometry/KeypointLifting.h>
 
 #include <opencv2/core.hpp>
 #include <vector>
@@ -38,6 +39,9 @@ struct TLiftedFeatures
    *  the readout time: -0.5 (first row) .. 0.5 (last row). */
   std::vector<float> rowFraction;
 };
+
+/** The front end's depth rule (geometry::liftPixels) from its options. */
+geometry::TDepthRule depthRule(const CRgbdOdometry::TOptions& o);
 
 /** depth: CV_32FC1 metres, registered with the colour image; K, dist: the
  *  colour camera's intrinsics and distortion (OpenCV layout). */

@@ -119,35 +119,22 @@ void alignDepthTime(
   lifted.z = lifted.rawZ;
 }
 
-namespace
-{
-geometry::TDepthRule depthRule(const CRgbdOdometry::TOptions& o)
-{
-  geometry::TDepthRule rule;
-  rule.min_depth_m = o.min_depth_m;
-  rule.max_depth_m = o.max_depth_m;
-  rule.depth_discontinuity_m = o.depth_discontinuity_m;
-  return rule;
-}
-}  // namespace
-
 TLiftedFeatures liftAtColourTime(
-    const io::TRGBDFrame& f, const features::TFeatureSet& set, const cv::Mat& K,
-    const cv::Mat& dist, const TPinhole& pinhole, const CRgbdOdometry::TOptions& o,
-    const TCameraRate& rate, double dt)
+    const features::TFeatureSet& set, const cv::Mat& depth, const cv::Mat& K, const cv::Mat& dist,
+    const TPinhole& pinhole, const CRgbdOdometry::TOptions& o, const TCameraRate& rate, double dt)
 {
-  TLiftedFeatures lifted = liftFeatures(set, f.depth, K, dist, o);
+  TLiftedFeatures lifted = liftFeatures(set, depth, K, dist, o);
   if (dt != 0)
-    alignDepthTime(lifted, f.depth, K, dist, depthRule(o), pinhole, rate, dt, true);
+    alignDepthTime(lifted, depth, K, dist, depthRule(o), pinhole, rate, dt, true);
   return lifted;
 }
 
 void realignDepthTime(
-    TLiftedFeatures& lifted, const io::TRGBDFrame& f, const cv::Mat& K, const cv::Mat& dist,
+    TLiftedFeatures& lifted, const cv::Mat& depth, const cv::Mat& K, const cv::Mat& dist,
     const TPinhole& pinhole, const CRgbdOdometry::TOptions& o, const TCameraRate& rate, double dt)
 {
   if (dt != 0)
-    alignDepthTime(lifted, f.depth, K, dist, depthRule(o), pinhole, rate, dt, false);
+    alignDepthTime(lifted, depth, K, dist, depthRule(o), pinhole, rate, dt, false);
 }
 
 TUncorrectedKeyframe uncorrectedKeyframe(

@@ -67,17 +67,16 @@ void alignDepthTime(
     const geometry::TDepthRule& rule, const TPinhole& pinhole, const TCameraRate& rate, double dt,
     bool dropUnread);
 
-/** liftFeatures() of `set` with the frame's depth, then alignDepthTime() with
- *  the frame's depth offset dt and `rate` (dropUnread). */
+/** liftFeatures() of `set` with the frame's depth image, then
+ *  alignDepthTime() with the frame's depth offset dt and `rate` (dropUnread). */
 TLiftedFeatures liftAtColourTime(
-    const io::TRGBDFrame& f, const features::TFeatureSet& set, const cv::Mat& K,
-    const cv::Mat& dist, const TPinhole& pinhole, const CRgbdOdometry::TOptions& o,
-    const TCameraRate& rate, double dt);
+    const features::TFeatureSet& set, const cv::Mat& depth, const cv::Mat& K, const cv::Mat& dist,
+    const TPinhole& pinhole, const CRgbdOdometry::TOptions& o, const TCameraRate& rate, double dt);
 
 /** alignDepthTime() again with a better rate, keeping the valid set (a
  *  registration's matches index it). */
 void realignDepthTime(
-    TLiftedFeatures& lifted, const io::TRGBDFrame& f, const cv::Mat& K, const cv::Mat& dist,
+    TLiftedFeatures& lifted, const cv::Mat& depth, const cv::Mat& K, const cv::Mat& dist,
     const TPinhole& pinhole, const CRgbdOdometry::TOptions& o, const TCameraRate& rate, double dt);
 
 /** The camera's velocity during a motion that took dt seconds (motion maps

@@ -72,7 +72,6 @@ features::TFeatureSet describeOutside(
   }
   return ext.select(keep);
 }
-
 }  // namespace
 
 bool CRgbdOdometry::describesRegions() const
@@ -99,6 +98,34 @@ void CRgbdOdometry::detectRoi(TFrameWork& w) const
   w.roiDetected = true;
 }
 
+void CRgbdOdometry::takeRoi(TFrameWork& w) const
+{
+  TFrameResult& res = w.res;
+  w.roiDetected = w.in.roiDetected;
+  if (w.in.roiDetected)
+  {
+    res.times.roi_ms = w.in.roi_ms;
+    if (w.in.roi)
+      res.roi = w.in.roi->box;
+  }
+  if (!followsWithFlow())
+    return;
+  // The reference keyframe's ROI (its stage-1 ROI, StageKeyframe.cpp), moved
+  // by the predicted motion: the landmark stays the one the keyframe
+  // described, and stage 1 runs only when it leaves the view and on frames
+  // that are no flow frames.
+  if (w.flowFrame)
+  {
+    const TKeyframe& kf = m_keyframes[w.ref];
+    const cv::Rect followed =
+        detail::followRegion(kf, w.predictedWorld - kf.pose, m_impl->pinhole, w.in.grey.size());
+    if (!followed.empty())
+      res.roi = followed;
+  }
+  if (!res.roi)
+    detectRoi(w);
+}
+
 bool CRgbdOdometry::flowAvailable(const TFrameWork& w) const
 {
   return !m_keyframes.empty() && !w.in.flowPyramid.empty() && m_impl->flowPyramids.count(w.ref);
@@ -112,33 +139,10 @@ void CRgbdOdometry::extractFeatures(TFrameWork& w) const
   res.frameIndex = w.in.frame.index;
   res.timestamp = w.in.frame.timestamp;
   res.imageSize = grey.size();
-  w.roiDetected = w.in.roiDetected;
-  if (w.in.roiDetected)
-  {
-    res.times.roi_ms = w.in.roi_ms;
-    if (w.in.roi)
-      res.roi = w.in.roi->box;
-  }
   const auto& o = m_options;
   // An expected keyframe describes the whole image at once (below).
   w.flowFrame = followsWithFlow() && flowAvailable(w) && !w.keyframeExpected;
-  if (followsWithFlow())
-  {
-    // The reference keyframe's ROI (its stage-1 ROI, StageKeyframe.cpp),
-    // moved by the predicted motion: the landmark stays the one the
-    // keyframe described, and stage 1 runs only when it leaves the view and
-    // on frames that are no flow frames.
-    if (w.flowFrame)
-    {
-      const TKeyframe& kf = m_keyframes[w.ref];
-      const cv::Rect followed =
-          detail::followRegion(kf, w.predictedWorld - kf.pose, I.pinhole, grey.size());
-      if (!followed.empty())
-        res.roi = followed;
-    }
-    if (!res.roi)
-      detectRoi(w);
-  }
+  takeRoi(w);
   const auto t0 = Clock::now();
   auto& work = res.work;
   // The region: the reference keyframe's, followed with the predicted
@@ -214,7 +218,7 @@ void CRgbdOdometry::liftFeatures(TFrameWork& w) const
   w.ratePredicted = detail::cameraRate(I.velocity, I.velocityDt);
   w.rateApplied = w.ratePredicted;
   w.lifted = detail::liftAtColourTime(
-      w.in.frame, w.all, I.K, I.dist, I.pinhole, o, w.ratePredicted, w.depthDt);
+      w.all, w.in.frame.depth, I.K, I.dist, I.pinhole, o, w.ratePredicted, w.depthDt);
   detail::rectifyRollingShutter(w.lifted, w.ratePredicted, o.rolling_shutter_ms * 1e-3, I.pinhole);
   // The corrections never change which keypoints are valid.
   const std::vector<int>& valid = w.lifted.valid;
@@ -293,7 +297,7 @@ void CRgbdOdometry::extendToImage(TFrameWork& w, EExtension reason) const
   // Lifted like the region's, with the rolling-shutter rate they carry now.
   t0 = Clock::now();
   detail::TLiftedFeatures lifted = detail::liftAtColourTime(
-      w.in.frame, ext, I.K, I.dist, I.pinhole, o, w.rateApplied, w.depthDt);
+      ext, w.in.frame.depth, I.K, I.dist, I.pinhole, o, w.rateApplied, w.depthDt);
   detail::rectifyRollingShutter(lifted, w.rateApplied, o.rolling_shutter_ms * 1e-3, I.pinhole);
   detail::appendLifted(w.lifted, lifted, static_cast<int>(w.all.size()));
   w.all = features::concat(w.all, ext);

@@ -42,7 +42,7 @@ void CRgbdOdometry::setAnchors(TKeyframe& kf, TFrameWork& w) const
   // The keyframe's depth rule, depth-time and rolling-shutter corrections,
   // as its features'.
   detail::TLiftedFeatures lifted = detail::liftAtColourTime(
-      w.in.frame, corners, I.K, I.dist, I.pinhole, m_options, w.rateApplied, w.depthDt);
+      corners, w.in.frame.depth, I.K, I.dist, I.pinhole, m_options, w.rateApplied, w.depthDt);
   detail::rectifyRollingShutter(
       lifted, w.rateApplied, m_options.rolling_shutter_ms * 1e-3, I.pinhole);
   kf.anchorKeypoints.clear();
@@ -198,12 +198,14 @@ void CRgbdOdometry::insertKeyframe(TFrameWork& w, const mrpt::poses::CPose3D& po
   const bool regionTracked = res.work.extension == EExtension::None ||
                              res.work.extension == EExtension::Keyframe ||
                              res.work.extension == EExtension::ExpectedKeyframe;
-  setRegion(
-      kf, followsWithFlow() && res.roi ? *res.roi & cv::Rect(cv::Point(0, 0), w.in.grey.size())
-          : regionTracked || !res.roi
-              ? res.work.region
-              : detail::trackingRegion(
-                    *res.roi, w.in.grey.size(), o.roi_min_area_fraction, o.roi_min_aspect));
+  // Flow mode: the next frames follow its stage-1 ROI itself.
+  cv::Rect region = res.work.region;
+  if (res.roi && followsWithFlow())
+    region = *res.roi & cv::Rect(cv::Point(0, 0), w.in.grey.size());
+  else if (res.roi && !regionTracked)
+    region = detail::trackingRegion(
+        *res.roi, w.in.grey.size(), o.roi_min_area_fraction, o.roi_min_aspect);
+  setRegion(kf, region);
   kf.id = m_keyframes.size();
   kf.pose = pose;
   m_keyframes.push_back(std::move(kf));

@@ -49,12 +49,13 @@ void CRgbdOdometry::refineRollingShutter(TFrameWork& w)
   // Depth taken at another time than colour is read again with it too.
   auto correct = [&](const detail::TCameraRate& r)
   {
-    detail::realignDepthTime(w.lifted, w.in.frame, I.K, I.dist, I.pinhole, m_options, r, w.depthDt);
+    detail::realignDepthTime(
+        w.lifted, w.in.frame.depth, I.K, I.dist, I.pinhole, m_options, r, w.depthDt);
     detail::rectifyRollingShutter(w.lifted, r, readout, I.pinhole);
     if (!w.flowRef)
       return;
     detail::realignDepthTime(
-        w.flowLifted, w.in.frame, I.K, I.dist, I.pinhole, m_options, r, w.depthDt);
+        w.flowLifted, w.in.frame.depth, I.K, I.dist, I.pinhole, m_options, r, w.depthDt);
     detail::rectifyRollingShutter(w.flowLifted, r, readout, I.pinhole);
   };
   correct(rate);

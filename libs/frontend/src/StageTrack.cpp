@@ -141,7 +141,7 @@ void CRgbdOdometry::followReference(TFrameWork& w) const
       I.flowParams);
   // Lifted and corrected for the rolling shutter like the region's features.
   w.flowLifted = detail::liftAtColourTime(
-      w.in.frame, w.flow.set, I.K, I.dist, I.pinhole, m_options, w.rateApplied, w.depthDt);
+      w.flow.set, w.in.frame.depth, I.K, I.dist, I.pinhole, m_options, w.rateApplied, w.depthDt);
   detail::rectifyRollingShutter(
       w.flowLifted, w.rateApplied, m_options.rolling_shutter_ms * 1e-3, I.pinhole);
   w.regionSet = w.cur;

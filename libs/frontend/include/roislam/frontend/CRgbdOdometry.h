@@ -461,6 +461,10 @@ class CRgbdOdometry : public mrpt::system::COutputLogger
   bool followsWithFlow() const;
   /** Stage 1 on the frame now, if prepare() did not run it. */
   void detectRoi(TFrameWork& w) const;
+  /** The frame's ROI: prepare()'s, or for a flow frame its reference
+   *  keyframe's followed with the predicted motion (stage 1 where that
+   *  fails and on the other frames of flow mode). Needs w.flowFrame. */
+  void takeRoi(TFrameWork& w) const;
   /** The frame can follow its reference keyframe by optical flow (both
    *  pyramids exist). */
   bool flowAvailable(const TFrameWork& w) const;
