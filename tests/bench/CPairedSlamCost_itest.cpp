@@ -36,13 +36,13 @@ CPairedSlamCost::TOptions shippedVersions(const std::string& seq)
   o.versions = {
       {"traditional", "", cfg + "/traditional.ini", {}},
       {"roi_big", "", cfg + "/roi_big.ini", {}},
-      // roi-bench's flow variant: an override of the ROI config.
-      {"roi_big/flow",
+      // roi-bench's image variant: an override of the ROI config.
+      {"roi_big/image",
        "",
        cfg + "/roi_big.ini",
        {{"FrontEnd", "strict_roi", "false"},
         {"FrontEnd", "roi_feature_cap", "image"},
-        {"FrontEnd", "roi_extraction", "flow"}}}};
+        {"FrontEnd", "roi_extraction", "image"}}}};
   return o;
 }
 }  // namespace
@@ -57,7 +57,7 @@ TEST(CPairedSlamCost, oneRowPerVersionOverTheWholeSequence)
   EXPECT_TRUE(cost.ok());
   EXPECT_EQ(cost.feature, "orb");
   EXPECT_EQ(cost.passes, 1);
-  EXPECT_EQ(cost.versions[2].key, "roi_big/flow");
+  EXPECT_EQ(cost.versions[2].key, "roi_big/image");
   for (const auto& v : cost.versions)
   {
     EXPECT_EQ(v.frames, frames) << v.key;

@@ -177,6 +177,7 @@ TEST(OdometrySynthetic, FlowFramesDescribeOnlyTheirRoi)
   {
     SCOPED_TRACE(toString(mode));
     auto o = orbFlow(mode);
+    o.flow_describe_roi = "always";
     o.roi_extension_scale = 0.5;
     const auto s = runOdometry(dir, o);
     ASSERT_TRUE(s.ate.has_value());
@@ -257,6 +258,79 @@ TEST(OdometrySynthetic, FlowFramesDescribeOnlyTheirRoi)
               << "\n";
     EXPECT_LT(*s.ate, 0.05);
   }
+}
+
+TEST(OdometrySynthetic, FlowFramesDescribeTheirRoiOnlyWhenTheAnchorsAreWeak)
+{
+  ROISLAM_REQUIRE_SYNTHETIC(dir, "textured");
+  // flow_describe_roi = when_weak (the default): an ordinary flow frame
+  // follows the reference keyframe's anchors everywhere and describes
+  // nothing; its ROI is described (and only its ROI, once) when the
+  // anchors' registration is weak, and the rest of the image only when that
+  // is weak too. max_roi_sigma_m = 1e-9 makes every registration weak, so
+  // every frame takes both steps.
+  using roislam::frontend::EExtension;
+  for (const double sigma : {0.005, 1e-9})
+    for (auto mode : {EFrontEndMode::RoiBig, EFrontEndMode::RoiSmall})
+    {
+      SCOPED_TRACE(toString(mode) + " max_roi_sigma_m " + std::to_string(sigma));
+      auto o = orbFlow(mode);
+      ASSERT_EQ(o.flow_describe_roi, "when_weak");
+      o.max_roi_sigma_m = sigma;
+      const auto s = runOdometry(dir, o);
+      ASSERT_TRUE(s.ate.has_value());
+      std::size_t anchorsOnly = 0, roiDescribed = 0, bothWeak = 0;
+      for (const auto& r : s.results)
+      {
+        const auto& w = r.work;
+        const cv::Rect image(0, 0, r.imageSize.width, r.imageSize.height);
+        if (w.extension == EExtension::None)
+        {
+          EXPECT_EQ(w.extensionPixels, 0u) << "frame " << r.frameIndex;
+          if (w.regionPixels == 0)
+          {
+            // Nothing described: the anchors alone tracked it.
+            ++anchorsOnly;
+            EXPECT_EQ(r.features, 0u) << "frame " << r.frameIndex;
+            EXPECT_EQ(r.method, ETrackingMethod::Flow) << "frame " << r.frameIndex;
+            EXPECT_EQ(r.trackingFeatures, r.flowTracks) << "frame " << r.frameIndex;
+            EXPECT_GT(r.flowTracks, 0u) << "frame " << r.frameIndex;
+          }
+          else
+          {
+            ++roiDescribed;
+            ASSERT_TRUE(r.roi.has_value()) << "frame " << r.frameIndex;
+            EXPECT_EQ(w.region, *r.roi & image) << "frame " << r.frameIndex;
+            EXPECT_EQ(r.features, w.regionFeatures) << "frame " << r.frameIndex;
+            EXPECT_EQ(r.trackingFeatures, r.roiFeatures + r.flowTracks) << "frame " << r.frameIndex;
+          }
+        }
+        else if (w.extension == EExtension::RoiWeak && r.roi && !r.isNewKeyframe)
+        {
+          // The ROI first, then the rest: nothing described twice.
+          ++bothWeak;
+          EXPECT_EQ(w.region, *r.roi & image) << "frame " << r.frameIndex;
+          EXPECT_GT(w.regionPixels, 0u) << "frame " << r.frameIndex;
+          EXPECT_GT(w.extensionPixels, 0u) << "frame " << r.frameIndex;
+          EXPECT_EQ(r.features, w.regionFeatures + w.extensionFeatures) << "frame " << r.frameIndex;
+        }
+      }
+      std::cout << toString(mode) << " when_weak, sigma " << sigma << ": ATE " << *s.ate
+                << " m, anchors only " << anchorsOnly << ", ROI described " << roiDescribed
+                << ", ROI and image " << bothWeak << " of " << s.results.size() << "\n";
+      EXPECT_GE(s.stats.flow, anchorsOnly);
+      if (sigma > 1e-6)
+      {
+        EXPECT_GT(anchorsOnly, s.results.size() / 2);
+      }
+      else
+      {
+        EXPECT_EQ(anchorsOnly, 0u);
+        EXPECT_GT(bothWeak, s.results.size() / 2);
+      }
+      EXPECT_EQ(s.stats.lost, 0u);
+      EXPECT_LT(*s.ate, 0.05);
+    }
 }
 
 TEST(OdometrySynthetic, ExpectedKeyframesDescribeTheWholeImageOnce)

@@ -14,17 +14,10 @@ namespace roislam::frontend
 using detail::Clock;
 using detail::msSince;
 
-ETrackingMethod featureMethod(EFrontEndMode mode, bool fallback)
-{
-  if (!isRoiMode(mode))
-    return ETrackingMethod::Features;
-  return fallback ? ETrackingMethod::FullImageFallback : ETrackingMethod::RoiFeatures;
-}
-
 bool isFeatureMethod(ETrackingMethod m)
 {
   return m == ETrackingMethod::Features || m == ETrackingMethod::RoiFeatures ||
-         m == ETrackingMethod::FullImageFallback;
+         m == ETrackingMethod::Flow || m == ETrackingMethod::FullImageFallback;
 }
 
 TInformation66 scaledIdentity(double s)
@@ -86,6 +79,18 @@ void CRgbdOdometry::TImpl::useCamera(const mrpt::img::TCamera& cam, const TOptio
   icp = std::make_unique<detail::CDepthIcp>(ip, cam);
   icpMaps.clear();
   haveCamera = true;
+}
+
+ETrackingMethod CRgbdOdometry::featureMethodOf(const TFrameWork& w) const
+{
+  if (!isRoiMode(m_options.mode))
+    return ETrackingMethod::Features;
+  if (w.fallback)
+    return ETrackingMethod::FullImageFallback;
+  // Followed anchors without (enough of) the ROI's features.
+  if (w.flowRef && (w.flowFallback || w.regionSet.features.empty()))
+    return ETrackingMethod::Flow;
+  return ETrackingMethod::RoiFeatures;
 }
 
 std::optional<detail::TRegistration> CRgbdOdometry::TImpl::registerSets(
@@ -265,6 +270,9 @@ TFrameResult CRgbdOdometry::finish(TFrameWork& w)
       break;
     case ETrackingMethod::RoiFeatures:
       ++m_stats.roiFeatures;
+      break;
+    case ETrackingMethod::Flow:
+      ++m_stats.flow;
       break;
     case ETrackingMethod::FullImageFallback:
       ++m_stats.fullImageFallback;

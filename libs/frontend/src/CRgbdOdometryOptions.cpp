@@ -19,6 +19,8 @@ std::string toString(ETrackingMethod m)
       return "features";
     case ETrackingMethod::RoiFeatures:
       return "roi";
+    case ETrackingMethod::Flow:
+      return "flow";
     case ETrackingMethod::FullImageFallback:
       return "full_image_fallback";
     case ETrackingMethod::DepthIcp:
@@ -105,6 +107,7 @@ void CRgbdOdometry::TOptions::loadFromConfigFile(
   max_roi_sigma_deg = c.read_double(s, "max_roi_sigma_deg", max_roi_sigma_deg);
   roi_feature_cap = c.read_string(s, "roi_feature_cap", roi_feature_cap);
   roi_extraction = c.read_string(s, "roi_extraction", roi_extraction);
+  flow_describe_roi = c.read_string(s, "flow_describe_roi", flow_describe_roi);
   roi_min_area_fraction = c.read_double(s, "roi_min_area_fraction", roi_min_area_fraction);
   roi_min_aspect = c.read_double(s, "roi_min_aspect", roi_min_aspect);
   roi_extension_scale = c.read_double(s, "roi_extension_scale", roi_extension_scale);
@@ -158,6 +161,7 @@ void CRgbdOdometry::TOptions::saveToConfigFile(
   c.write(s, "max_roi_sigma_deg", max_roi_sigma_deg);
   c.write(s, "roi_feature_cap", roi_feature_cap);
   c.write(s, "roi_extraction", roi_extraction);
+  c.write(s, "flow_describe_roi", flow_describe_roi);
   c.write(s, "roi_min_area_fraction", roi_min_area_fraction);
   c.write(s, "roi_min_aspect", roi_min_aspect);
   c.write(s, "roi_extension_scale", roi_extension_scale);
@@ -212,6 +216,10 @@ void CRgbdOdometry::TOptions::validate(const std::string& s) const
     common::throwBadIniKey(
         s, "roi_extraction",
         "unknown value '" + roi_extraction + "' (expected image, region or flow)");
+  if (flow_describe_roi != "always" && flow_describe_roi != "when_weak")
+    common::throwBadIniKey(
+        s, "flow_describe_roi",
+        "unknown value '" + flow_describe_roi + "' (expected always or when_weak)");
   if (roi_extraction == "flow" && !keyframe_full_features)
     common::throwBadIniKey(
         s, "roi_extraction",

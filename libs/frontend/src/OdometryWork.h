@@ -112,6 +112,10 @@ struct CRgbdOdometry::TFrameWork
   /** Flow mode with the reference keyframe's anchors at hand: the frame
    *  describes its ROI only and follows the rest (decided once, here). */
   bool flowFrame = false;
+  /** flow_describe_roi = when_weak: the flow frame has a ROI it has not
+   *  described; describeRoi() does when the anchors do not determine the
+   *  pose. */
+  bool roiDeferred = false;
   // liftFeatures
   detail::TLiftedFeatures lifted;
   /** Features tracked with (indices into all, a subset of lifted.valid):
@@ -122,8 +126,7 @@ struct CRgbdOdometry::TFrameWork
   /** ROI mode tracked with the whole image's features. */
   bool fallback = false;
   /** Flow: the ROI had too few features (or there was none), so the pose
-   *  comes from the followed anchors, the rest of the image: reported as a
-   *  fallback frame, though nothing more was described. */
+   *  comes from the anchors followed everywhere (ETrackingMethod::Flow). */
   bool flowFallback = false;
   /** strict_roi: too few ROI features, the frame will be Lost. */
   bool strictLost = false;
@@ -178,8 +181,6 @@ struct CRgbdOdometry::TFrameWork
   std::size_t ref = 0;
 };
 
-/** The ETrackingMethod of a feature registration in `mode`. */
-ETrackingMethod featureMethod(EFrontEndMode mode, bool fallback);
 bool isFeatureMethod(ETrackingMethod m);
 /** s * identity. */
 TInformation66 scaledIdentity(double s);

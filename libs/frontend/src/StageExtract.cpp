@@ -72,6 +72,18 @@ features::TFeatureSet describeOutside(
   }
   return ext.select(keep);
 }
+
+/** A flow frame's cap for its ROI: the image's feature density (the ROI's
+ *  share of max_features, 0 = no cap), at least min_roi_features. */
+int roiFeatureCap(const CRgbdOdometry::TOptions& o, const cv::Rect& roi, const cv::Size& image)
+{
+  const int cap = o.extractor.max_features;
+  if (cap <= 0 || roi.empty())
+    return cap;
+  return std::max(
+      o.min_roi_features,
+      static_cast<int>(std::ceil(cap * static_cast<double>(roi.area()) / image.area())));
+}
 }  // namespace
 
 bool CRgbdOdometry::describesRegions() const
@@ -156,14 +168,13 @@ void CRgbdOdometry::extractFeatures(TFrameWork& w) const
     // Flow: the optical flow of the reference keyframe's features gives the
     // pose its spread, so the region is the ROI itself, described at the
     // image's feature density (its share of max_features), and a frame
-    // without a ROI describes nothing.
-    if (res.roi)
+    // without a ROI describes nothing. when_weak: not even the ROI yet
+    // (describeRoi, if the anchors alone leave the pose undetermined).
+    if (res.roi && o.flow_describe_roi == "always")
       work.region = *res.roi & cv::Rect(cv::Point(0, 0), grey.size());
-    if (regionCap > 0 && !work.region.empty())
-      regionCap = std::max(
-          o.min_roi_features, static_cast<int>(std::ceil(
-                                  regionCap * static_cast<double>(work.region.area()) /
-                                  static_cast<double>(grey.total()))));
+    else
+      w.roiDeferred = res.roi.has_value();
+    regionCap = roiFeatureCap(o, work.region, grey.size());
   }
   else
   {
@@ -248,20 +259,12 @@ void CRgbdOdometry::liftFeatures(TFrameWork& w) const
       w.chosen = std::move(inRoi);  // strict with too few: the frame will be Lost
     else
       w.fallback = true;
-    w.flowFallback = flow && !enough && !o.strict_roi;
+    w.flowFallback = flow && !enough && !o.strict_roi && !w.roiDeferred;
     w.strictLost = o.strict_roi && static_cast<int>(res.roiFeatures) < o.min_roi_features;
   }
-  auto makeSet = [&](const std::vector<int>& idx)
-  {
-    TKeyframe k = detail::makeFeatureSet(w.all, w.lifted, idx, I.pinhole);
-    k.frameIndex = w.in.frame.index;
-    k.timestamp = w.in.frame.timestamp;
-    k.roi = res.roi;
-    return k;
-  };
   // Whole-image set (keyframe storage, fallback) and the set tracked with.
-  w.full = makeSet(valid);
-  w.cur = w.chosen.size() == valid.size() ? w.full : makeSet(w.chosen);
+  w.full = frameSet(w, valid);
+  w.cur = w.chosen.size() == valid.size() ? w.full : frameSet(w, w.chosen);
   w.cur.fullImageFallback = w.fallback;
   res.trackingFeatures = w.cur.features.size();
   res.times.lift_ms = msSince(t0);
@@ -302,13 +305,62 @@ void CRgbdOdometry::extendToImage(TFrameWork& w, EExtension reason) const
   detail::appendLifted(w.lifted, lifted, static_cast<int>(w.all.size()));
   w.all = features::concat(w.all, ext);
   const std::vector<int>& valid = w.lifted.valid;
-  TKeyframe full = detail::makeFeatureSet(w.all, w.lifted, valid, I.pinhole);
-  full.frameIndex = w.full.frameIndex;
-  full.timestamp = w.full.timestamp;
-  full.roi = w.full.roi;
-  w.full = std::move(full);
+  w.full = frameSet(w, valid);
   res.features = w.all.size();
   res.featuresWithDepth = valid.size();
   res.times.lift_ms += msSince(t0);
+}
+
+TKeyframe CRgbdOdometry::frameSet(const TFrameWork& w, const std::vector<int>& idx) const
+{
+  TKeyframe k = detail::makeFeatureSet(w.all, w.lifted, idx, m_impl->pinhole);
+  k.frameIndex = w.in.frame.index;
+  k.timestamp = w.in.frame.timestamp;
+  k.roi = w.res.roi;
+  return k;
+}
+
+bool CRgbdOdometry::describeRoi(TFrameWork& w) const
+{
+  if (!w.roiDeferred || !w.regionOnly)
+    return false;
+  w.roiDeferred = false;
+  const TImpl& I = *m_impl;
+  const TOptions& o = m_options;
+  TFrameResult& res = w.res;
+  const cv::Rect roi = *res.roi & cv::Rect(cv::Point(0, 0), w.in.grey.size());
+  if (roi.empty())
+    return false;
+  // Nothing was described before: the ROI's features are the frame's first.
+  auto t0 = Clock::now();
+  res.work.region = roi;
+  w.all = I.extractor.extractIn(
+      w.in.grey, roi, roiFeatureCap(o, roi, w.in.grey.size()), &res.work.regionPixels);
+  res.work.regionFeatures = w.all.size();
+  res.times.extract_ms += msSince(t0);
+
+  // Lifted with the rolling-shutter rate the anchors carry now.
+  t0 = Clock::now();
+  w.lifted = detail::liftAtColourTime(
+      w.all, w.in.frame.depth, I.K, I.dist, I.pinhole, o, w.rateApplied, w.depthDt);
+  detail::rectifyRollingShutter(w.lifted, w.rateApplied, o.rolling_shutter_ms * 1e-3, I.pinhole);
+  const cv::Rect2f box(roi);
+  w.chosen.clear();
+  for (int i : w.lifted.valid)
+    if (box.contains(w.all.keypoints[static_cast<std::size_t>(i)].pt))
+      w.chosen.push_back(i);
+  res.features = w.all.size();
+  res.featuresWithDepth = w.lifted.valid.size();
+  res.roiFeatures = w.chosen.size();
+  w.full = frameSet(w, w.lifted.valid);
+  w.regionSet = frameSet(w, w.chosen);
+  w.regionSet.fullImageFallback = false;
+  if (w.flowRef)
+    rebuildFollowedSet(w);
+  else
+    w.cur = w.regionSet;
+  res.trackingFeatures = w.cur.features.size();
+  res.times.lift_ms += msSince(t0);
+  return true;
 }
 }  // namespace roislam::frontend

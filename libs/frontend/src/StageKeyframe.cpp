@@ -169,7 +169,7 @@ void CRgbdOdometry::makeKeyframeConstraints(TFrameWork& w)
     c.toKeyframe = first.toKeyframe;
     std::tie(c.relativePose, c.information) = detail::toMrptEstimate(*r);
     c.edgeInformation = detail::toSpaEstimate(*r);
-    c.method = featureMethod(o.mode, w.fallback || w.flowFallback);
+    c.method = featureMethodOf(w);
     c.inliers = r->inliers;
     res.constraints.push_back(c);
   }

@@ -104,7 +104,7 @@ bool CRgbdOdometry::resolvePose(TFrameWork& w)
   TFrameResult& res = w.res;
   if (w.reg)
   {
-    res.method = featureMethod(o.mode, w.fallback || w.flowFallback);
+    res.method = featureMethodOf(w);
     std::tie(res.relativePose, res.relativeInformation) = detail::toMrptEstimate(*w.reg);
     res.relativeEdgeInformation = detail::toSpaEstimate(*w.reg);
     res.inliers = w.reg->inliers;

@@ -177,7 +177,15 @@ void CRgbdOdometry::trackFeatures(TFrameWork& w)
   // A ROI registration on few inliers, or one that leaves the pose poorly
   // determined, is kept only when nothing better exists.
   const bool roiTracked = isRoiMode(o.mode) && !o.strict_roi && !w.fallback;
-  const bool weakRoi = w.reg && roiTracked && detail::isWeakRoiRegistration(*w.reg, o);
+  bool weakRoi = w.reg && roiTracked && detail::isWeakRoiRegistration(*w.reg, o);
+  // flow_describe_roi = when_weak: the anchors alone did not determine the
+  // pose, so the ROI's features join them before the rest of the image is
+  // described.
+  if (roiTracked && (!w.reg || weakRoi) && describeRoi(w))
+  {
+    registerWithRecent(w.cur, w);
+    weakRoi = w.reg && detail::isWeakRoiRegistration(*w.reg, o);
+  }
   if (w.regionOnly)
   {
     // The region grows for the next frames while it does not determine the

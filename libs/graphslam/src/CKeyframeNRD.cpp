@@ -117,8 +117,9 @@ void CKeyframeNRD::getDescriptiveReport(std::string* report) const
   {
     const auto& s = m_context->odometry().stats();
     ss << "frames " << s.frames << ", keyframes " << s.keyframes << ", lost " << s.lost
-       << ", fallback to the whole image " << s.fullImageFallback << ", depth ICP " << s.depthIcp
-       << ", constant velocity " << s.constantVelocity << "\n";
+       << ", anchors alone (flow) " << s.flow << ", fallback to the whole image "
+       << s.fullImageFallback << ", depth ICP " << s.depthIcp << ", constant velocity "
+       << s.constantVelocity << "\n";
   }
   *report = ss.str();
 }

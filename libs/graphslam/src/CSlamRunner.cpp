@@ -217,6 +217,7 @@ nlohmann::json CSlamRunner::summaryJson(
       {"initial", st.initial},
       {"features", st.features},
       {"roi", st.roiFeatures},
+      {"flow", st.flow},
       {"full_image_fallback", st.fullImageFallback},
       {"depth_icp", st.depthIcp},
       {"constant_velocity", st.constantVelocity},

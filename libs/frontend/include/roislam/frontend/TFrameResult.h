@@ -30,6 +30,9 @@ enum class ETrackingMethod
   Features,
   /** ROI features (modes roi_small / roi_big / roi). */
   RoiFeatures,
+  /** roi_extraction = flow: the reference keyframe's anchors followed by
+   *  optical flow, without the ROI's features (none described, or too few). */
+  Flow,
   /** ROI mode, but the frame had no ROI or too few ROI features: tracked with
    *  full-image features instead (never in strict_roi mode). */
   FullImageFallback,
@@ -44,7 +47,7 @@ enum class ETrackingMethod
   Lost
 };
 
-/** "initial" | "features" | "roi" | "full_image_fallback" | "depth_icp" |
+/** "initial" | "features" | "roi" | "flow" | "full_image_fallback" | "depth_icp" |
  *  "constant_velocity" | "lost". */
 std::string toString(ETrackingMethod m);
 
@@ -65,7 +68,7 @@ struct TKeyframeConstraint
   TInformation66 information;
   /** TFrameResult::relativeEdgeInformation of this constraint. */
   TInformation66 edgeInformation;
-  /** How it was measured (Features/RoiFeatures/FullImageFallback/DepthIcp/
+  /** How it was measured (Features/RoiFeatures/Flow/FullImageFallback/DepthIcp/
    *  ConstantVelocity). A ConstantVelocity constraint carries a weak
    *  information (see TOptions::constant_velocity_information_scale). */
   ETrackingMethod method = ETrackingMethod::Features;
