@@ -350,7 +350,7 @@ TEST(OdometrySynthetic, ExpectedKeyframesDescribeTheWholeImageOnce)
       o.keyframe_prediction = predict;
       const auto s = runOdometry(dir, o);
       ASSERT_TRUE(s.ate.has_value());
-      std::size_t expected = 0, expectedKeyframes = 0;
+      std::size_t expected = 0, expectedKeyframes = 0, rescued = 0;
       for (const auto& r : s.results)
       {
         const auto& w = r.work;
@@ -364,15 +364,18 @@ TEST(OdometrySynthetic, ExpectedKeyframesDescribeTheWholeImageOnce)
         EXPECT_EQ(w.regionFeatures, 0u) << "frame " << r.frameIndex;
         EXPECT_EQ(w.extensionPixels, static_cast<std::size_t>(r.imageSize.area()));
         EXPECT_EQ(r.features, w.extensionFeatures) << "frame " << r.frameIndex;
-        // Tracked with every feature it described (that has depth), no
-        // followed anchors.
-        EXPECT_EQ(r.trackingFeatures, r.featuresWithDepth) << "frame " << r.frameIndex;
-        EXPECT_EQ(r.flowTracks, 0u) << "frame " << r.frameIndex;
+        // Tracked with every feature it described (that has depth), and
+        // the followed anchors where those alone were weak
+        // (rescueWithAnchors).
+        EXPECT_EQ(r.trackingFeatures, r.featuresWithDepth + r.flowTracks)
+            << "frame " << r.frameIndex;
+        rescued += r.flowTracks > 0;
       }
       std::cout << toString(mode) << " prediction " << predict << ": ATE " << *s.ate
                 << " m, keyframes " << s.keyframes.size() << ", expected " << expected
                 << " (became keyframes " << expectedKeyframes << "), extended after the decision "
-                << extendedAfter[predict] << "\n";
+                << extendedAfter[predict] << ", rescued by the anchors " << rescued << "\n";
+      EXPECT_LT(rescued, expected / 2 + 1);
       if (!predict)
       {
         EXPECT_EQ(expected, 0u);
@@ -397,6 +400,36 @@ TEST(OdometrySynthetic, ExpectedKeyframesDescribeTheWholeImageOnce)
   for (const auto& r : s.results)
     EXPECT_NE(r.work.extension, roislam::frontend::EExtension::ExpectedKeyframe)
         << "frame " << r.frameIndex;
+}
+
+TEST(OdometrySynthetic, WeakExpectedKeyframesAreRescuedByTheAnchors)
+{
+  ROISLAM_REQUIRE_SYNTHETIC(dir, "textured");
+  // An expected keyframe tracks with the whole image's features; where that
+  // registration is weak (here every one: max_roi_sigma_m = 1e-9) the
+  // reference keyframe's anchors, followed by flow, join them and the
+  // better-determined registration is kept. With more constraints it is
+  // nearly always the joint one.
+  auto o = orbFlow(EFrontEndMode::RoiBig);
+  o.max_roi_sigma_m = 1e-9;
+  const auto s = runOdometry(dir, o);
+  ASSERT_TRUE(s.ate.has_value());
+  std::size_t expected = 0, rescued = 0;
+  for (const auto& r : s.results)
+  {
+    if (r.work.extension != roislam::frontend::EExtension::ExpectedKeyframe)
+      continue;
+    ++expected;
+    rescued += r.flowTracks > 0;
+    EXPECT_EQ(r.trackingFeatures, r.featuresWithDepth + r.flowTracks) << "frame " << r.frameIndex;
+    EXPECT_EQ(r.method, ETrackingMethod::FullImageFallback) << "frame " << r.frameIndex;
+  }
+  std::cout << "weak expected keyframes: " << expected << ", rescued by the anchors " << rescued
+            << ", ATE " << *s.ate << " m\n";
+  EXPECT_GT(expected, 5u);
+  EXPECT_GT(2 * rescued, expected);
+  EXPECT_EQ(s.stats.lost, 0u);
+  EXPECT_LT(*s.ate, 0.05);
 }
 
 TEST(OdometrySynthetic, RollingShutterCorrectionRecoversTheSkewedFrames)

@@ -217,6 +217,7 @@ TFrameResult CRgbdOdometry::process(const TPreparedFrame& frame)
     return finish(w);
   }
   trackFeatures(w);
+  rescueWithAnchors(w);
   refineRollingShutter(w);
   refineWithDepth(w);
   if (!resolvePose(w))

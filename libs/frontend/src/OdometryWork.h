@@ -166,6 +166,10 @@ struct CRgbdOdometry::TFrameWork
   detail::TLiftedFeatures flowLifted;
   TKeyframe regionSet;
   detail::TKnownPairs known;
+  /** rescueWithAnchors: the whole image's features and the anchors tracked
+   *  the frame together (w.cur holds both; no keyframe edge needs to
+   *  register the whole image again). */
+  bool anchorsJoinedFull = false;
   /** The flow reference as registrations against its anchors see it
    *  (detail::withAnchors). */
   TKeyframe flowRefView;

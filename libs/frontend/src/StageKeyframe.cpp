@@ -134,7 +134,8 @@ void CRgbdOdometry::makeKeyframeConstraints(TFrameWork& w)
   // stores anyway (as loop closures do); the ROI tracks the frames between.
   const bool fullEdges = isRoiMode(o.mode) && !o.strict_roi && o.keyframe_full_features &&
                          o.keyframe_full_registration &&
-                         (w.flowRef.has_value() || w.cur.features.size() < w.full.features.size());
+                         ((w.flowRef.has_value() && !w.anchorsJoinedFull) ||
+                          w.cur.features.size() < w.full.features.size());
   if (fullEdges && isFeatureMethod(res.method))
     if (const auto r = I.registerSets(m_keyframes[w.ref], w.full, o))
     {
@@ -144,7 +145,9 @@ void CRgbdOdometry::makeKeyframeConstraints(TFrameWork& w)
       res.pose = m_keyframes[w.ref].pose + res.relativePose;
       I.setVelocity(*res.pose - w.lastWorld, w.in.frame.timestamp);
     }
-  const TKeyframe& edgeSet = fullEdges ? w.full : w.cur;
+  // Followed anchors carry no descriptors: other keyframes are matched with
+  // the frame's described features only.
+  const TKeyframe& edgeSet = fullEdges || w.flowRef ? w.full : w.cur;
   TKeyframeConstraint first;
   first.fromKeyframe = w.ref;
   first.toKeyframe = m_keyframes.size();

@@ -125,7 +125,7 @@ void CRgbdOdometry::predictMotion(TFrameWork& w) const
     w.ref = w.candidates.front();
 }
 
-void CRgbdOdometry::followReference(TFrameWork& w) const
+void CRgbdOdometry::followReference(TFrameWork& w, const cv::Rect& described) const
 {
   const TImpl& I = *m_impl;
   const auto pyramid = I.flowPyramids.find(w.ref);
@@ -133,9 +133,6 @@ void CRgbdOdometry::followReference(TFrameWork& w) const
     return;
   const auto t0 = detail::Clock::now();
   const TKeyframe& kf = m_keyframes[w.ref];
-  // Outside the ROI, unless its described features are too few to carry
-  // the pose there (then everywhere).
-  const cv::Rect described = w.flowFallback ? cv::Rect() : w.res.work.region;
   w.flow = detail::followAnchors(
       kf, pyramid->second, w.in.flowPyramid, w.predictedWorld - kf.pose, I.K, I.dist, described,
       I.flowParams);
@@ -171,8 +168,10 @@ void CRgbdOdometry::rebuildFollowedSet(TFrameWork& w) const
 void CRgbdOdometry::trackFeatures(TFrameWork& w)
 {
   const TOptions& o = m_options;
+  // Outside the ROI, unless its described features are too few to carry
+  // the pose there (then everywhere).
   if (followsWithFlow() && w.regionOnly && !w.fallback)
-    followReference(w);
+    followReference(w, w.flowFallback ? cv::Rect() : w.res.work.region);
   registerWithRecent(w.cur, w);
   // A ROI registration on few inliers, or one that leaves the pose poorly
   // determined, is kept only when nothing better exists.
@@ -218,6 +217,36 @@ void CRgbdOdometry::trackFeatures(TFrameWork& w)
   w.flowRef.reset();
   w.cur = w.full;
   w.cur.fullImageFallback = true;
+  w.res.trackingFeatures = w.cur.features.size();
+}
+void CRgbdOdometry::rescueWithAnchors(TFrameWork& w) const
+{
+  // An expected keyframe tracks with the whole image's features alone.
+  // Where they fail or leave the pose undetermined (fast motion, blur: on
+  // fr1/rpy such a frame fell to depth ICP, 4.6 deg off), the reference
+  // keyframe's anchors, followed from where the predicted motion puts them,
+  // join them; kept when that registration is the better determined.
+  if (!followsWithFlow() || !w.keyframeExpected || w.flowRef ||
+      (w.reg && !detail::isWeakRoiRegistration(*w.reg, m_options)))
+    return;
+  const auto before = w.reg;
+  const std::size_t ref = w.ref, matches = w.res.matches;
+  const TKeyframe tracked = w.cur;
+  followReference(w, cv::Rect());
+  if (!w.flowRef)
+    return;
+  registerWithRecent(w.cur, w);
+  if (w.reg && (!before || !detail::lessDetermined(*w.reg, *before)))
+  {
+    w.anchorsJoinedFull = true;
+    return;
+  }
+  w.reg = before;
+  w.ref = ref;
+  w.res.matches = matches;
+  w.cur = tracked;
+  w.flowRef.reset();
+  w.res.flowTracks = 0;
   w.res.trackingFeatures = w.cur.features.size();
 }
 }  // namespace roislam::frontend

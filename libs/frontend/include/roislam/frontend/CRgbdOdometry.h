@@ -497,10 +497,14 @@ class CRgbdOdometry : public mrpt::system::COutputLogger
   /** The frame can follow its reference keyframe by optical flow (both
    *  pyramids exist). */
   bool flowAvailable(const TFrameWork& w) const;
-  /** roi_extraction = flow: follows the reference keyframe's features
-   *  outside the region into the frame and makes w.cur the region's set
+  /** roi_extraction = flow: follows the reference keyframe's anchors
+   *  outside `described` into the frame and makes w.cur the frame's set
    *  plus theirs (FlowTracking.h). */
-  void followReference(TFrameWork& w) const;
+  void followReference(TFrameWork& w, const cv::Rect& described) const;
+  /** roi_extraction = flow: an expected keyframe whose whole-image
+   *  registration failed or is weak is registered again with the reference
+   *  keyframe's anchors followed into it (all of them) as known pairs. */
+  void rescueWithAnchors(TFrameWork& w) const;
   /** w.cur from w.regionSet and the followed features, as lifted now. */
   void rebuildFollowedSet(TFrameWork& w) const;
   /** roi_extraction = flow: the new keyframe's anchors (FlowTracking.h). */
