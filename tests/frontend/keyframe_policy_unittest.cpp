@@ -212,12 +212,16 @@ TEST(KeyframePolicy, OptionsAreValidated)
 {
   auto o = overlapOptions();
   o.keyframe_min_overlap = 0.6;
+  o.keyframe_min_flow_inlier_share = 0.5;
+  o.flow_describe_roi = "always";
   mrpt::config::CConfigFileMemory cfg;
   o.saveToConfigFile(cfg, "FrontEnd");
   CRgbdOdometry::TOptions l;
   l.loadFromConfigFile(cfg, "FrontEnd");
   EXPECT_EQ(l.keyframe_policy, "overlap");
   EXPECT_DOUBLE_EQ(l.keyframe_min_overlap, 0.6);
+  EXPECT_DOUBLE_EQ(l.keyframe_min_flow_inlier_share, 0.5);
+  EXPECT_EQ(l.flow_describe_roi, "always");
   EXPECT_DOUBLE_EQ(l.keyframe_rotation_deg, 0);
   const auto expectError = [](auto set, const std::string& key)
   {
@@ -237,6 +241,11 @@ TEST(KeyframePolicy, OptionsAreValidated)
   expectError([](auto& b) { b.keyframe_min_overlap = 1.0; }, "keyframe_min_overlap");
   expectError([](auto& b) { b.keyframe_min_overlap = -0.1; }, "keyframe_min_overlap");
   expectError([](auto& b) { b.keyframe_place_limit = -1; }, "keyframe_place_limit");
+  expectError(
+      [](auto& b) { b.keyframe_min_flow_inlier_share = 1.0; }, "keyframe_min_flow_inlier_share");
+  expectError(
+      [](auto& b) { b.keyframe_min_flow_inlier_share = -0.1; }, "keyframe_min_flow_inlier_share");
+  expectError([](auto& b) { b.flow_describe_roi = "sometimes"; }, "flow_describe_roi");
   expectError([](auto& b) { b.keyframe_rotation_deg = -1; }, "keyframe_rotation_deg");
   // The motion policy needs its thresholds.
   expectError(

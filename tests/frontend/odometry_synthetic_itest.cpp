@@ -432,6 +432,33 @@ TEST(OdometrySynthetic, WeakExpectedKeyframesAreRescuedByTheAnchors)
   EXPECT_LT(*s.ate, 0.05);
 }
 
+TEST(OdometrySynthetic, FlowInlierShareMakesKeyframes)
+{
+  ROISLAM_REQUIRE_SYNTHETIC(dir, "textured");
+  // keyframe_min_flow_inlier_share: a frame tracked by the anchors alone
+  // becomes a keyframe when fewer of its followed anchors than this share
+  // are inliers. Near 1 nearly every such frame does; 0 (default) is off.
+  std::map<double, std::size_t> keyframes;
+  for (const double share : {0.0, 0.999})
+  {
+    auto o = orbFlow(EFrontEndMode::RoiBig);
+    o.keyframe_min_flow_inlier_share = share;
+    const auto s = runOdometry(dir, o);
+    ASSERT_TRUE(s.ate.has_value());
+    keyframes[share] = s.keyframes.size();
+    for (const auto& r : s.results)
+      if (share > 0 && r.method == ETrackingMethod::Flow && !r.isNewKeyframe)
+      {
+        EXPECT_GE(static_cast<double>(r.inliers), share * static_cast<double>(r.matches))
+            << "frame " << r.frameIndex;
+      }
+    std::cout << "flow inlier share " << share << ": keyframes " << s.keyframes.size() << ", ATE "
+              << *s.ate << " m\n";
+    EXPECT_LT(*s.ate, 0.05);
+  }
+  EXPECT_GT(keyframes[0.999], keyframes[0.0]);
+}
+
 TEST(OdometrySynthetic, RollingShutterCorrectionRecoversTheSkewedFrames)
 {
   ROISLAM_REQUIRE_SYNTHETIC(dir, "textured");

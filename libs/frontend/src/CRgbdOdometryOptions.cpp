@@ -115,6 +115,8 @@ void CRgbdOdometry::TOptions::loadFromConfigFile(
   keyframe_translation_m = c.read_double(s, "keyframe_translation_m", keyframe_translation_m);
   keyframe_rotation_deg = c.read_double(s, "keyframe_rotation_deg", keyframe_rotation_deg);
   keyframe_min_inliers = c.read_int(s, "keyframe_min_inliers", keyframe_min_inliers);
+  keyframe_min_flow_inlier_share =
+      c.read_double(s, "keyframe_min_flow_inlier_share", keyframe_min_flow_inlier_share);
   keyframe_policy = c.read_string(s, "keyframe_policy", keyframe_policy);
   keyframe_min_overlap = c.read_double(s, "keyframe_min_overlap", keyframe_min_overlap);
   keyframe_place_limit = c.read_int(s, "keyframe_place_limit", keyframe_place_limit);
@@ -169,6 +171,7 @@ void CRgbdOdometry::TOptions::saveToConfigFile(
   c.write(s, "keyframe_translation_m", keyframe_translation_m);
   c.write(s, "keyframe_rotation_deg", keyframe_rotation_deg);
   c.write(s, "keyframe_min_inliers", keyframe_min_inliers);
+  c.write(s, "keyframe_min_flow_inlier_share", keyframe_min_flow_inlier_share);
   c.write(s, "keyframe_policy", keyframe_policy);
   c.write(s, "keyframe_min_overlap", keyframe_min_overlap);
   c.write(s, "keyframe_place_limit", keyframe_place_limit);
@@ -251,6 +254,8 @@ void CRgbdOdometry::TOptions::validate(const std::string& s) const
         s, "keyframe_rotation_deg", motionPolicy ? "must be > 0" : "must be >= 0 (0 = no bound)");
   if (keyframe_min_inliers < 0)
     common::throwBadIniKey(s, "keyframe_min_inliers", "must be >= 0");
+  if (!(keyframe_min_flow_inlier_share >= 0 && keyframe_min_flow_inlier_share < 1))
+    common::throwBadIniKey(s, "keyframe_min_flow_inlier_share", "must be in [0, 1) (0 = off)");
   if (recent_keyframes < 0)
     common::throwBadIniKey(s, "recent_keyframes", "must be >= 0");
   if (!(ransac_threshold_m > 0))

@@ -80,8 +80,16 @@ void CRgbdOdometry::startMap(TFrameWork& w)
 
 bool CRgbdOdometry::needsKeyframe(const TFrameWork& w) const
 {
-  const bool fewInliers = isFeatureMethod(w.res.method) &&
-                          static_cast<int>(w.res.inliers) < m_options.keyframe_min_inliers;
+  const TOptions& o = m_options;
+  bool fewInliers =
+      isFeatureMethod(w.res.method) && static_cast<int>(w.res.inliers) < o.keyframe_min_inliers;
+  // Anchors alone: their pairs are known, so their share of inliers says
+  // how much of the keyframe's view still moves as one with the frame.
+  if (o.keyframe_min_flow_inlier_share > 0 && w.res.method == ETrackingMethod::Flow &&
+      w.res.matches > 0 &&
+      static_cast<double>(w.res.inliers) <
+          o.keyframe_min_flow_inlier_share * static_cast<double>(w.res.matches))
+    fewInliers = true;
   return keyframeCriteria(w, *w.res.pose, fewInliers);
 }
 
