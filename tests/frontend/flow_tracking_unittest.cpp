@@ -84,7 +84,7 @@ TEST(FlowTracking, AnchorsLandWhereTheMotionProjectsThem)
 
   const cv::Mat K = (cv::Mat_<double>(3, 3) << kF, 0, kCx, 0, kF, kCy, 0, 0, 1);
   const cv::Mat dist = cv::Mat::zeros(1, 5, CV_64F);
-  const auto pa = flowPyramid(a, p), pb = flowPyramid(b, p);
+  const auto pa = flowPyramid(a, p, true), pb = flowPyramid(b, p, false);
   // Exact prediction, and one off by about 6 px (a 0.7 deg error).
   for (const auto& prediction : {moved, moved + mrpt::poses::CPose3D(0, 0, 0, 0.012, 0, 0)})
   {
@@ -115,7 +115,7 @@ TEST(FlowTracking, AnchorsAreNotFollowedWhereTheFrameWasDescribed)
   const TKeyframe kf = keyframeWithAnchors(a, p);
   const cv::Mat K = (cv::Mat_<double>(3, 3) << kF, 0, kCx, 0, kF, kCy, 0, 0, 1);
   const cv::Mat dist = cv::Mat::zeros(1, 5, CV_64F);
-  const auto pa = flowPyramid(a, p), pb = flowPyramid(b, p);
+  const auto pa = flowPyramid(a, p, true), pb = flowPyramid(b, p, false);
   const TFlowTracks all = followAnchors(kf, pa, pb, moved, K, dist, cv::Rect(), p);
   // The left half described (the frame's ROI): only the right half's
   // anchors are followed, and about as many as lie there.

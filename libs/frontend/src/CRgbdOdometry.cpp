@@ -190,7 +190,7 @@ TPreparedFrame CRgbdOdometry::prepare(const io::TRGBDFrame& frame) const
     p.roi_ms = msSince(t0);
   }
   if (followsWithFlow())
-    p.flowPyramid = detail::flowPyramid(p.grey, m_impl->flowParams);
+    p.flowPyramid = detail::flowPyramid(p.grey, m_impl->flowParams, false);
   p.prepare_ms = msSince(t0);
   return p;
 }

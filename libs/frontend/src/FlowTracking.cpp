@@ -6,10 +6,10 @@
 
 namespace roislam::frontend::detail
 {
-TFlowPyramid flowPyramid(const cv::Mat& grey, const TFlowParams& p)
+TFlowPyramid flowPyramid(const cv::Mat& grey, const TFlowParams& p, bool withDerivatives)
 {
   TFlowPyramid pyr;
-  cv::buildOpticalFlowPyramid(grey, pyr, cv::Size(p.window, p.window), p.levels);
+  cv::buildOpticalFlowPyramid(grey, pyr, cv::Size(p.window, p.window), p.levels, withDerivatives);
   return pyr;
 }
 

@@ -243,7 +243,8 @@ void CRgbdOdometry::insertKeyframe(TFrameWork& w, const mrpt::poses::CPose3D& po
   if (followsWithFlow())
   {
     setAnchors(m_keyframes.back(), w);
-    I.flowPyramids[res.newKeyframeId] = w.in.flowPyramid;
+    // Followed from by the next frames: with its derivatives (FlowTracking.h).
+    I.flowPyramids[res.newKeyframeId] = detail::flowPyramid(w.in.grey, I.flowParams, true);
     while (I.flowPyramids.size() > keep)
       I.flowPyramids.erase(I.flowPyramids.begin());
   }
