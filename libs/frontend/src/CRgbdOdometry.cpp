@@ -85,6 +85,10 @@ ETrackingMethod CRgbdOdometry::featureMethodOf(const TFrameWork& w) const
 {
   if (!isRoiMode(m_options.mode))
     return ETrackingMethod::Features;
+  // A frame expected to become a keyframe (keyframe_prediction) describes
+  // and tracks with the whole image by design, not for want of a ROI.
+  if (w.keyframeExpected)
+    return ETrackingMethod::Features;
   if (w.fallback)
     return ETrackingMethod::FullImageFallback;
   // Followed anchors without (enough of) the ROI's features.

@@ -26,7 +26,9 @@ enum class ETrackingMethod
 {
   /** First frame of the run: pose = initial pose, becomes keyframe 0. */
   Initial,
-  /** Full-image features (mode traditional). */
+  /** Full-image features: mode traditional, and in ROI modes a frame
+   *  expected to become a keyframe (keyframe_prediction), which describes
+   *  the whole image by design. */
   Features,
   /** ROI features (modes roi_small / roi_big / roi). */
   RoiFeatures,
