@@ -86,6 +86,18 @@ struct CRgbdOdometry::TImpl
   {
     return {pinhole, image, o.min_depth_m, o.max_depth_m};
   }
+  /** A frame's features lifted at the colour image's time (the depth rule,
+   *  depth-time alignment) and corrected for the rolling shutter, both
+   *  with `rate`: every set a frame describes or follows is lifted so. */
+  detail::TLiftedFeatures lift(
+      const features::TFeatureSet& set, const cv::Mat& depth, double depthDt,
+      const detail::TCameraRate& rate, const TOptions& o) const
+  {
+    detail::TLiftedFeatures l =
+        detail::liftAtColourTime(set, depth, K, dist, pinhole, o, rate, depthDt);
+    detail::rectifyRollingShutter(l, rate, o.rolling_shutter_ms * 1e-3, pinhole);
+    return l;
+  }
   /** registerSets() with this odometry's matcher, RANSAC and camera. */
   std::optional<detail::TRegistration> registerSets(
       const TKeyframe& ref, const TKeyframe& cur, const TOptions& o,

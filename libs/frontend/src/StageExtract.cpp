@@ -73,6 +73,18 @@ features::TFeatureSet describeOutside(
   return ext.select(keep);
 }
 
+/** The indices `idx` of set's features whose keypoint lies inside `box`. */
+std::vector<int> inside(
+    const features::TFeatureSet& set, const std::vector<int>& idx, const cv::Rect& box)
+{
+  const cv::Rect2f b(box);
+  std::vector<int> in;
+  for (int i : idx)
+    if (b.contains(set.keypoints[static_cast<std::size_t>(i)].pt))
+      in.push_back(i);
+  return in;
+}
+
 /** A flow frame's cap for its ROI: the image's feature density (the ROI's
  *  share of max_features, 0 = no cap), at least min_roi_features. */
 int roiFeatureCap(const CRgbdOdometry::TOptions& o, const cv::Rect& roi, const cv::Size& image)
@@ -228,9 +240,7 @@ void CRgbdOdometry::liftFeatures(TFrameWork& w) const
   // shutter, first guess: the velocity of the last motion.
   w.ratePredicted = detail::cameraRate(I.velocity, I.velocityDt);
   w.rateApplied = w.ratePredicted;
-  w.lifted = detail::liftAtColourTime(
-      w.all, w.in.frame.depth, I.K, I.dist, I.pinhole, o, w.ratePredicted, w.depthDt);
-  detail::rectifyRollingShutter(w.lifted, w.ratePredicted, o.rolling_shutter_ms * 1e-3, I.pinhole);
+  w.lifted = I.lift(w.all, w.in.frame.depth, w.depthDt, w.ratePredicted, o);
   // The corrections never change which keypoints are valid.
   const std::vector<int>& valid = w.lifted.valid;
   res.featuresWithDepth = valid.size();
@@ -240,12 +250,7 @@ void CRgbdOdometry::liftFeatures(TFrameWork& w) const
   {
     std::vector<int> inRoi;
     if (w.regionOnly || res.roi)
-    {
-      const cv::Rect2f box(w.regionOnly ? res.work.region : *res.roi);
-      for (int i : valid)
-        if (box.contains(w.all.keypoints[static_cast<std::size_t>(i)].pt))
-          inRoi.push_back(i);
-    }
+      inRoi = inside(w.all, valid, w.regionOnly ? res.work.region : *res.roi);
     res.roiFeatures = inRoi.size();
     // Flow: few ROI features are no reason to describe more, the followed
     // keyframe features carry the pose.
@@ -299,10 +304,9 @@ void CRgbdOdometry::extendToImage(TFrameWork& w, EExtension reason) const
 
   // Lifted like the region's, with the rolling-shutter rate they carry now.
   t0 = Clock::now();
-  detail::TLiftedFeatures lifted = detail::liftAtColourTime(
-      ext, w.in.frame.depth, I.K, I.dist, I.pinhole, o, w.rateApplied, w.depthDt);
-  detail::rectifyRollingShutter(lifted, w.rateApplied, o.rolling_shutter_ms * 1e-3, I.pinhole);
-  detail::appendLifted(w.lifted, lifted, static_cast<int>(w.all.size()));
+  detail::appendLifted(
+      w.lifted, I.lift(ext, w.in.frame.depth, w.depthDt, w.rateApplied, o),
+      static_cast<int>(w.all.size()));
   w.all = features::concat(w.all, ext);
   const std::vector<int>& valid = w.lifted.valid;
   w.full = frameSet(w, valid);
@@ -341,20 +345,13 @@ bool CRgbdOdometry::describeRoi(TFrameWork& w) const
 
   // Lifted with the rolling-shutter rate the anchors carry now.
   t0 = Clock::now();
-  w.lifted = detail::liftAtColourTime(
-      w.all, w.in.frame.depth, I.K, I.dist, I.pinhole, o, w.rateApplied, w.depthDt);
-  detail::rectifyRollingShutter(w.lifted, w.rateApplied, o.rolling_shutter_ms * 1e-3, I.pinhole);
-  const cv::Rect2f box(roi);
-  w.chosen.clear();
-  for (int i : w.lifted.valid)
-    if (box.contains(w.all.keypoints[static_cast<std::size_t>(i)].pt))
-      w.chosen.push_back(i);
+  w.lifted = I.lift(w.all, w.in.frame.depth, w.depthDt, w.rateApplied, o);
+  w.chosen = inside(w.all, w.lifted.valid, roi);
   res.features = w.all.size();
   res.featuresWithDepth = w.lifted.valid.size();
   res.roiFeatures = w.chosen.size();
   w.full = frameSet(w, w.lifted.valid);
   w.regionSet = frameSet(w, w.chosen);
-  w.regionSet.fullImageFallback = false;
   if (w.flowRef)
     rebuildFollowedSet(w);
   else

@@ -41,10 +41,8 @@ void CRgbdOdometry::setAnchors(TKeyframe& kf, TFrameWork& w) const
   const features::TFeatureSet corners = detail::anchorCandidates(w.in.grey, I.flowParams);
   // The keyframe's depth rule, depth-time and rolling-shutter corrections,
   // as its features'.
-  detail::TLiftedFeatures lifted = detail::liftAtColourTime(
-      corners, w.in.frame.depth, I.K, I.dist, I.pinhole, m_options, w.rateApplied, w.depthDt);
-  detail::rectifyRollingShutter(
-      lifted, w.rateApplied, m_options.rolling_shutter_ms * 1e-3, I.pinhole);
+  const detail::TLiftedFeatures lifted =
+      I.lift(corners, w.in.frame.depth, w.depthDt, w.rateApplied, m_options);
   kf.anchorKeypoints.clear();
   kf.anchorPoints.clear();
   kf.anchorPixels.clear();

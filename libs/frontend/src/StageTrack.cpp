@@ -137,10 +137,7 @@ void CRgbdOdometry::followReference(TFrameWork& w, const cv::Rect& described) co
       kf, pyramid->second, w.in.flowPyramid, w.predictedWorld - kf.pose, I.K, I.dist, described,
       I.flowParams);
   // Lifted and corrected for the rolling shutter like the region's features.
-  w.flowLifted = detail::liftAtColourTime(
-      w.flow.set, w.in.frame.depth, I.K, I.dist, I.pinhole, m_options, w.rateApplied, w.depthDt);
-  detail::rectifyRollingShutter(
-      w.flowLifted, w.rateApplied, m_options.rolling_shutter_ms * 1e-3, I.pinhole);
+  w.flowLifted = I.lift(w.flow.set, w.in.frame.depth, w.depthDt, w.rateApplied, m_options);
   w.regionSet = w.cur;
   w.flowRef = w.ref;
   w.flowRefView = detail::withAnchors(kf);
@@ -219,6 +216,7 @@ void CRgbdOdometry::trackFeatures(TFrameWork& w)
   w.cur.fullImageFallback = true;
   w.res.trackingFeatures = w.cur.features.size();
 }
+
 void CRgbdOdometry::rescueWithAnchors(TFrameWork& w) const
 {
   // An expected keyframe tracks with the whole image's features alone.
