@@ -4,6 +4,8 @@
 
 #include <cmath>
 #include <stdexcept>
+#include <string>
+#include <vector>
 
 #include "roislam/frontend/CRgbdOdometry.h"
 
@@ -202,92 +204,127 @@ void CRgbdOdometry::TOptions::saveToConfigFile(
   matcher.saveToConfigFile(c, "FeatureMatcher");
 }
 
-void CRgbdOdometry::TOptions::validate(const std::string& s) const
+namespace
 {
-  if (min_roi_features < 3)
-    common::throwBadIniKey(s, "min_roi_features", "must be >= 3");
-  if (min_roi_inliers < 0)
-    common::throwBadIniKey(s, "min_roi_inliers", "must be >= 0");
-  if (!(max_roi_sigma_m >= 0))
-    common::throwBadIniKey(s, "max_roi_sigma_m", "must be >= 0");
-  if (!(max_roi_sigma_deg >= 0))
-    common::throwBadIniKey(s, "max_roi_sigma_deg", "must be >= 0");
-  if (roi_feature_cap != "image" && roi_feature_cap != "roi")
-    common::throwBadIniKey(
-        s, "roi_feature_cap", "unknown value '" + roi_feature_cap + "' (expected image or roi)");
-  if (roi_extraction != "region" && roi_extraction != "image" && roi_extraction != "flow")
-    common::throwBadIniKey(
-        s, "roi_extraction",
-        "unknown value '" + roi_extraction + "' (expected image, region or flow)");
-  if (flow_describe_roi != "always" && flow_describe_roi != "when_weak")
-    common::throwBadIniKey(
-        s, "flow_describe_roi",
-        "unknown value '" + flow_describe_roi + "' (expected always or when_weak)");
-  if (roi_extraction == "flow" && !keyframe_full_features)
-    common::throwBadIniKey(
+using TOptions = CRgbdOdometry::TOptions;
+using common::throwBadIniKey;
+
+/** A key whose value is one of a few names: "unknown value 'x' (expected a,
+ *  b or c)". */
+void requireOneOf(
+    const std::string& s, const std::string& key, const std::string& value,
+    const std::vector<std::string>& names)
+{
+  for (const auto& n : names)
+    if (value == n)
+      return;
+  std::string expected;
+  for (std::size_t i = 0; i < names.size(); ++i)
+    expected += (i == 0 ? "" : (i + 1 == names.size() ? " or " : ", ")) + names[i];
+  throwBadIniKey(s, key, "unknown value '" + value + "' (expected " + expected + ")");
+}
+
+/** The ROI, its region and how frames are described and followed. */
+void validateRoi(const TOptions& o, const std::string& s)
+{
+  if (o.min_roi_features < 3)
+    throwBadIniKey(s, "min_roi_features", "must be >= 3");
+  if (o.min_roi_inliers < 0)
+    throwBadIniKey(s, "min_roi_inliers", "must be >= 0");
+  if (!(o.max_roi_sigma_m >= 0))
+    throwBadIniKey(s, "max_roi_sigma_m", "must be >= 0");
+  if (!(o.max_roi_sigma_deg >= 0))
+    throwBadIniKey(s, "max_roi_sigma_deg", "must be >= 0");
+  requireOneOf(s, "roi_feature_cap", o.roi_feature_cap, {"image", "roi"});
+  requireOneOf(s, "roi_extraction", o.roi_extraction, {"image", "region", "flow"});
+  requireOneOf(s, "flow_describe_roi", o.flow_describe_roi, {"always", "when_weak"});
+  if (o.roi_extraction == "flow" && !o.keyframe_full_features)
+    throwBadIniKey(
         s, "roi_extraction",
         "flow follows the keyframes' whole-image features: it needs keyframe_full_features = "
         "true");
-  if (!(roi_min_area_fraction >= 0 && roi_min_area_fraction <= 1))
-    common::throwBadIniKey(s, "roi_min_area_fraction", "must be in [0, 1]");
-  if (!(roi_min_aspect >= 0 && roi_min_aspect <= 1))
-    common::throwBadIniKey(s, "roi_min_aspect", "must be in [0, 1]");
-  if (!(roi_extension_scale >= 0.25 && roi_extension_scale <= 1))
-    common::throwBadIniKey(s, "roi_extension_scale", "must be in [0.25, 1]");
-  if (min_inliers < 3)
-    common::throwBadIniKey(s, "min_inliers", "must be >= 3");
-  if (keyframe_policy != "motion" && keyframe_policy != "overlap")
-    common::throwBadIniKey(
-        s, "keyframe_policy",
-        "unknown value '" + keyframe_policy + "' (expected motion or overlap)");
-  if (!(keyframe_min_overlap >= 0 && keyframe_min_overlap < 1))
-    common::throwBadIniKey(s, "keyframe_min_overlap", "must be in [0, 1)");
-  if (keyframe_place_limit < 0)
-    common::throwBadIniKey(s, "keyframe_place_limit", "must be >= 0 (0 = no limit)");
+  if (!(o.roi_min_area_fraction >= 0 && o.roi_min_area_fraction <= 1))
+    throwBadIniKey(s, "roi_min_area_fraction", "must be in [0, 1]");
+  if (!(o.roi_min_aspect >= 0 && o.roi_min_aspect <= 1))
+    throwBadIniKey(s, "roi_min_aspect", "must be in [0, 1]");
+  if (!(o.roi_extension_scale >= 0.25 && o.roi_extension_scale <= 1))
+    throwBadIniKey(s, "roi_extension_scale", "must be in [0.25, 1]");
+}
+
+/** When a frame becomes a keyframe, and which keyframes it registers with. */
+void validateKeyframes(const TOptions& o, const std::string& s)
+{
+  requireOneOf(s, "keyframe_policy", o.keyframe_policy, {"motion", "overlap"});
+  if (!(o.keyframe_min_overlap >= 0 && o.keyframe_min_overlap < 1))
+    throwBadIniKey(s, "keyframe_min_overlap", "must be in [0, 1)");
+  if (o.keyframe_place_limit < 0)
+    throwBadIniKey(s, "keyframe_place_limit", "must be >= 0 (0 = no limit)");
   // With the overlap policy the motion thresholds are optional bounds.
-  const bool motionPolicy = keyframe_policy == "motion";
-  if (motionPolicy ? !(keyframe_translation_m > 0) : !(keyframe_translation_m >= 0))
-    common::throwBadIniKey(
+  const bool motionPolicy = o.keyframe_policy == "motion";
+  if (motionPolicy ? !(o.keyframe_translation_m > 0) : !(o.keyframe_translation_m >= 0))
+    throwBadIniKey(
         s, "keyframe_translation_m", motionPolicy ? "must be > 0" : "must be >= 0 (0 = no bound)");
-  if (motionPolicy ? !(keyframe_rotation_deg > 0) : !(keyframe_rotation_deg >= 0))
-    common::throwBadIniKey(
+  if (motionPolicy ? !(o.keyframe_rotation_deg > 0) : !(o.keyframe_rotation_deg >= 0))
+    throwBadIniKey(
         s, "keyframe_rotation_deg", motionPolicy ? "must be > 0" : "must be >= 0 (0 = no bound)");
-  if (keyframe_min_inliers < 0)
-    common::throwBadIniKey(s, "keyframe_min_inliers", "must be >= 0");
-  if (!(keyframe_min_flow_inlier_share >= 0 && keyframe_min_flow_inlier_share < 1))
-    common::throwBadIniKey(s, "keyframe_min_flow_inlier_share", "must be in [0, 1) (0 = off)");
-  if (recent_keyframes < 0)
-    common::throwBadIniKey(s, "recent_keyframes", "must be >= 0");
-  if (!(ransac_threshold_m > 0))
-    common::throwBadIniKey(s, "ransac_threshold_m", "must be > 0");
-  if (ransac_max_iterations < 1)
-    common::throwBadIniKey(s, "ransac_max_iterations", "must be >= 1");
-  if (refine_iterations < 0)
-    common::throwBadIniKey(s, "refine_iterations", "must be >= 0");
-  if (!(reprojection_threshold_px > 0))
-    common::throwBadIniKey(s, "reprojection_threshold_px", "must be > 0");
-  if (!(pixel_sigma_px > 0))
-    common::throwBadIniKey(s, "pixel_sigma_px", "must be > 0");
-  if (!(min_depth_m >= 0))
-    common::throwBadIniKey(s, "min_depth_m", "must be >= 0");
-  if (!(max_depth_m > min_depth_m))
-    common::throwBadIniKey(s, "max_depth_m", "must be > min_depth_m");
-  if (!(depth_discontinuity_m >= 0))
-    common::throwBadIniKey(s, "depth_discontinuity_m", "must be >= 0");
+  if (o.keyframe_min_inliers < 0)
+    throwBadIniKey(s, "keyframe_min_inliers", "must be >= 0");
+  if (!(o.keyframe_min_flow_inlier_share >= 0 && o.keyframe_min_flow_inlier_share < 1))
+    throwBadIniKey(s, "keyframe_min_flow_inlier_share", "must be in [0, 1) (0 = off)");
+  if (o.recent_keyframes < 0)
+    throwBadIniKey(s, "recent_keyframes", "must be >= 0");
+}
+
+/** The registration: RANSAC, its refinement and information, the depth
+ *  the features are lifted with. */
+void validateRegistration(const TOptions& o, const std::string& s)
+{
+  if (o.min_inliers < 3)
+    throwBadIniKey(s, "min_inliers", "must be >= 3");
+  if (!(o.ransac_threshold_m > 0))
+    throwBadIniKey(s, "ransac_threshold_m", "must be > 0");
+  if (o.ransac_max_iterations < 1)
+    throwBadIniKey(s, "ransac_max_iterations", "must be >= 1");
+  if (o.refine_iterations < 0)
+    throwBadIniKey(s, "refine_iterations", "must be >= 0");
+  if (!(o.reprojection_threshold_px > 0))
+    throwBadIniKey(s, "reprojection_threshold_px", "must be > 0");
+  if (!(o.pixel_sigma_px > 0))
+    throwBadIniKey(s, "pixel_sigma_px", "must be > 0");
+  if (!(o.min_depth_m >= 0))
+    throwBadIniKey(s, "min_depth_m", "must be >= 0");
+  if (!(o.max_depth_m > o.min_depth_m))
+    throwBadIniKey(s, "max_depth_m", "must be > min_depth_m");
+  if (!(o.depth_discontinuity_m >= 0))
+    throwBadIniKey(s, "depth_discontinuity_m", "must be >= 0");
   // A readout longer than a second is no video camera's (and a typo of s/ms).
-  if (!(std::abs(rolling_shutter_ms) <= 1000))
-    common::throwBadIniKey(s, "rolling_shutter_ms", "must be in [-1000, 1000]");
-  if (!(icp_refine_sigma_m >= 0))
-    common::throwBadIniKey(s, "icp_refine_sigma_m", "must be >= 0");
-  if (icp_decimation < 1)
-    common::throwBadIniKey(s, "icp_decimation", "must be >= 1");
-  if (icp_max_iterations < 1)
-    common::throwBadIniKey(s, "icp_max_iterations", "must be >= 1");
-  if (!(icp_max_distance_m > 0))
-    common::throwBadIniKey(s, "icp_max_distance_m", "must be > 0");
-  if (icp_min_pairs < 6)
-    common::throwBadIniKey(s, "icp_min_pairs", "must be >= 6");
-  if (!(constant_velocity_information_scale > 0))
-    common::throwBadIniKey(s, "constant_velocity_information_scale", "must be > 0");
+  if (!(std::abs(o.rolling_shutter_ms) <= 1000))
+    throwBadIniKey(s, "rolling_shutter_ms", "must be in [-1000, 1000]");
+  if (!(o.constant_velocity_information_scale > 0))
+    throwBadIniKey(s, "constant_velocity_information_scale", "must be > 0");
+}
+
+/** Depth ICP: the fallback and the refinement of weak registrations. */
+void validateIcp(const TOptions& o, const std::string& s)
+{
+  if (!(o.icp_refine_sigma_m >= 0))
+    throwBadIniKey(s, "icp_refine_sigma_m", "must be >= 0");
+  if (o.icp_decimation < 1)
+    throwBadIniKey(s, "icp_decimation", "must be >= 1");
+  if (o.icp_max_iterations < 1)
+    throwBadIniKey(s, "icp_max_iterations", "must be >= 1");
+  if (!(o.icp_max_distance_m > 0))
+    throwBadIniKey(s, "icp_max_distance_m", "must be > 0");
+  if (o.icp_min_pairs < 6)
+    throwBadIniKey(s, "icp_min_pairs", "must be >= 6");
+}
+}  // namespace
+
+void CRgbdOdometry::TOptions::validate(const std::string& s) const
+{
+  validateRoi(*this, s);
+  validateKeyframes(*this, s);
+  validateRegistration(*this, s);
+  validateIcp(*this, s);
 }
 }  // namespace roislam::frontend
