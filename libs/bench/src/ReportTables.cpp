@@ -1,5 +1,6 @@
 #include "ReportTables.h"
 
+#include <mrpt/system/string_utils.h>
 #include <roislam/bench/CReportWriter.h>
 
 #include <iomanip>
@@ -30,6 +31,11 @@ std::string num(double v, int decimals)
   return ss.str();
 }
 
+std::string optNum(const std::optional<double>& v, int decimals)
+{
+  return v ? num(*v, decimals) : "n/a";
+}
+
 std::vector<std::string> featuresOf(const std::vector<const TRunRecord*>& recs)
 {
   std::vector<std::string> out;
@@ -51,6 +57,20 @@ std::vector<std::string> versionKeys(const std::vector<const TRunRecord*>& recs)
       [](const std::string& a, const std::string& b)
       { return modeRank(a.substr(0, a.find('/'))) < modeRank(b.substr(0, b.find('/'))); });
   return keys;
+}
+
+void featureHeader(
+    std::ostream& md, const std::string& first, const std::vector<std::string>& feats,
+    const std::string& refLabel)
+{
+  md << "| " << first << " |";
+  for (const auto& f : feats)
+    md << " " << mrpt::system::upperCase(f) << " | " << mrpt::system::upperCase(f) << " "
+       << refLabel << " |";
+  md << "\n|---|";
+  for (std::size_t k = 0; k < feats.size(); ++k)
+    md << "---|---|";
+  md << "\n";
 }
 
 std::string labelOf(const std::vector<const TRunRecord*>& recs, const std::string& vk)

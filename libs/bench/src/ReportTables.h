@@ -1,7 +1,8 @@
 /* What the tables of report.md share: number formatting, the order of
- * versions and extractors, and one cell aggregated over sequences. Used by
- * CReportWriter and CSpeedTableWriter (its speed section). Private to
- * libs/bench.
+ * versions and extractors, a per-extractor table header, and one cell
+ * aggregated over sequences. Used by CReportWriter and its section writers
+ * (CTest1TableWriter, CTrajectoryTableWriter, ReferenceTable,
+ * CSpeedTableWriter). Private to libs/bench.
  */
 #pragma once
 
@@ -11,6 +12,7 @@
 #include <cstddef>
 #include <functional>
 #include <optional>
+#include <ostream>
 #include <string>
 #include <vector>
 
@@ -21,6 +23,9 @@ extern const std::vector<std::string> kFeatures;
 
 /** Fixed-point text of v with `decimals` decimals. */
 std::string num(double v, int decimals);
+
+/** num(*v, decimals), "n/a" when there is no value. */
+std::string optNum(const std::optional<double>& v, int decimals);
 
 /** Ordered distinct values of f(record). */
 template <class F>
@@ -41,6 +46,11 @@ std::vector<std::string> featuresOf(const std::vector<const TRunRecord*>& recs);
 
 /** Version keys of records ordered traditional, small ROI, big ROI (plan order within). */
 std::vector<std::string> versionKeys(const std::vector<const TRunRecord*>& recs);
+
+/** Table header "| first |" + per extractor " F | F <refLabel> |" and its rule. */
+void featureHeader(
+    std::ostream& md, const std::string& first, const std::vector<std::string>& feats,
+    const std::string& refLabel);
 
 /** Report label of a version key, from the first record of that version
  *  (the key itself when there is none). */

@@ -6,8 +6,8 @@
  * each figure next to the dissertation's. The speed table comes from the
  * paired measurement (speed.json, CPairedSlamCost) when there is one, else
  * from the Test-2 runs' own summaries (written by CSpeedTableWriter, private
- * to libs/bench). Failed runs appear as failures, never dropped. Called by
- * CBenchApp after the runs.
+ * to libs/bench, as are the other sections' writers). Failed runs appear as
+ * failures, never dropped. Called by CBenchApp after the runs.
  */
 #pragma once
 
@@ -15,7 +15,6 @@
 #include <roislam/bench/TPairedCost.h>
 #include <roislam/bench/TRunRecord.h>
 
-#include <functional>
 #include <optional>
 #include <ostream>
 #include <string>
@@ -57,29 +56,12 @@ class CReportWriter
 
  private:
   using TRecordList = std::vector<const TRunRecord*>;
-  using TGetter = std::function<std::optional<double>(const TRunRecord&)>;
-  /** The dissertation's cell for (mode, feature), "—" when it has none. */
-  using TReference = std::function<std::string(const std::string&, const std::string&)>;
 
+  // The tests' sections are written by CTest1TableWriter,
+  // CTrajectoryTableWriter (Tests 2-4), report::renderReference and
+  // CSpeedTableWriter (libs/bench/src, private); these are the rest.
   void renderIntroduction(std::ostream& md, const std::vector<TRunRecord>& records) const;
   void renderSequences(std::ostream& md, const TRecordList& all) const;
-  void renderTest1Landmarks(std::ostream& md, const TRecordList& t1) const;
-  void renderTest1Matches(std::ostream& md, const TRecordList& t1) const;
-  void renderTest1Reidentification(std::ostream& md, const TRecordList& t1) const;
-  /** Test 1 with and without the hue variant, side by side. */
-  void renderHueVerification(std::ostream& md, const TRecordList& t1) const;
-  /** Test 4: EKF-SLAM, odometry alone and graph SLAM per sequence and extractor. */
-  void renderTest4(std::ostream& md, const TRecordList& t4) const;
-  /** Reference rows (test 0): per sequence each cv::rgbd odometry, then our
-   *  best and worst trajectory of Tests 2-4 on it. */
-  void renderReference(std::ostream& md, const TRecordList& ref, const TRecordList& all) const;
-  void renderTest2(std::ostream& md, const TRecordList& t2) const;
-  /** One metric: a row per version, per extractor our cell and ref's. */
-  void renderVersionTable(
-      std::ostream& md, const TRecordList& t2, const std::string& title,
-      const std::string& refLabel, int decimals, const TGetter& get, const TReference& ref) const;
-  void renderTest2PerSequence(std::ostream& md, const TRecordList& t2) const;
-  void renderTest3(std::ostream& md, const TRecordList& t3) const;
   void renderFailures(std::ostream& md, const std::vector<TRunRecord>& records) const;
 
   TOptions m_options;

@@ -1,0 +1,47 @@
+/* The trajectory sections of report.md: Test 2 (roi-graphslam, mean ± std
+ * of ATE / RPE and durations per version x extractor next to the
+ * dissertation's, then per sequence), Test 3 (reduced features) and Test 4
+ * (EKF-SLAM vs odometry alone vs graph SLAM). Called by
+ * CReportWriter::render; private to libs/bench.
+ */
+#pragma once
+
+#include <roislam/bench/CDissertationReference.h>
+#include <roislam/bench/TRunRecord.h>
+
+#include <functional>
+#include <optional>
+#include <ostream>
+#include <string>
+#include <vector>
+
+namespace roislam::bench
+{
+class CTrajectoryTableWriter
+{
+ public:
+  using TRecordList = std::vector<const TRunRecord*>;
+
+  /** `reference` must outlive the writer. */
+  explicit CTrajectoryTableWriter(const CDissertationReference& reference);
+
+  /** Each for its test's records (plan order, not empty). */
+  void renderTest2(std::ostream& md, const TRecordList& t2) const;
+  void renderTest3(std::ostream& md, const TRecordList& t3) const;
+  /** Test 4: EKF-SLAM, odometry alone and graph SLAM per sequence and extractor. */
+  void renderTest4(std::ostream& md, const TRecordList& t4) const;
+
+ private:
+  using TGetter = std::function<std::optional<double>(const TRunRecord&)>;
+  /** The dissertation's cell for (mode, feature), "—" when it has none. */
+  using TReference = std::function<std::string(const std::string&, const std::string&)>;
+
+  /** One metric: a row per version, per extractor our cell and ref's. */
+  void renderVersionTable(
+      std::ostream& md, const TRecordList& t2, const std::string& title,
+      const std::string& refLabel, int decimals, const TGetter& get, const TReference& ref) const;
+  void renderTest2PerSequence(std::ostream& md, const TRecordList& t2) const;
+
+  const CDissertationReference& m_ref;
+};
+}  // namespace roislam::bench
