@@ -149,116 +149,179 @@ bool plainKey(const std::string& key)
       return false;
   return true;
 }
+
+/** The line without its '\r', checked to be text. */
+std::string checkedText(std::string line, const std::string& where)
+{
+  if (!line.empty() && line.back() == '\r')
+    line.pop_back();
+  if (line.find('\0') != std::string::npos)
+    throw std::runtime_error(where + "NUL byte (not a text file)");
+  if (!validText(line))
+    throw std::runtime_error(where + "control character or invalid UTF-8");
+  return line;
+}
+
+/** The value without a leading tag ("!tag value" -> "value"). */
+std::string withoutTag(std::string value)
+{
+  if (!value.empty() && value[0] == '!')
+  {
+    const auto blank = value.find(' ');
+    value = blank == std::string::npos ? std::string() : trim(value.substr(blank));
+  }
+  return value;
+}
+
+/** The checker's state from one line to the next: an open flow sequence, a
+ *  key waiting for its nested mapping, the mappings open at each indentation. */
+class CYamlChecker
+{
+ public:
+  explicit CYamlChecker(const std::string& label) : m_label(label) {}
+
+  void addLine(const std::string& line)
+  {
+    ++m_n;
+    const std::string where = m_label + ":" + std::to_string(m_n) + ": ";
+    const std::string body = stripComment(checkedText(line, where));
+    if (m_depth > 0)
+    {
+      continueSequence(body, where);
+      return;
+    }
+    const std::string s = trim(body);
+    if (s.empty())
+      return;
+    const std::size_t indent = body.find_first_not_of(' ');
+    if (body[indent] == '\t')
+      throw std::runtime_error(where + "tab in indentation (YAML indents with spaces)");
+    if (m_ended)
+      throw std::runtime_error(where + "content after the end of the document ('...')");
+    if (indent == 0 && documentLine(s, where))
+      return;
+    m_content = true;
+    keyValueLine(s, indent, where);
+  }
+
+  void finish() const
+  {
+    if (m_depth > 0)
+      throw std::runtime_error(m_label + ":" + std::to_string(m_openLine) + ": '[' never closed");
+    if (m_nestedExpected)
+      throw noValue();
+    if (m_stack.empty())
+      throw std::runtime_error(m_label + ": no YAML content");
+  }
+
+ private:
+  void continueSequence(const std::string& body, const std::string& where)
+  {
+    // A sequence's continuation lines are indented deeper than its key.
+    const auto first = body.find_first_not_of(' ');
+    if (first != std::string::npos && first <= m_openIndent)
+      throw std::runtime_error(where + "sequence continued without indentation (a ']' missing?)");
+    m_depth = flowDepth(body, m_depth, where);
+  }
+
+  /** A directive or a document marker ("---", "..."): true when s is one. */
+  bool documentLine(const std::string& s, const std::string& where)
+  {
+    if (s[0] == '%')
+    {
+      if (m_content || s.rfind("%YAML 1.", 0) != 0)
+        throw std::runtime_error(where + "unsupported directive " + quoted(s));
+      return true;
+    }
+    if (s == "---" || s == "...")
+    {
+      if (s == "---" && m_content)
+        throw std::runtime_error(where + "a second document is not supported");
+      m_ended = s == "...";
+      m_content = true;
+      return true;
+    }
+    return false;
+  }
+
+  void keyValueLine(const std::string& s, std::size_t indent, const std::string& where)
+  {
+    const std::size_t colon = keyColon(s);
+    const std::string key = colon == std::string::npos ? "" : trim(s.substr(0, colon));
+    if (!plainKey(key))
+      throw std::runtime_error(where + "expected 'key: value', got " + quoted(s));
+    enterMapping(indent, where);
+    const auto [it, inserted] = m_stack.back().keyLines.emplace(key, m_n);
+    if (!inserted)
+      throw std::runtime_error(
+          where + "duplicate key '" + key + "' (first given on line " + std::to_string(it->second) +
+          ")");
+    checkValue(withoutTag(trim(s.substr(colon + 1))), key, indent, where);
+  }
+
+  /** Opens the awaited nested mapping or returns to the one at indent. */
+  void enterMapping(std::size_t indent, const std::string& where)
+  {
+    if (m_nestedExpected && indent <= m_nestedParentIndent)
+      throw noValue();
+    if (m_nestedExpected)
+      m_stack.push_back({indent, {}});
+    m_nestedExpected = false;
+    while (!m_stack.empty() && indent < m_stack.back().indent)
+      m_stack.pop_back();
+    if (m_stack.empty())
+      m_stack.push_back({indent, {}});
+    if (indent != m_stack.back().indent)
+      throw std::runtime_error(
+          where + "bad indentation (column " + std::to_string(indent + 1) + ", expected " +
+          std::to_string(m_stack.back().indent + 1) + ")");
+  }
+
+  void checkValue(
+      const std::string& value, const std::string& key, std::size_t indent,
+      const std::string& where)
+  {
+    if (value.empty())
+    {
+      m_nestedExpected = true;
+      m_nestedParentIndent = indent;
+      m_nestedLine = m_n;
+      m_nestedKey = key;
+    }
+    else if (value[0] == '[')
+    {
+      m_depth = flowDepth(value, 0, where);
+      m_openLine = m_n;
+      m_openIndent = indent;
+    }
+    else
+      checkScalar(value, where);
+  }
+
+  // "key:" with nothing after must open a mapping on the next lines.
+  std::runtime_error noValue() const
+  {
+    return std::runtime_error(
+        m_label + ":" + std::to_string(m_nestedLine) + ": key '" + m_nestedKey + "' has no value");
+  }
+
+  std::string m_label;
+  std::size_t m_n = 0, m_openLine = 0, m_openIndent = 0;
+  int m_depth = 0;
+  bool m_content = false, m_ended = false, m_nestedExpected = false;
+  std::size_t m_nestedParentIndent = 0, m_nestedLine = 0;
+  std::string m_nestedKey;
+  std::vector<TMapping> m_stack;
+};
 }  // namespace
 
 void checkStrictYaml(const std::string& text, const std::string& label)
 {
   std::istringstream in(text);
+  CYamlChecker checker(label);
   std::string line;
-  std::size_t n = 0, openLine = 0, openIndent = 0;
-  int depth = 0;
-  bool content = false, ended = false, nestedExpected = false;
-  std::size_t nestedParentIndent = 0, nestedLine = 0;
-  std::string nestedKey;
-  // "key:" with nothing after must open a mapping on the next lines.
-  const auto noValue = [&]
-  {
-    return std::runtime_error(
-        label + ":" + std::to_string(nestedLine) + ": key '" + nestedKey + "' has no value");
-  };
-  std::vector<TMapping> stack;
   while (std::getline(in, line))
-  {
-    ++n;
-    const std::string where = label + ":" + std::to_string(n) + ": ";
-    if (!line.empty() && line.back() == '\r')
-      line.pop_back();
-    if (line.find('\0') != std::string::npos)
-      throw std::runtime_error(where + "NUL byte (not a text file)");
-    if (!validText(line))
-      throw std::runtime_error(where + "control character or invalid UTF-8");
-    const std::string body = stripComment(line);
-    if (depth > 0)
-    {
-      // A sequence's continuation lines are indented deeper than its key.
-      const auto first = body.find_first_not_of(' ');
-      if (first != std::string::npos && first <= openIndent)
-        throw std::runtime_error(where + "sequence continued without indentation (a ']' missing?)");
-      depth = flowDepth(body, depth, where);
-      continue;
-    }
-    const std::string s = trim(body);
-    if (s.empty())
-      continue;
-    const std::size_t indent = body.find_first_not_of(' ');
-    if (body[indent] == '\t')
-      throw std::runtime_error(where + "tab in indentation (YAML indents with spaces)");
-    if (ended)
-      throw std::runtime_error(where + "content after the end of the document ('...')");
-    if (indent == 0 && s[0] == '%')
-    {
-      if (content || s.rfind("%YAML 1.", 0) != 0)
-        throw std::runtime_error(where + "unsupported directive " + quoted(s));
-      continue;
-    }
-    if (indent == 0 && (s == "---" || s == "..."))
-    {
-      if (s == "---" && content)
-        throw std::runtime_error(where + "a second document is not supported");
-      ended = s == "...";
-      content = true;
-      continue;
-    }
-    content = true;
-    const std::size_t colon = keyColon(s);
-    const std::string key = colon == std::string::npos ? "" : trim(s.substr(0, colon));
-    if (!plainKey(key))
-      throw std::runtime_error(where + "expected 'key: value', got " + quoted(s));
-    if (nestedExpected && indent <= nestedParentIndent)
-      throw noValue();
-    if (nestedExpected)
-      stack.push_back({indent, {}});
-    nestedExpected = false;
-    while (!stack.empty() && indent < stack.back().indent)
-      stack.pop_back();
-    if (stack.empty())
-      stack.push_back({indent, {}});
-    if (indent != stack.back().indent)
-      throw std::runtime_error(
-          where + "bad indentation (column " + std::to_string(indent + 1) + ", expected " +
-          std::to_string(stack.back().indent + 1) + ")");
-    const auto [it, inserted] = stack.back().keyLines.emplace(key, n);
-    if (!inserted)
-      throw std::runtime_error(
-          where + "duplicate key '" + key + "' (first given on line " + std::to_string(it->second) +
-          ")");
-    std::string value = trim(s.substr(colon + 1));
-    if (!value.empty() && value[0] == '!')
-    {
-      const auto blank = value.find(' ');
-      value = blank == std::string::npos ? std::string() : trim(value.substr(blank));
-    }
-    if (value.empty())
-    {
-      nestedExpected = true;
-      nestedParentIndent = indent;
-      nestedLine = n;
-      nestedKey = key;
-    }
-    else if (value[0] == '[')
-    {
-      depth = flowDepth(value, 0, where);
-      openLine = n;
-      openIndent = indent;
-    }
-    else
-      checkScalar(value, where);
-  }
-  if (depth > 0)
-    throw std::runtime_error(label + ":" + std::to_string(openLine) + ": '[' never closed");
-  if (nestedExpected)
-    throw noValue();
-  if (stack.empty())
-    throw std::runtime_error(label + ": no YAML content");
+    checker.addLine(line);
+  checker.finish();
 }
 }  // namespace roislam::common
