@@ -31,6 +31,150 @@ double localScale(const cv::Matx33d& H, cv::Point2d p)
   const cv::Point2d a = ex - o, b = ey - o;
   return std::sqrt(std::abs(a.x * b.y - a.y * b.x));
 }
+/** The keypoints both images show (inside the border margin in their own
+ *  image and, mapped through H, in the other), as indices into kpsA / kpsB,
+ *  with the A points' mapped positions and local scales. */
+struct TCommonKeypoints
+{
+  std::vector<int> inA, inB;
+  std::vector<cv::Point2d> mappedA;
+  std::vector<double> scaleA;
+};
+
+TCommonKeypoints commonKeypoints(
+    const std::vector<cv::KeyPoint>& kpsA, const std::vector<cv::KeyPoint>& kpsB,
+    const cv::Matx33d& H, const cv::Size& sizeA, const cv::Size& sizeB, double margin)
+{
+  const cv::Matx33d Hinv = H.inv();
+  TCommonKeypoints common;
+  for (size_t i = 0; i < kpsA.size(); ++i)
+  {
+    const cv::Point2d p(kpsA[i].pt);
+    const cv::Point2d q = apply(H, p);
+    if (!inside(p, sizeA, margin) || !inside(q, sizeB, margin))
+      continue;
+    common.inA.push_back(static_cast<int>(i));
+    common.mappedA.push_back(q);
+    common.scaleA.push_back(localScale(H, p));
+  }
+  for (size_t j = 0; j < kpsB.size(); ++j)
+  {
+    const cv::Point2d p(kpsB[j].pt);
+    if (inside(p, sizeB, margin) && inside(apply(Hinv, p), sizeA, margin))
+      common.inB.push_back(static_cast<int>(j));
+  }
+  return common;
+}
+
+/** Whether a common keypoint of A (index into TCommonKeypoints::inA) and a
+ *  keypoint of B correspond under the criterion. */
+class CCorrespondenceTest
+{
+ public:
+  /** Throws std::invalid_argument on bad overlap parameters. */
+  CCorrespondenceTest(
+      const std::vector<cv::KeyPoint>& kpsA, const std::vector<cv::KeyPoint>& kpsB,
+      const TCommonKeypoints& common, const TCorrespondenceCriterion& crit)
+      : m_kpsA(kpsA),
+        m_kpsB(kpsB),
+        m_common(common),
+        m_crit(crit),
+        m_tol2(crit.pixelTolerance * crit.pixelTolerance),
+        m_logR(std::log(crit.maxScaleRatio)),
+        m_overlap(crit.mode == TCorrespondenceCriterion::EMode::Overlap)
+  {
+    if (m_overlap && !(crit.regionRadiusPerSize > 0 && crit.normalisedRadius > 0 &&
+                       crit.maxOverlapError > 0 && crit.maxOverlapError <= 1))
+      throw std::invalid_argument("evaluatePair: invalid overlap criterion parameters");
+  }
+
+  // The score sorts candidate pairs (closest first): squared distance in
+  // pixel mode, overlap error in overlap mode.
+  bool operator()(size_t ia, int j, double& score) const
+  {
+    const cv::Point2d d = m_common.mappedA[ia] - cv::Point2d(m_kpsB[j].pt);
+    const double d2 = d.dot(d);
+    const double sa = m_kpsA[m_common.inA[ia]].size * m_common.scaleA[ia], sb = m_kpsB[j].size;
+    if (m_overlap)
+    {
+      if (!(sa > 0) || !(sb > 0))
+        return false;  // no region
+      // Mapped reference region normalised to normalisedRadius, the same
+      // factor applied to the other region and to the centre distance.
+      const double ra = m_crit.regionRadiusPerSize * sa, rb = m_crit.regionRadiusPerSize * sb;
+      const double f = m_crit.normalisedRadius / ra;
+      score = circleOverlapError(ra * f, rb * f, std::sqrt(d2) * f);
+      return score < m_crit.maxOverlapError;
+    }
+    score = d2;
+    if (d2 > m_tol2)
+      return false;
+    if (!(sa > 0) || !(sb > 0))
+      return true;  // no scale information: position only
+    return std::abs(std::log(sb / sa)) <= m_logR;
+  }
+
+ private:
+  const std::vector<cv::KeyPoint>& m_kpsA;
+  const std::vector<cv::KeyPoint>& m_kpsB;
+  const TCommonKeypoints& m_common;
+  const TCorrespondenceCriterion& m_crit;
+  const double m_tol2, m_logR;
+  const bool m_overlap;
+};
+
+// Geometric correspondences, one-to-one, closest pairs first.
+std::size_t countCorrespondences(
+    const TCommonKeypoints& common, const CCorrespondenceTest& consistent)
+{
+  const auto& inA = common.inA;
+  const auto& inB = common.inB;
+  std::vector<std::tuple<double, int, int>> cand;
+  for (size_t ia = 0; ia < inA.size(); ++ia)
+    for (size_t ib = 0; ib < inB.size(); ++ib)
+    {
+      double d2;
+      if (consistent(ia, inB[ib], d2))
+        cand.emplace_back(d2, static_cast<int>(ia), static_cast<int>(ib));
+    }
+  std::sort(cand.begin(), cand.end());
+  std::vector<char> usedA(inA.size(), 0), usedB(inB.size(), 0);
+  std::size_t correspondences = 0;
+  for (const auto& [d2, ia, ib] : cand)
+  {
+    if (usedA[ia] || usedB[ib])
+      continue;
+    usedA[ia] = usedB[ib] = 1;
+    ++correspondences;
+  }
+  return correspondences;
+}
+
+/** Common keypoints of A whose descriptor nearest neighbour among B's common
+ *  keypoints is a geometric correspondence. */
+std::size_t countCorrectMatches(
+    const cv::Mat& descA, const cv::Mat& descB, int normType, const TCommonKeypoints& common,
+    const CCorrespondenceTest& consistent)
+{
+  const auto& inA = common.inA;
+  const auto& inB = common.inB;
+  cv::Mat qa(static_cast<int>(inA.size()), descA.cols, descA.type());
+  cv::Mat tb(static_cast<int>(inB.size()), descB.cols, descB.type());
+  for (size_t k = 0; k < inA.size(); ++k)
+    descA.row(inA[k]).copyTo(qa.row(static_cast<int>(k)));
+  for (size_t k = 0; k < inB.size(); ++k)
+    descB.row(inB[k]).copyTo(tb.row(static_cast<int>(k)));
+  std::vector<cv::DMatch> matches;
+  cv::BFMatcher(normType).match(qa, tb, matches);
+  std::size_t correct = 0;
+  for (const auto& mt : matches)
+  {
+    double d2;
+    if (consistent(static_cast<size_t>(mt.queryIdx), inB[mt.trainIdx], d2))
+      ++correct;
+  }
+  return correct;
+}
 }  // namespace
 
 double circleOverlapError(double r1, double r2, double d)
@@ -66,102 +210,21 @@ TPairMetrics evaluatePair(
       (descA.rows != static_cast<int>(kpsA.size()) || descB.rows != static_cast<int>(kpsB.size()) ||
        descA.cols != descB.cols || descA.type() != descB.type()))
     throw std::invalid_argument("evaluatePair: descriptors do not match the keypoints");
-  const cv::Matx33d Hinv = H.inv();
+  const TCommonKeypoints common = commonKeypoints(kpsA, kpsB, H, sizeA, sizeB, crit.borderMargin);
 
   TPairMetrics m;
-  std::vector<int> inA, inB;
-  std::vector<cv::Point2d> mappedA;
-  std::vector<double> scaleA;
-  for (size_t i = 0; i < kpsA.size(); ++i)
-  {
-    const cv::Point2d p(kpsA[i].pt);
-    const cv::Point2d q = apply(H, p);
-    if (!inside(p, sizeA, crit.borderMargin) || !inside(q, sizeB, crit.borderMargin))
-      continue;
-    inA.push_back(static_cast<int>(i));
-    mappedA.push_back(q);
-    scaleA.push_back(localScale(H, p));
-  }
-  for (size_t j = 0; j < kpsB.size(); ++j)
-  {
-    const cv::Point2d p(kpsB[j].pt);
-    if (inside(p, sizeB, crit.borderMargin) && inside(apply(Hinv, p), sizeA, crit.borderMargin))
-      inB.push_back(static_cast<int>(j));
-  }
-  m.commonA = inA.size();
-  m.commonB = inB.size();
+  m.commonA = common.inA.size();
+  m.commonB = common.inB.size();
   const std::size_t denom = std::min(m.commonA, m.commonB);
   if (denom == 0)
     return m;
 
-  const double tol2 = crit.pixelTolerance * crit.pixelTolerance;
-  const double logR = std::log(crit.maxScaleRatio);
-  const bool overlap = crit.mode == TCorrespondenceCriterion::EMode::Overlap;
-  if (overlap && !(crit.regionRadiusPerSize > 0 && crit.normalisedRadius > 0 &&
-                   crit.maxOverlapError > 0 && crit.maxOverlapError <= 1))
-    throw std::invalid_argument("evaluatePair: invalid overlap criterion parameters");
-  // The score sorts candidate pairs (closest first): squared distance in
-  // pixel mode, overlap error in overlap mode.
-  const auto consistent = [&](size_t ia, int j, double& score)
-  {
-    const cv::Point2d d = mappedA[ia] - cv::Point2d(kpsB[j].pt);
-    const double d2 = d.dot(d);
-    const double sa = kpsA[inA[ia]].size * scaleA[ia], sb = kpsB[j].size;
-    if (overlap)
-    {
-      if (!(sa > 0) || !(sb > 0))
-        return false;  // no region
-      // Mapped reference region normalised to normalisedRadius, the same
-      // factor applied to the other region and to the centre distance.
-      const double ra = crit.regionRadiusPerSize * sa, rb = crit.regionRadiusPerSize * sb;
-      const double f = crit.normalisedRadius / ra;
-      score = circleOverlapError(ra * f, rb * f, std::sqrt(d2) * f);
-      return score < crit.maxOverlapError;
-    }
-    score = d2;
-    if (d2 > tol2)
-      return false;
-    if (!(sa > 0) || !(sb > 0))
-      return true;  // no scale information: position only
-    return std::abs(std::log(sb / sa)) <= logR;
-  };
-
-  // Geometric correspondences, one-to-one, closest pairs first.
-  std::vector<std::tuple<double, int, int>> cand;
-  for (size_t ia = 0; ia < inA.size(); ++ia)
-    for (size_t ib = 0; ib < inB.size(); ++ib)
-    {
-      double d2;
-      if (consistent(ia, inB[ib], d2))
-        cand.emplace_back(d2, static_cast<int>(ia), static_cast<int>(ib));
-    }
-  std::sort(cand.begin(), cand.end());
-  std::vector<char> usedA(inA.size(), 0), usedB(inB.size(), 0);
-  for (const auto& [d2, ia, ib] : cand)
-  {
-    if (usedA[ia] || usedB[ib])
-      continue;
-    usedA[ia] = usedB[ib] = 1;
-    ++m.correspondences;
-  }
+  const CCorrespondenceTest consistent(kpsA, kpsB, common, crit);
+  m.correspondences = countCorrespondences(common, consistent);
   m.repeatability = static_cast<double>(m.correspondences) / static_cast<double>(denom);
-
   if (withDesc)
   {
-    cv::Mat qa(static_cast<int>(inA.size()), descA.cols, descA.type());
-    cv::Mat tb(static_cast<int>(inB.size()), descB.cols, descB.type());
-    for (size_t k = 0; k < inA.size(); ++k)
-      descA.row(inA[k]).copyTo(qa.row(static_cast<int>(k)));
-    for (size_t k = 0; k < inB.size(); ++k)
-      descB.row(inB[k]).copyTo(tb.row(static_cast<int>(k)));
-    std::vector<cv::DMatch> matches;
-    cv::BFMatcher(normType).match(qa, tb, matches);
-    for (const auto& mt : matches)
-    {
-      double d2;
-      if (consistent(static_cast<size_t>(mt.queryIdx), inB[mt.trainIdx], d2))
-        ++m.correctMatches;
-    }
+    m.correctMatches = countCorrectMatches(descA, descB, normType, common, consistent);
     m.matchingScore = static_cast<double>(m.correctMatches) / static_cast<double>(denom);
   }
   return m;
