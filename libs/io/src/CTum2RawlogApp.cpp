@@ -16,6 +16,7 @@
 #include <fstream>
 #include <optional>
 #include <stdexcept>
+#include <vector>
 
 namespace fs = std::filesystem;
 
@@ -111,6 +112,102 @@ void linkOrCopy(const fs::path& from, const fs::path& to)
   if (ec)
     throw std::runtime_error(to.string() + ": cannot write (" + ec.message() + ")");
 }
+/** The input named by the options: a TUM folder, an .oni recording or a live
+ *  OpenNI2 device. */
+std::unique_ptr<CFrameSource> openSource(const CTum2RawlogApp::TOptions& o)
+{
+  if (o.input.empty())
+    throw std::invalid_argument("tum2rawlog: no input folder given");
+  if (o.output.empty())
+    throw std::invalid_argument("tum2rawlog: no output rawlog given");
+  if (fs::is_directory(o.input))
+    return std::make_unique<CTumFrameSource>(o.input, resolveSensor(o.camera, o.input), o.tum);
+  if (COpenNI2FrameSource::isDeviceSpec(o.input) || fs::path(o.input).extension() == ".oni")
+  {
+    const bool live = COpenNI2FrameSource::isDeviceSpec(o.input);
+    if (live && o.maxFrames == 0)
+      throw std::invalid_argument(o.input + ": a live device needs --max-frames N");
+    if (!live && !fs::exists(o.input))
+      throw std::runtime_error(o.input + ": no such file");
+    return CFrameSource::open(o.input, o.camera);
+  }
+  throw std::runtime_error(
+      o.input + ": not a TUM folder nor an OpenNI recording (.oni) or device (openni2)");
+}
+
+/** Where the outputs go: beside the rawlog, named after its stem. */
+struct TOutputPaths
+{
+  explicit TOutputPaths(const std::string& rawlogFile)
+      : rawlog(rawlogFile),
+        outDir(rawlog.parent_path()),
+        stem(rawlog.stem().string()),
+        imagesDir(outDir / (stem + "_Images"))
+  {
+  }
+  /** DIR/NAME<suffix> */
+  fs::path beside(const std::string& suffix) const { return outDir / (stem + suffix); }
+
+  fs::path rawlog, outDir;
+  std::string stem;
+  fs::path imagesDir;
+};
+
+/** A new, empty folder to stage the images in (0700, as mkdtemp makes it). */
+fs::path makeStagingFolder(const TOutputPaths& out)
+{
+  std::string stagingName = out.beside("_Images.partial-XXXXXX").string();
+  if (!mkdtemp(stagingName.data()))
+    throw std::runtime_error(stagingName + ": cannot create folder (" + std::strerror(errno) + ")");
+  return fs::path(stagingName);
+}
+
+/** The sensor description, written into the staging folder; returns its path. */
+fs::path writeSensorDescription(const CFrameSource& source, const fs::path& staging)
+{
+  // The sensor description travels with the rawlog (<stem>.camera.ini): the
+  // readout, noise and rate that the observations cannot carry.
+  const fs::path sensorText = staging / "sensor-description.ini";
+  writeTextFile(sensorText, source.sensor().sensor.toIniText());
+  return sensorText;
+}
+
+/** Moves the staging folder to imagesDir, replacing an existing one. */
+void publishImages(const fs::path& staging, const fs::path& imagesDir)
+{
+  std::error_code ec;
+  if (fs::exists(imagesDir))
+  {
+    fs::remove_all(imagesDir, ec);
+    if (ec)
+      throw std::runtime_error(imagesDir.string() + ": cannot replace (" + ec.message() + ")");
+  }
+  fs::rename(staging, imagesDir, ec);
+  if (ec)
+    throw std::runtime_error(imagesDir.string() + ": cannot write (" + ec.message() + ")");
+}
+
+// Commit: images folder, side files, then the rawlog itself; undo on failure.
+void commitOutputs(
+    const fs::path& staging, CRemoveOnExit& removeStaging, const fs::path& imagesDir,
+    const std::vector<CSideFile*>& sideFiles, CRawlogWriter& writer)
+{
+  const mode_t mask = ::umask(0);  // mkdtemp made the folder 0700
+  ::umask(mask);
+  std::error_code ec;
+  fs::permissions(staging, static_cast<fs::perms>(0777 & ~mask), ec);
+  for (const CSideFile* f : sideFiles)
+    f->setPermissions(mask);
+  publishImages(staging, imagesDir);
+  removeStaging.release();
+  CRemoveOnExit removeImages(imagesDir);
+  for (CSideFile* f : sideFiles)
+    f->commit();
+  writer.commit();
+  removeImages.release();
+  for (CSideFile* f : sideFiles)
+    f->release();
+}
 }  // namespace
 
 void CTum2RawlogApp::writeTumFrames(
@@ -174,99 +271,38 @@ CTum2RawlogApp::CTum2RawlogApp(const TOptions& options)
 CTum2RawlogApp::TResult CTum2RawlogApp::run()
 {
   mrpt::system::CTicTac timer;
-  const auto& o = m_options;
-  if (o.input.empty())
-    throw std::invalid_argument("tum2rawlog: no input folder given");
-  if (o.output.empty())
-    throw std::invalid_argument("tum2rawlog: no output rawlog given");
-
-  std::unique_ptr<CFrameSource> source;
-  if (fs::is_directory(o.input))
-  {
-    source = std::make_unique<CTumFrameSource>(o.input, resolveSensor(o.camera, o.input), o.tum);
-  }
-  else if (COpenNI2FrameSource::isDeviceSpec(o.input) || fs::path(o.input).extension() == ".oni")
-  {
-    const bool live = COpenNI2FrameSource::isDeviceSpec(o.input);
-    if (live && o.maxFrames == 0)
-      throw std::invalid_argument(o.input + ": a live device needs --max-frames N");
-    if (!live && !fs::exists(o.input))
-      throw std::runtime_error(o.input + ": no such file");
-    source = CFrameSource::open(o.input, o.camera);
-  }
-  else
-    throw std::runtime_error(
-        o.input + ": not a TUM folder nor an OpenNI recording (.oni) or device (openni2)");
+  const std::unique_ptr<CFrameSource> source = openSource(m_options);
   MRPT_LOG_INFO_STREAM(
       source->name() << ": " << source->size() << " frames, " << source->skippedFrames()
                      << " colour frames without depth; " << source->sensor().summary());
 
-  CRawlogWriter writer(o.output, o.compressLevel);
-  const fs::path rawlog(writer.file());
-  const fs::path outDir = rawlog.parent_path();
-  const std::string stem = rawlog.stem().string();
-  const fs::path imagesDir = outDir / (stem + "_Images");
-
-  std::string stagingName = (outDir / (stem + "_Images.partial-XXXXXX")).string();
-  if (!mkdtemp(stagingName.data()))
-    throw std::runtime_error(stagingName + ": cannot create folder (" + std::strerror(errno) + ")");
-  const fs::path staging(stagingName);
+  CRawlogWriter writer(m_options.output, m_options.compressLevel);
+  const TOutputPaths out(writer.file());
+  const fs::path staging = makeStagingFolder(out);
   CRemoveOnExit removeStaging(staging);
 
   if (auto* tum = dynamic_cast<CTumFrameSource*>(source.get()))
-    writeTumFrames(*tum, writer, staging, imagesDir);
+    writeTumFrames(*tum, writer, staging, out.imagesDir);
   else
-    writeOpenNI2Frames(static_cast<COpenNI2FrameSource&>(*source), writer, staging, imagesDir);
+    writeOpenNI2Frames(static_cast<COpenNI2FrameSource&>(*source), writer, staging, out.imagesDir);
 
-  // The sensor description travels with the rawlog (<stem>.camera.ini): the
-  // readout, noise and rate that the observations cannot carry.
-  const fs::path sensorText = staging / "sensor-description.ini";
-  writeTextFile(sensorText, source->sensor().sensor.toIniText());
+  const fs::path sensorText = writeSensorDescription(*source, staging);
   // Ground truth and accelerometer log next to the rawlog, also via temporary names.
-  TResult result;
-  CSideFile groundTruth(
-      source->groundTruthFile(), outDir / (stem + ".groundtruth.txt"),
-      staging.extension().string());
+  const std::string tempSuffix = staging.extension().string();
+  CSideFile groundTruth(source->groundTruthFile(), out.beside(".groundtruth.txt"), tempSuffix);
   CSideFile accelerometer(
-      source->accelerometerFile(), outDir / (stem + ".accelerometer.txt"),
-      staging.extension().string());
-  CSideFile sensorFile(
-      sensorText.string(), outDir / (stem + ".camera.ini"), staging.extension().string());
+      source->accelerometerFile(), out.beside(".accelerometer.txt"), tempSuffix);
+  CSideFile sensorFile(sensorText.string(), out.beside(".camera.ini"), tempSuffix);
   fs::remove(sensorText);
+  commitOutputs(
+      staging, removeStaging, out.imagesDir, {&groundTruth, &accelerometer, &sensorFile}, writer);
 
-  // Commit: images folder, side files, then the rawlog itself; undo on failure.
-  std::error_code ec;
-  const mode_t mask = ::umask(0);  // mkdtemp made the folder 0700
-  ::umask(mask);
-  fs::permissions(staging, static_cast<fs::perms>(0777 & ~mask), ec);
-  groundTruth.setPermissions(mask);
-  accelerometer.setPermissions(mask);
-  sensorFile.setPermissions(mask);
-  if (fs::exists(imagesDir))
-  {
-    fs::remove_all(imagesDir, ec);
-    if (ec)
-      throw std::runtime_error(imagesDir.string() + ": cannot replace (" + ec.message() + ")");
-  }
-  fs::rename(staging, imagesDir, ec);
-  if (ec)
-    throw std::runtime_error(imagesDir.string() + ": cannot write (" + ec.message() + ")");
-  removeStaging.release();
-  CRemoveOnExit removeImages(imagesDir);
-  groundTruth.commit();
-  accelerometer.commit();
-  sensorFile.commit();
-  writer.commit();
-  removeImages.release();
-  groundTruth.release();
-  accelerometer.release();
-  sensorFile.release();
-
+  TResult result;
   result.frames = writer.count();
   result.skipped = source->skippedFrames();
   result.sensorFile = sensorFile.written();
-  result.rawlog = rawlog.string();
-  result.imagesDir = imagesDir.string();
+  result.rawlog = out.rawlog.string();
+  result.imagesDir = out.imagesDir.string();
   result.groundTruth = groundTruth.written();
   result.accelerometer = accelerometer.written();
   result.seconds = timer.Tac();
