@@ -189,13 +189,15 @@ CObservation3DRangeScan::Ptr frameToObservation(const TRGBDFrame& frame, float r
   return obs;
 }
 
-TRGBDFrame observationToFrame(const CObservation3DRangeScan& obs, const std::string& context)
+namespace
+{
+/** Throws unless the observation has both images and colour intrinsics. */
+void checkObservation(const CObservation3DRangeScan& obs, const std::string& context)
 {
   if (!obs.hasRangeImage)
     throw std::runtime_error(context + ": observation has no range image");
   if (!obs.hasIntensityImage)
     throw std::runtime_error(context + ": observation has no intensity (colour) image");
-  const auto& dc = obs.cameraParams;
   const auto& cc = obs.cameraParamsIntensity;
   // A negative focal length is an axis running against the image's
   // (ICL-NUIM's fy < 0): the frame gets the flipped images and the camera
@@ -203,12 +205,13 @@ TRGBDFrame observationToFrame(const CObservation3DRangeScan& obs, const std::str
   if (cc.ncols == 0 || cc.nrows == 0 || !std::isfinite(cc.fx()) || !std::isfinite(cc.fy()) ||
       cc.fx() == 0 || cc.fy() == 0)
     throw std::runtime_error(context + ": colour intrinsics (cameraParamsIntensity) are not set");
+}
 
-  TRGBDFrame f;
-  f.timestamp = mrpt::Clock::toDouble(obs.timestamp);
-  f.depthTimestamp = f.timestamp;
-  f.camera = withPositiveFocalLengths(cc);
-
+/** The colour image as 8-bit BGR of cameraParamsIntensity's size (not yet
+ *  flipped). */
+cv::Mat colourImage(const CObservation3DRangeScan& obs, const std::string& context)
+{
+  const auto& cc = obs.cameraParamsIntensity;
   // Colour (external images load lazily here and throw when missing).
   cv::Mat colour;
   try
@@ -226,18 +229,24 @@ TRGBDFrame observationToFrame(const CObservation3DRangeScan& obs, const std::str
     throw std::runtime_error(context + ": empty colour image");
   if (colour.depth() != CV_8U)
     throw std::runtime_error(context + ": colour image is not 8-bit");
+  cv::Mat rgb;
   if (colour.channels() == 1)
-    cv::cvtColor(colour, f.rgb, cv::COLOR_GRAY2BGR);
+    cv::cvtColor(colour, rgb, cv::COLOR_GRAY2BGR);
   else if (colour.channels() == 4)
-    cv::cvtColor(colour, f.rgb, cv::COLOR_BGRA2BGR);
+    cv::cvtColor(colour, rgb, cv::COLOR_BGRA2BGR);
   else
-    f.rgb = colour;
-  if (f.rgb.cols != static_cast<int>(cc.ncols) || f.rgb.rows != static_cast<int>(cc.nrows))
+    rgb = colour;
+  if (rgb.cols != static_cast<int>(cc.ncols) || rgb.rows != static_cast<int>(cc.nrows))
     throw std::runtime_error(
-        context + ": colour image is " + sizeText(f.rgb.cols, f.rgb.rows) +
+        context + ": colour image is " + sizeText(rgb.cols, rgb.rows) +
         " but cameraParamsIntensity is for " + sizeText(cc.ncols, cc.nrows));
+  return rgb;
+}
 
-  // Depth in metres on the depth camera's pixel grid.
+// Depth in metres on the depth camera's pixel grid (not yet flipped).
+cv::Mat depthMetres(const CObservation3DRangeScan& obs, const std::string& context)
+{
+  const auto& dc = obs.cameraParams;
   const auto& R = obs.rangeImage;
   const int rows = static_cast<int>(R.rows()), cols = static_cast<int>(R.cols());
   if (rows == 0 || cols == 0)
@@ -266,6 +275,22 @@ TRGBDFrame observationToFrame(const CObservation3DRangeScan& obs, const std::str
       dst[c] = static_cast<float>(metres[R(r, c)] / std::sqrt(1 + kx * kx + ky * ky));
     }
   }
+  return depth;
+}
+}  // namespace
+
+TRGBDFrame observationToFrame(const CObservation3DRangeScan& obs, const std::string& context)
+{
+  checkObservation(obs, context);
+  const auto& dc = obs.cameraParams;
+  const auto& cc = obs.cameraParamsIntensity;
+
+  TRGBDFrame f;
+  f.timestamp = mrpt::Clock::toDouble(obs.timestamp);
+  f.depthTimestamp = f.timestamp;
+  f.camera = withPositiveFocalLengths(cc);
+  f.rgb = colourImage(obs, context);
+  cv::Mat depth = depthMetres(obs, context);
 
   flipToPositiveFocalLengths(f.rgb, cc);
   flipToPositiveFocalLengths(depth, dc);
