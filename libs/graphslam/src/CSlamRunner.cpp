@@ -39,6 +39,97 @@ nlohmann::json optionalJson(const std::optional<std::size_t>& v)
 {
   return v ? nlohmann::json(*v) : nlohmann::json(nullptr);
 }
+/** What ran on what: the sequence, the engine's deciders, the front end's
+ *  configuration and the sensor. */
+nlohmann::json runJson(const CSlamPipeline& pipeline, const CSlamRunner::TSettings& settings)
+{
+  const auto& fe = pipeline.context().config().frontEnd;
+  const auto& names = pipeline.deciders().names;
+  nlohmann::json j;
+  j["sequence"] = pipeline.source().name();
+  j["input"] = settings.input;
+  j["engine"] = {
+      {"node_registration_decider", names.node},
+      {"edge_registration_decider", names.edge},
+      {"optimizer", names.optimizer}};
+  j["mode"] = frontend::toString(fe.mode);
+  j["feature"] = features::toString(fe.extractor.feature_type);
+  j["max_features"] = fe.extractor.max_features;
+  j["strict_roi"] = fe.strict_roi;
+  j["sensor"] = pipeline.source().sensor().toJson();
+  j["sensor"]["rolling_shutter_ms_used"] = fe.rolling_shutter_ms;
+  j["sensor"]["rolling_shutter_from"] = settings.readoutFrom;
+  return j;
+}
+
+/** The map the back end built: keyframes, loop closures, landmarks, the
+ *  graph and its optimisations. */
+nlohmann::json mapJson(
+    const CSlamPipeline& pipeline, const TSlamSummary& s,
+    const std::optional<TOptimizationReport>& finalReport)
+{
+  const CSlamContext& ctx = pipeline.context();
+  nlohmann::json j;
+  j["frames"] = s.frames;
+  j["skipped_frames"] = pipeline.source().skippedFrames();
+  j["keyframes"] = s.keyframes;
+  j["loop_closures"] = s.loopClosures;
+  std::size_t lmLoops = 0;
+  for (const auto& lc : ctx.loopClosures())
+    lmLoops += lc.source == ELoopSource::Landmark;
+  j["loop_closures_landmark"] = lmLoops;
+  j["loop_closures_proximity"] = s.loopClosures - lmLoops;
+  j["loop_closures_rejected"] = ctx.rejectedLoopClosures();
+  j["landmarks"] = ctx.database().size();
+  j["graph_nodes"] = s.graphNodes;
+  j["graph_edges"] = s.graphEdges;
+  j["optimizations"] = optionalJson(pipeline.optimizations());
+  j["optimizations_windowed"] = optionalJson(pipeline.windowedOptimizations());
+  j["final_optimization"] = finalReport ? nlohmann::json{{"iterations", finalReport->iterations},
+                                                         {"chi2_before", finalReport->chi2Before},
+                                                         {"chi2_after", finalReport->chi2After},
+                                                         {"seconds", finalReport->seconds}}
+                                        : nlohmann::json(nullptr);
+  return j;
+}
+
+/** How the front end tracked the frames and what it cost. */
+nlohmann::json trackingJson(const CSlamPipeline& pipeline, const TSlamSummary& s)
+{
+  const auto& st = pipeline.context().odometry().stats();
+  nlohmann::json j;
+  j["tracked_frames"] = s.trackedFrames;
+  j["fallback_frames"] = s.fallbackFrames;
+  j["lost_frames"] = s.lostFrames;
+  j["tracking"] = {
+      {"initial", st.initial},
+      {"features", st.features},
+      {"roi", st.roiFeatures},
+      {"flow", st.flow},
+      {"full_image_fallback", st.fullImageFallback},
+      {"depth_icp", st.depthIcp},
+      {"constant_velocity", st.constantVelocity},
+      {"lost", st.lost},
+      {"no_roi", st.noRoi},
+      {"icp_refined", st.icpRefined}};
+  // What stage 2 described: ROI-only frames describe their tracking region
+  // alone; the others were extended once, for the reason given.
+  nlohmann::json ext = nlohmann::json::object();
+  for (const auto& [reason, n] : st.extensions)
+    if (reason != frontend::EExtension::None)
+      ext[frontend::toString(reason)] = n;
+  const auto roiOnly = st.extensions.find(frontend::EExtension::None);
+  j["described_pixel_fraction"] = st.frames > 0 ? st.describedFractionSum / st.frames : 0.0;
+  j["roi_only_frames"] = roiOnly == st.extensions.end() ? 0 : roiOnly->second;
+  j["extended_frames"] = ext;
+  // All front-end work per frame (frames.csv frontend_ms: decoding excluded),
+  // the cost the ROI versions are compared by.
+  double frontMs = 0;
+  for (const auto& r : pipeline.records())
+    frontMs += r.result.times.total_ms;
+  j["frontend_ms_per_frame"] = s.frames > 0 ? frontMs / s.frames : 0.0;
+  return j;
+}
 }  // namespace
 
 std::string TSlamSummary::resultLine() const
@@ -172,74 +263,12 @@ nlohmann::json CSlamRunner::summaryJson(
     const CSlamPipeline& pipeline, const TSlamSummary& s,
     const std::optional<TOptimizationReport>& finalReport, const TEvaluation& ev) const
 {
-  const CSlamContext& ctx = pipeline.context();
-  const auto& st = ctx.odometry().stats();
-  const auto& fe = ctx.config().frontEnd;
-  const auto& names = pipeline.deciders().names;
-  nlohmann::json j;
-  j["sequence"] = pipeline.source().name();
-  j["input"] = m_settings.input;
-  j["engine"] = {
-      {"node_registration_decider", names.node},
-      {"edge_registration_decider", names.edge},
-      {"optimizer", names.optimizer}};
-  j["mode"] = frontend::toString(fe.mode);
-  j["feature"] = features::toString(fe.extractor.feature_type);
-  j["max_features"] = fe.extractor.max_features;
-  j["strict_roi"] = fe.strict_roi;
-  j["sensor"] = pipeline.source().sensor().toJson();
-  j["sensor"]["rolling_shutter_ms_used"] = fe.rolling_shutter_ms;
-  j["sensor"]["rolling_shutter_from"] = m_settings.readoutFrom;
-  j["frames"] = s.frames;
-  j["skipped_frames"] = pipeline.source().skippedFrames();
-  j["keyframes"] = s.keyframes;
-  j["loop_closures"] = s.loopClosures;
-  std::size_t lmLoops = 0;
-  for (const auto& lc : ctx.loopClosures())
-    lmLoops += lc.source == ELoopSource::Landmark;
-  j["loop_closures_landmark"] = lmLoops;
-  j["loop_closures_proximity"] = s.loopClosures - lmLoops;
-  j["loop_closures_rejected"] = ctx.rejectedLoopClosures();
-  j["landmarks"] = ctx.database().size();
-  j["graph_nodes"] = s.graphNodes;
-  j["graph_edges"] = s.graphEdges;
-  j["optimizations"] = optionalJson(pipeline.optimizations());
-  j["optimizations_windowed"] = optionalJson(pipeline.windowedOptimizations());
-  j["final_optimization"] = finalReport ? nlohmann::json{{"iterations", finalReport->iterations},
-                                                         {"chi2_before", finalReport->chi2Before},
-                                                         {"chi2_after", finalReport->chi2After},
-                                                         {"seconds", finalReport->seconds}}
-                                        : nlohmann::json(nullptr);
-  j["tracked_frames"] = s.trackedFrames;
-  j["fallback_frames"] = s.fallbackFrames;
-  j["lost_frames"] = s.lostFrames;
-  j["tracking"] = {
-      {"initial", st.initial},
-      {"features", st.features},
-      {"roi", st.roiFeatures},
-      {"flow", st.flow},
-      {"full_image_fallback", st.fullImageFallback},
-      {"depth_icp", st.depthIcp},
-      {"constant_velocity", st.constantVelocity},
-      {"lost", st.lost},
-      {"no_roi", st.noRoi},
-      {"icp_refined", st.icpRefined}};
-  // What stage 2 described: ROI-only frames describe their tracking region
-  // alone; the others were extended once, for the reason given.
-  nlohmann::json ext = nlohmann::json::object();
-  for (const auto& [reason, n] : st.extensions)
-    if (reason != frontend::EExtension::None)
-      ext[frontend::toString(reason)] = n;
-  const auto roiOnly = st.extensions.find(frontend::EExtension::None);
-  j["described_pixel_fraction"] = st.frames > 0 ? st.describedFractionSum / st.frames : 0.0;
-  j["roi_only_frames"] = roiOnly == st.extensions.end() ? 0 : roiOnly->second;
-  j["extended_frames"] = ext;
-  // All front-end work per frame (frames.csv frontend_ms: decoding excluded),
-  // the cost the ROI versions are compared by.
-  double frontMs = 0;
-  for (const auto& r : pipeline.records())
-    frontMs += r.result.times.total_ms;
-  j["frontend_ms_per_frame"] = s.frames > 0 ? frontMs / s.frames : 0.0;
+  // The parts have disjoint keys (and nlohmann::json sorts them), so merging
+  // gives the object the single function built.
+  nlohmann::json j = runJson(pipeline, m_settings);
+  j.update(mapJson(pipeline, s, finalReport));
+  j.update(trackingJson(pipeline, s));
+  // The outcome: timing, failure, the error against the ground truth.
   j["failed"] = s.failed;
   j["stopped_by_user"] = s.stoppedByUser;
   j["wall_s"] = s.wallS;
