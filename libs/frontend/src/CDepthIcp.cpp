@@ -2,6 +2,7 @@
 
 #include <roislam/geometry/Rotation.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -11,7 +12,31 @@ namespace roislam::frontend::detail
 namespace
 {
 const float kNaN = std::numeric_limits<float>::quiet_NaN();
+
+// Plausibility: ICP should only correct the prediction, not jump.
+bool plausible(const TRigid& T, const TRigid& guess)
+{
+  const TRigid dT = {T.R * guess.R.transpose(), T.t - T.R * guess.R.transpose() * guess.t};
+  const double ang = geometry::rotationAngle(dT.R);
+  return !((T.t - guess.t).norm() > 0.3 || ang > 0.5);
 }
+
+/** The result at T from the normal equations (H, pairs, sum of squared
+ *  residuals) built there. */
+CDepthIcp::TResult makeResult(const TRigid& T, const Matrix6d& H, std::size_t pairs, double sumSq)
+{
+  CDepthIcp::TResult out;
+  out.T = T;
+  out.pairs = pairs;
+  out.rmse = std::sqrt(sumSq / static_cast<double>(pairs));
+  // Dense ICP pairs are strongly correlated; treat them as ~100x fewer
+  // independent measurements so the graph does not over-trust ICP edges.
+  const double sigma = std::max(out.rmse, 0.003);
+  out.information = H / (sigma * sigma) * 0.01;
+  out.edgeInformation = H / (out.rmse * out.rmse + 1e-12) * 0.01;
+  return out;
+}
+}  // namespace
 
 CDepthIcp::CDepthIcp(const TParams& params, const mrpt::img::TCamera& cam) : m_params(params)
 {
@@ -99,89 +124,84 @@ CDepthIcp::TMap CDepthIcp::buildMap(const cv::Mat& depth) const
   return m;
 }
 
-std::optional<CDepthIcp::TResult> CDepthIcp::align(
+CDepthIcp::TNormalEquations CDepthIcp::normalEquations(
+    const TMap& ref, const TMap& cur, const TRigid& T, double gate) const
+{
+  const double huber = 0.01;
+  TNormalEquations eq;
+  eq.H.setZero();
+  eq.g.setZero();
+  const Eigen::Matrix3f R = T.R.cast<float>();
+  const Eigen::Vector3f t = T.t.cast<float>();
+  const float gate2 = static_cast<float>(gate * gate);
+  for (std::size_t k = 0; k < cur.points.size(); ++k)
+  {
+    const Eigen::Vector3f& p = cur.points[k];
+    if (!std::isfinite(p.z()))
+      continue;
+    const Eigen::Vector3f q = R * p + t;
+    if (q.z() < 1e-3f)
+      continue;
+    const int c = static_cast<int>(std::lround(m_fx * q.x() / q.z() + m_cx));
+    const int r = static_cast<int>(std::lround(m_fy * q.y() / q.z() + m_cy));
+    if (c < 0 || r < 0 || c >= m_cols || r >= m_rows)
+      continue;
+    const std::size_t j = static_cast<std::size_t>(r * m_cols + c);
+    const Eigen::Vector3f& nv = ref.normals[j];
+    if (!std::isfinite(nv.z()))
+      continue;
+    const Eigen::Vector3f diff = q - ref.points[j];
+    if (diff.squaredNorm() > gate2)
+      continue;
+    const double res = nv.dot(diff);
+    const double w = std::abs(res) <= huber ? 1.0 : huber / std::abs(res);
+    Vector6d J;
+    const Eigen::Vector3f qxn = q.cross(nv);
+    J << nv.x(), nv.y(), nv.z(), qxn.x(), qxn.y(), qxn.z();
+    eq.H.noalias() += w * J * J.transpose();
+    eq.g.noalias() += w * J * res;
+    eq.sumSq += res * res;
+    ++eq.pairs;
+  }
+  return eq;
+}
+
+std::optional<TRigid> CDepthIcp::gaussNewton(
     const TMap& ref, const TMap& cur, const TRigid& guess) const
 {
-  if (ref.cols != m_cols || cur.cols != m_cols || ref.rows != m_rows || cur.rows != m_rows)
-    throw std::invalid_argument("CDepthIcp::align: maps of a different camera");
   TRigid T = guess;
-  const double huber = 0.01;
-  Matrix6d H;
-  Vector6d g;
-  std::size_t pairs = 0;
-  double sumSq = 0;
-  auto build = [&](double gate)
-  {
-    H.setZero();
-    g.setZero();
-    pairs = 0;
-    sumSq = 0;
-    const Eigen::Matrix3f R = T.R.cast<float>();
-    const Eigen::Vector3f t = T.t.cast<float>();
-    const float gate2 = static_cast<float>(gate * gate);
-    for (std::size_t k = 0; k < cur.points.size(); ++k)
-    {
-      const Eigen::Vector3f& p = cur.points[k];
-      if (!std::isfinite(p.z()))
-        continue;
-      const Eigen::Vector3f q = R * p + t;
-      if (q.z() < 1e-3f)
-        continue;
-      const int c = static_cast<int>(std::lround(m_fx * q.x() / q.z() + m_cx));
-      const int r = static_cast<int>(std::lround(m_fy * q.y() / q.z() + m_cy));
-      if (c < 0 || r < 0 || c >= m_cols || r >= m_rows)
-        continue;
-      const std::size_t j = static_cast<std::size_t>(r * m_cols + c);
-      const Eigen::Vector3f& nv = ref.normals[j];
-      if (!std::isfinite(nv.z()))
-        continue;
-      const Eigen::Vector3f diff = q - ref.points[j];
-      if (diff.squaredNorm() > gate2)
-        continue;
-      const double res = nv.dot(diff);
-      const double w = std::abs(res) <= huber ? 1.0 : huber / std::abs(res);
-      Vector6d J;
-      const Eigen::Vector3f qxn = q.cross(nv);
-      J << nv.x(), nv.y(), nv.z(), qxn.x(), qxn.y(), qxn.z();
-      H.noalias() += w * J * J.transpose();
-      g.noalias() += w * J * res;
-      sumSq += res * res;
-      ++pairs;
-    }
-  };
   for (int it = 0; it < m_params.maxIterations; ++it)
   {
     // Shrinking gate: wide at first to capture, tight later to reject outliers.
     const double gate = it < 3 ? m_params.maxDistance : 0.5 * m_params.maxDistance;
-    build(gate);
-    if (pairs < static_cast<std::size_t>(m_params.minPairs))
+    const TNormalEquations eq = normalEquations(ref, cur, T, gate);
+    if (eq.pairs < static_cast<std::size_t>(m_params.minPairs))
       return std::nullopt;
     // Damping keeps unobservable directions at the guess.
-    const double lambda = 1e-4 * H.trace() / 6.0 + 1e-9;
-    const Vector6d d = -(H + lambda * Matrix6d::Identity()).ldlt().solve(g);
+    const double lambda = 1e-4 * eq.H.trace() / 6.0 + 1e-9;
+    const Vector6d d = -(eq.H + lambda * Matrix6d::Identity()).ldlt().solve(eq.g);
     if (!d.allFinite())
       return std::nullopt;
     T = applyLeft(d, T);
     if (d.head<3>().norm() < 1e-5 && d.tail<3>().norm() < 1e-5)
       break;
   }
-  build(0.5 * m_params.maxDistance);
-  if (pairs < static_cast<std::size_t>(m_params.minPairs))
+  return T;
+}
+
+std::optional<CDepthIcp::TResult> CDepthIcp::align(
+    const TMap& ref, const TMap& cur, const TRigid& guess) const
+{
+  if (ref.cols != m_cols || cur.cols != m_cols || ref.rows != m_rows || cur.rows != m_rows)
+    throw std::invalid_argument("CDepthIcp::align: maps of a different camera");
+  const std::optional<TRigid> T = gaussNewton(ref, cur, guess);
+  if (!T)
     return std::nullopt;
-  // Plausibility: ICP should only correct the prediction, not jump.
-  const TRigid dT = {T.R * guess.R.transpose(), T.t - T.R * guess.R.transpose() * guess.t};
-  const double ang = geometry::rotationAngle(dT.R);
-  if ((T.t - guess.t).norm() > 0.3 || ang > 0.5)
+  const TNormalEquations eq = normalEquations(ref, cur, *T, 0.5 * m_params.maxDistance);
+  if (eq.pairs < static_cast<std::size_t>(m_params.minPairs))
     return std::nullopt;
-  TResult out;
-  out.T = T;
-  out.pairs = pairs;
-  out.rmse = std::sqrt(sumSq / static_cast<double>(pairs));
-  // Dense ICP pairs are strongly correlated; treat them as ~100x fewer
-  // independent measurements so the graph does not over-trust ICP edges.
-  const double sigma = std::max(out.rmse, 0.003);
-  out.information = H / (sigma * sigma) * 0.01;
-  out.edgeInformation = H / (out.rmse * out.rmse + 1e-12) * 0.01;
-  return out;
+  if (!plausible(*T, guess))
+    return std::nullopt;
+  return makeResult(*T, eq.H, eq.pairs, eq.sumSq);
 }
 }  // namespace roislam::frontend::detail

@@ -63,6 +63,22 @@ class CDepthIcp
   const TParams& params() const { return m_params; }
 
  private:
+  /** Point-to-plane normal equations of cur against ref at pose T (Huber
+   *  weights), from the pairs closer than gate (metres). */
+  struct TNormalEquations
+  {
+    Matrix6d H;
+    Vector6d g;
+    std::size_t pairs = 0;
+    double sumSq = 0;  //!< sum of the squared residuals
+  };
+  // align()'s steps: the Gauss-Newton iterations from the guess (nullopt
+  // when too few pairs or a non-finite step), and the normal equations each
+  // iteration (and the final check) builds.
+  std::optional<TRigid> gaussNewton(const TMap& ref, const TMap& cur, const TRigid& guess) const;
+  TNormalEquations normalEquations(
+      const TMap& ref, const TMap& cur, const TRigid& T, double gate) const;
+
   TParams m_params;
   int m_cols = 0, m_rows = 0;
   double m_fx = 1, m_fy = 1, m_cx = 0, m_cy = 0;  // decimated pinhole
