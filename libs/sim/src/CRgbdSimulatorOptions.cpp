@@ -89,6 +89,121 @@ class CKeyReader
   std::string m_sec;
   std::set<std::string> m_known;
 };
+using TOptions = CRgbdSimulator::TOptions;
+
+/** Throws "[section] key: what". */
+struct TKeyError
+{
+  const std::string& section;
+  [[noreturn]] void operator()(const std::string& key, const std::string& what) const
+  {
+    throw std::invalid_argument("[" + section + "] " + key + ": " + what);
+  }
+};
+
+// The checks by concern, in the order validate() runs them (the first
+// failing key is the one reported).
+
+void validateSequence(const TOptions& o, const TKeyError& fail)
+{
+  if (o.scene != "textured" && o.scene != "featureless")
+    fail("scene", "'" + o.scene + "' is not textured|featureless");
+  if (o.frames < 2)
+    fail("frames", "must be >= 2");
+  if (!(o.fps > 0 && o.fps <= 1000))
+    fail("fps", "must be in (0, 1000]");
+  if (!(std::abs(o.depthTimeOffset) < 0.02))
+    fail("depth_time_offset", "must be within +-0.02 s");
+  if (!(o.rollingShutterMs >= 0 && o.rollingShutterMs * 1e-3 <= 1.0 / o.fps))
+    fail("rolling_shutter_ms", "must be in [0, frame period]");
+}
+
+void validateColourCamera(const TOptions& o, const TKeyError& fail)
+{
+  if (o.width < 16 || o.width > 4096)
+    fail("width", "must be in [16, 4096]");
+  if (o.height < 16 || o.height > 4096)
+    fail("height", "must be in [16, 4096]");
+  if (!(o.fx > 0))
+    fail("fx", "must be > 0");
+  if (!(o.fy > 0))
+    fail("fy", "must be > 0");
+  if (!(o.cx >= 0 && o.cx <= o.width))
+    fail("cx", "must lie inside the image");
+  if (!(o.cy >= 0 && o.cy <= o.height))
+    fail("cy", "must lie inside the image");
+}
+
+void validateDepthNoise(const TOptions& o, const TKeyError& fail)
+{
+  if (!(o.minDepth >= 0))
+    fail("min_depth", "must be >= 0");
+  if (!(o.maxDepth > o.minDepth && o.maxDepth <= 65535 / CRgbdSimulator::kDepthScale))
+    fail("max_depth", "must be > min_depth and <= 13.1 (16-bit PNG range)");
+  if (!(o.depthNoiseA >= 0))
+    fail("depth_noise_a", "must be >= 0");
+  if (!(o.depthNoiseB >= 0))
+    fail("depth_noise_b", "must be >= 0");
+  if (!(o.edgeJumpRatio > 0))
+    fail("edge_jump_ratio", "must be > 0");
+  if (o.noiseModel != "kinect" && o.noiseModel != "disparity")
+    fail("noise_model", "'" + o.noiseModel + "' is not kinect|disparity");
+  if (!(o.disparityBf > 0))
+    fail("disparity_bf", "must be > 0");
+  if (!(o.disparityStepsPerPx > 0))
+    fail("disparity_steps_per_px", "must be > 0");
+  if (!(o.disparityNoiseSteps >= 0))
+    fail("disparity_noise_steps", "must be >= 0");
+  if (!(o.lateralSigmaPx >= 0 && o.lateralSigmaPx <= 5))
+    fail("lateral_sigma_px", "must be in [0, 5]");
+}
+
+void validateDepthCamera(const TOptions& o, const TKeyError& fail)
+{
+  if (!(o.depthFx > 0))
+    fail("depth_fx", "must be > 0");
+  if (!(o.depthFy > 0))
+    fail("depth_fy", "must be > 0");
+  if (!(o.depthCx >= 0 && o.depthCx <= o.width))
+    fail("depth_cx", "must lie inside the image");
+  if (!(o.depthCy >= 0 && o.depthCy <= o.height))
+    fail("depth_cy", "must lie inside the image");
+  try
+  {
+    mrpt::poses::CPose3D p;
+    p.fromString(o.depthPoseInColour);
+  }
+  catch (const std::exception&)
+  {
+    fail("depth_pose_in_colour", "'" + o.depthPoseInColour + "' is not [x y z yaw pitch roll]");
+  }
+}
+
+void validateRendering(const TOptions& o, const TKeyError& fail)
+{
+  if (!(o.rgbNoiseStd >= 0 && o.rgbNoiseStd <= 64))
+    fail("rgb_noise_std", "must be in [0, 64]");
+  if (o.supersampling < 1 || o.supersampling > 4)
+    fail("supersampling", "must be in [1, 4]");
+  if (!(o.texelsPerMetre >= 50 && o.texelsPerMetre <= 3000))
+    fail("texels_per_metre", "must be in [50, 3000]");
+}
+
+void validatePath(const TOptions& o, const TKeyError& fail)
+{
+  if (!(o.pathTranslationAmplitude >= 0 && o.pathTranslationAmplitude <= 0.6))
+    fail("path_translation_amplitude", "must be in [0, 0.6] (the room is small)");
+  for (auto [k, v] :
+       {std::pair{"path_yaw_amplitude_deg", o.pathYawAmplitudeDeg},
+        std::pair{"path_pitch_amplitude_deg", o.pathPitchAmplitudeDeg},
+        std::pair{"path_roll_amplitude_deg", o.pathRollAmplitudeDeg}})
+    if (!(v >= 0 && v <= 45))
+      fail(k, "must be in [0, 45]");
+  if (!(o.maxLinearSpeed > 0))
+    fail("max_linear_speed", "must be > 0");
+  if (!(o.maxAngularSpeedDeg > 0))
+    fail("max_angular_speed_deg", "must be > 0");
+}
 }  // namespace
 
 // ---------------------------------------------------------------- TOptions
@@ -194,84 +309,12 @@ void CRgbdSimulator::TOptions::saveToConfigFile(
 
 void CRgbdSimulator::TOptions::validate(const std::string& section) const
 {
-  auto fail = [&](const std::string& key, const std::string& what)
-  { throw std::invalid_argument("[" + section + "] " + key + ": " + what); };
-  if (scene != "textured" && scene != "featureless")
-    fail("scene", "'" + scene + "' is not textured|featureless");
-  if (frames < 2)
-    fail("frames", "must be >= 2");
-  if (!(fps > 0 && fps <= 1000))
-    fail("fps", "must be in (0, 1000]");
-  if (!(std::abs(depthTimeOffset) < 0.02))
-    fail("depth_time_offset", "must be within +-0.02 s");
-  if (!(rollingShutterMs >= 0 && rollingShutterMs * 1e-3 <= 1.0 / fps))
-    fail("rolling_shutter_ms", "must be in [0, frame period]");
-  if (width < 16 || width > 4096)
-    fail("width", "must be in [16, 4096]");
-  if (height < 16 || height > 4096)
-    fail("height", "must be in [16, 4096]");
-  if (!(fx > 0))
-    fail("fx", "must be > 0");
-  if (!(fy > 0))
-    fail("fy", "must be > 0");
-  if (!(cx >= 0 && cx <= width))
-    fail("cx", "must lie inside the image");
-  if (!(cy >= 0 && cy <= height))
-    fail("cy", "must lie inside the image");
-  if (!(minDepth >= 0))
-    fail("min_depth", "must be >= 0");
-  if (!(maxDepth > minDepth && maxDepth <= 65535 / kDepthScale))
-    fail("max_depth", "must be > min_depth and <= 13.1 (16-bit PNG range)");
-  if (!(depthNoiseA >= 0))
-    fail("depth_noise_a", "must be >= 0");
-  if (!(depthNoiseB >= 0))
-    fail("depth_noise_b", "must be >= 0");
-  if (!(edgeJumpRatio > 0))
-    fail("edge_jump_ratio", "must be > 0");
-  if (noiseModel != "kinect" && noiseModel != "disparity")
-    fail("noise_model", "'" + noiseModel + "' is not kinect|disparity");
-  if (!(disparityBf > 0))
-    fail("disparity_bf", "must be > 0");
-  if (!(disparityStepsPerPx > 0))
-    fail("disparity_steps_per_px", "must be > 0");
-  if (!(disparityNoiseSteps >= 0))
-    fail("disparity_noise_steps", "must be >= 0");
-  if (!(lateralSigmaPx >= 0 && lateralSigmaPx <= 5))
-    fail("lateral_sigma_px", "must be in [0, 5]");
-  if (!(depthFx > 0))
-    fail("depth_fx", "must be > 0");
-  if (!(depthFy > 0))
-    fail("depth_fy", "must be > 0");
-  if (!(depthCx >= 0 && depthCx <= width))
-    fail("depth_cx", "must lie inside the image");
-  if (!(depthCy >= 0 && depthCy <= height))
-    fail("depth_cy", "must lie inside the image");
-  try
-  {
-    mrpt::poses::CPose3D p;
-    p.fromString(depthPoseInColour);
-  }
-  catch (const std::exception&)
-  {
-    fail("depth_pose_in_colour", "'" + depthPoseInColour + "' is not [x y z yaw pitch roll]");
-  }
-  if (!(rgbNoiseStd >= 0 && rgbNoiseStd <= 64))
-    fail("rgb_noise_std", "must be in [0, 64]");
-  if (supersampling < 1 || supersampling > 4)
-    fail("supersampling", "must be in [1, 4]");
-  if (!(texelsPerMetre >= 50 && texelsPerMetre <= 3000))
-    fail("texels_per_metre", "must be in [50, 3000]");
-  if (!(pathTranslationAmplitude >= 0 && pathTranslationAmplitude <= 0.6))
-    fail("path_translation_amplitude", "must be in [0, 0.6] (the room is small)");
-  for (auto [k, v] :
-       {std::pair{"path_yaw_amplitude_deg", pathYawAmplitudeDeg},
-        std::pair{"path_pitch_amplitude_deg", pathPitchAmplitudeDeg},
-        std::pair{"path_roll_amplitude_deg", pathRollAmplitudeDeg}})
-    if (!(v >= 0 && v <= 45))
-      fail(k, "must be in [0, 45]");
-  if (!(maxLinearSpeed > 0))
-    fail("max_linear_speed", "must be > 0");
-  if (!(maxAngularSpeedDeg > 0))
-    fail("max_angular_speed_deg", "must be > 0");
+  const TKeyError fail{section};
+  validateSequence(*this, fail);
+  validateColourCamera(*this, fail);
+  validateDepthNoise(*this, fail);
+  validateDepthCamera(*this, fail);
+  validateRendering(*this, fail);
+  validatePath(*this, fail);
 }
 }  // namespace roislam::sim
