@@ -419,34 +419,114 @@ CRgbdSimulator::TFrame CRgbdSimulator::renderFrame(std::size_t i)
   return f;
 }
 
-CRgbdSimulator::TWriteStats CRgbdSimulator::writeSequence(const std::string& outDir, bool overwrite)
+namespace
 {
-  using Clock = std::chrono::steady_clock;
-  const auto t0 = Clock::now();
-  // Complete or absent: a staging folder beside outDir, renamed at the end.
+// ------------------------------------------------------- writeSequence stages
+
+roislam::common::COutputFolder::TOptions sequenceFolderOptions(bool overwrite)
+{
   roislam::common::COutputFolder::TOptions folderOptions;
   folderOptions.overwrite = overwrite;
   folderOptions.known = {"rgb",        "depth",         "rgb.txt",         "depth.txt",
                          "camera.ini", "simulator.ini", "groundtruth.txt", "accelerometer.txt"};
-  roislam::common::COutputFolder folder(outDir, folderOptions);
-  const fs::path tmp(folder.path());
+  return folderOptions;
+}
+
+void createImageFolders(const fs::path& tmp)
+{
   std::error_code ec;
   fs::create_directories(tmp / "rgb", ec);
   if (!ec)
     fs::create_directories(tmp / "depth", ec);
   if (ec)
     throw std::runtime_error("cannot write to " + tmp.string() + ": " + ec.message());
+}
+
+/** What the sequence's lists and logs accumulate frame by frame, written once
+ *  all frames are out. */
+struct TSequenceLogs
+{
+  std::ostringstream rgbTxt, depthTxt;
+  roislam::io::TTrajectory gt;
+  roislam::io::TAccelerometerLog accelerometer;
+};
+
+std::string sequenceDescription(const CRgbdSimulator::TOptions& o)
+{
+  return "rgbd-simul scene " + o.scene + " seed " + std::to_string(o.seed) +
+         (o.noise ? "" : " no-noise");
+}
+
+void writeListHeaders(const std::string& desc, TSequenceLogs& logs)
+{
+  logs.rgbTxt << "# color images\n# file: '" << desc << "'\n# timestamp filename\n";
+  logs.depthTxt << "# depth maps\n# file: '" << desc << "'\n# timestamp filename\n";
+}
+
+/** Writes the frame's two PNGs and lists them; depth16 is reused scratch. */
+void writeFrameImages(
+    const fs::path& tmp, const CRgbdSimulator::TFrame& f, cv::Mat& depth16, TSequenceLogs& logs)
+{
+  const std::string rgbName = "rgb/" + stampName(f.timestamp) + ".png";
+  const std::string depthName = "depth/" + stampName(f.depthTimestamp) + ".png";
+  // Round to the nearest 1/5000 m; beyond 13.1 m cannot occur (max_depth).
+  f.depth.convertTo(depth16, CV_16UC1, CRgbdSimulator::kDepthScale);
+  writePng(tmp / rgbName, f.rgb);
+  writePng(tmp / depthName, depth16);
+  logs.rgbTxt << stampName(f.timestamp) << ' ' << rgbName << '\n';
+  logs.depthTxt << stampName(f.depthTimestamp) << ' ' << depthName << '\n';
+}
+
+/** The accelerometer reading as published: in the output axes, with noise. */
+mrpt::math::TVector3D publishedAccelerometer(
+    mrpt::math::TVector3D reading, const CRgbdSimulator::TOptions& o,
+    mrpt::random::CRandomGenerator& accelRng)
+{
+  if (o.cameraYUp)
+    reading.y = -reading.y;  // the Kinect axes are a half turn about the optical z
+  if (o.noise)
+    reading += mrpt::math::TVector3D(
+        accelRng.drawGaussian1D(0, 0.05), accelRng.drawGaussian1D(0, 0.05),
+        accelRng.drawGaussian1D(0, 0.05));
+  return reading;
+}
+
+void writeSequenceLogs(const fs::path& tmp, const std::string& desc, const TSequenceLogs& logs)
+{
+  writeTextFile(tmp / "rgb.txt", logs.rgbTxt.str());
+  writeTextFile(tmp / "depth.txt", logs.depthTxt.str());
+  roislam::io::saveTumTrajectory(
+      (tmp / "groundtruth.txt").string(), logs.gt,
+      "ground truth of " + desc + ": colour optical centre in the world");
+  roislam::io::saveTumAccelerometer(
+      (tmp / "accelerometer.txt").string(), logs.accelerometer,
+      "accelerometer data of " + desc + " (TUM Kinect axes)");
+}
+
+void writeSequenceSettings(const fs::path& tmp, const CRgbdSimulator& sim)
+{
+  writeTextFile(tmp / "camera.ini", sim.sensorDescription().toIniText());
+  mrpt::config::CConfigFileMemory simCfg;
+  sim.options().saveToConfigFile(simCfg, "RgbdSimulator");
+  writeTextFile(tmp / "simulator.ini", simCfg.getContent());
+}
+}  // namespace
+
+CRgbdSimulator::TWriteStats CRgbdSimulator::writeSequence(const std::string& outDir, bool overwrite)
+{
+  using Clock = std::chrono::steady_clock;
+  const auto t0 = Clock::now();
+  // Complete or absent: a staging folder beside outDir, renamed at the end.
+  roislam::common::COutputFolder folder(outDir, sequenceFolderOptions(overwrite));
+  const fs::path tmp(folder.path());
+  createImageFolders(tmp);
 
   TWriteStats st;
   try
   {
-    std::ostringstream rgbTxt, depthTxt;
-    const std::string desc = "rgbd-simul scene " + m_opts.scene + " seed " +
-                             std::to_string(m_opts.seed) + (m_opts.noise ? "" : " no-noise");
-    rgbTxt << "# color images\n# file: '" << desc << "'\n# timestamp filename\n";
-    depthTxt << "# depth maps\n# file: '" << desc << "'\n# timestamp filename\n";
-    roislam::io::TTrajectory gt;
-    roislam::io::TAccelerometerLog accelerometer;
+    const std::string desc = sequenceDescription(m_opts);
+    TSequenceLogs logs;
+    writeListHeaders(desc, logs);
     // Its own noise stream, so the images do not change with it.
     mrpt::random::CRandomGenerator accelRng(m_opts.seed * 2246822519u + 0x165667b1u);
     cv::Mat depth16;
@@ -455,41 +535,17 @@ CRgbdSimulator::TWriteStats CRgbdSimulator::writeSequence(const std::string& out
       const auto r0 = Clock::now();
       const TFrame f = renderFrame(i);
       const auto r1 = Clock::now();
-      const std::string rgbName = "rgb/" + stampName(f.timestamp) + ".png";
-      const std::string depthName = "depth/" + stampName(f.depthTimestamp) + ".png";
-      // Round to the nearest 1/5000 m; beyond 13.1 m cannot occur (max_depth).
-      f.depth.convertTo(depth16, CV_16UC1, kDepthScale);
-      writePng(tmp / rgbName, f.rgb);
-      writePng(tmp / depthName, depth16);
-      rgbTxt << stampName(f.timestamp) << ' ' << rgbName << '\n';
-      depthTxt << stampName(f.depthTimestamp) << ' ' << depthName << '\n';
-      gt.push_back({f.timestamp, published(f.pose)});
-      auto reading = accelerometerReading(i);
-      if (m_opts.cameraYUp)
-        reading.y = -reading.y;  // the Kinect axes are a half turn about the optical z
-      if (m_opts.noise)
-        reading += mrpt::math::TVector3D(
-            accelRng.drawGaussian1D(0, 0.05), accelRng.drawGaussian1D(0, 0.05),
-            accelRng.drawGaussian1D(0, 0.05));
-      accelerometer.push_back({f.timestamp, reading});
+      writeFrameImages(tmp, f, depth16, logs);
+      logs.gt.push_back({f.timestamp, published(f.pose)});
+      logs.accelerometer.push_back(
+          {f.timestamp, publishedAccelerometer(accelerometerReading(i), m_opts, accelRng)});
       st.renderSeconds += std::chrono::duration<double>(r1 - r0).count();
       st.writeSeconds += std::chrono::duration<double>(Clock::now() - r1).count();
       MRPT_LOG_DEBUG_STREAM("frame " << i << " written");
     }
     st.frames = m_opts.frames;
-    writeTextFile(tmp / "rgb.txt", rgbTxt.str());
-    writeTextFile(tmp / "depth.txt", depthTxt.str());
-    roislam::io::saveTumTrajectory(
-        (tmp / "groundtruth.txt").string(), gt,
-        "ground truth of " + desc + ": colour optical centre in the world");
-    roislam::io::saveTumAccelerometer(
-        (tmp / "accelerometer.txt").string(), accelerometer,
-        "accelerometer data of " + desc + " (TUM Kinect axes)");
-
-    writeTextFile(tmp / "camera.ini", sensorDescription().toIniText());
-    mrpt::config::CConfigFileMemory simCfg;
-    m_opts.saveToConfigFile(simCfg, "RgbdSimulator");
-    writeTextFile(tmp / "simulator.ini", simCfg.getContent());
+    writeSequenceLogs(tmp, desc, logs);
+    writeSequenceSettings(tmp, *this);
 
     folder.commit();
   }
