@@ -400,6 +400,78 @@ TFrameLog processFrames(
   }
   return log;
 }
+
+// --------------------------------------------------------------- run stages
+
+fs::path createPatchesFolder(const fs::path& outDir)
+{
+  const fs::path patchesDir = outDir / "landmarks";
+  std::error_code ec;
+  fs::create_directories(patchesDir, ec);
+  if (ec)
+    throw std::runtime_error(patchesDir.string() + ": cannot create folder");
+  return patchesDir;
+}
+
+std::optional<io::TTrajectory> loadGroundTruth(const std::optional<std::string>& gtFile)
+{
+  if (gtFile && fs::is_regular_file(*gtFile))
+    return io::loadTumTrajectory(*gtFile);
+  return std::nullopt;
+}
+
+/** The annotated rawlog, staged in outDir when it is to end up inside it. */
+TAnnotatedRawlog openRunRawlog(
+    const CRoiLandmarksApp::TArguments& args, const fs::path& outDir,
+    const std::optional<fs::path>& rawlogInFolder)
+{
+  return openAnnotatedRawlog(
+      rawlogInFolder ? std::optional<std::string>((outDir / *rawlogInFolder).string())
+                     : args.outputRawlog,
+      args.outputRawlog.value_or(""));
+}
+
+std::string startLine(
+    const io::CFrameSource& source, const TPipelineOptions& options,
+    const std::optional<std::string>& gtFile, bool scored)
+{
+  return "roi-landmarks: " + source.name() + ", " + std::to_string(source.size()) + " frames, " +
+         features::toString(options.features.feature_type) + ", ROI preset " + options.roi.preset +
+         (scored ? ", ground truth " + *gtFile : ", no ground truth");
+}
+
+struct TScoredRun
+{
+  CRoiLandmarksApp::TSummary sum;
+  TScores scores;
+};
+
+TScoredRun scoreRun(
+    const TFrameLog& log, const std::optional<CLandmarkScorer>& scorer,
+    const std::string& recallPosition, std::size_t landmarks)
+{
+  // The primary score uses [LandmarkScoring] recall_position; the other
+  // definition is reported beside it (alternative_scoring).
+  const bool pointPrimary = recallPosition == "landmark_point";
+  TScoredRun r;
+  r.sum.recallPosition = recallPosition;
+  r.sum.altRecallPosition = pointPrimary ? "roi_median" : "landmark_point";
+  r.scores = scoreEvents(log, scorer, pointPrimary);
+  summarize(log, r.scores, landmarks, r.sum);
+  return r;
+}
+
+void writeSummaryJson(
+    const fs::path& outDir, const CRoiLandmarksApp::TArguments& args,
+    const TPipelineOptions& options, const io::CFrameSource& source,
+    const std::optional<std::string>& gtFile, const TScoredRun& run, bool kfSlam)
+{
+  auto j = summaryJson(runJson(args, options, source.name(), gtFile), run.sum, run.scores);
+  j["sensor"] = source.sensor().toJson();
+  if (kfSlam)
+    j["kf_slam"] = run.sum.kfSlam;
+  common::writeFileAtomically((outDir / "summary.json").string(), j.dump(2) + "\n");
+}
 }  // namespace
 
 const std::vector<std::string>& CRoiLandmarksApp::outputFiles()
@@ -484,31 +556,18 @@ CRoiLandmarksApp::TSummary CRoiLandmarksApp::run()
                                   : std::optional<fs::path>();
   common::COutputFolder folder(m_args.outputDir, outputFolderOptions(rawlogInFolder));
   const fs::path outDir(folder.path());
-  const fs::path patchesDir = outDir / "landmarks";
-  std::error_code ec;
-  fs::create_directories(patchesDir, ec);
-  if (ec)
-    throw std::runtime_error(patchesDir.string() + ": cannot create folder");
+  const fs::path patchesDir = createPatchesFolder(outDir);
 
   auto source = io::CFrameSource::open(m_args.input, m_args.camera);
   std::optional<CLandmarkScorer> scorer;
-  std::optional<io::TTrajectory> gt;
   const auto gtFile = source->groundTruthFile();
-  if (gtFile && fs::is_regular_file(*gtFile))
-  {
-    gt = io::loadTumTrajectory(*gtFile);
+  const std::optional<io::TTrajectory> gt = loadGroundTruth(gtFile);
+  if (gt)
     scorer.emplace(m_options.scoring, *gt);
-  }
-  progress(
-      "roi-landmarks: " + source->name() + ", " + std::to_string(source->size()) + " frames, " +
-      features::toString(m_options.features.feature_type) + ", ROI preset " + m_options.roi.preset +
-      (scorer ? ", ground truth " + *gtFile : ", no ground truth"));
+  progress(startLine(*source, m_options, gtFile, scorer.has_value()));
   progress("roi-landmarks: " + source->sensor().summary());
 
-  TAnnotatedRawlog rawlog = openAnnotatedRawlog(
-      rawlogInFolder ? std::optional<std::string>((outDir / *rawlogInFolder).string())
-                     : m_args.outputRawlog,
-      m_args.outputRawlog.value_or(""));
+  TAnnotatedRawlog rawlog = openRunRawlog(m_args, outDir, rawlogInFolder);
   auto kfSlam =
       m_args.kfSlam
           ? std::make_unique<kfslam::CKfSlamSession>(kfSlamSetup(*source, outDir.string()))
@@ -518,16 +577,10 @@ CRoiLandmarksApp::TSummary CRoiLandmarksApp::run()
       *source, m_args.maxFrames, processor, m_options.observations.sensor_pose, patchesDir, rawlog,
       kfSlam.get(), m_args.progress);
 
-  // The primary score uses [LandmarkScoring] recall_position; the other
-  // definition is reported beside it (alternative_scoring).
-  const bool pointPrimary = m_options.scoring.recall_position == "landmark_point";
-  TSummary sum;
-  sum.recallPosition = m_options.scoring.recall_position;
-  sum.altRecallPosition = pointPrimary ? "roi_median" : "landmark_point";
-  const TScores scores = scoreEvents(log, scorer, pointPrimary);
-  summarize(log, scores, processor.tracker().database().size(), sum);
-
-  common::writeFileAtomically((outDir / "frames.csv").string(), framesCsv(log, scores));
+  TScoredRun run = scoreRun(
+      log, scorer, m_options.scoring.recall_position, processor.tracker().database().size());
+  TSummary& sum = run.sum;
+  common::writeFileAtomically((outDir / "frames.csv").string(), framesCsv(log, run.scores));
   processor.tracker().database().save((outDir / "landmarks.db").string());
   commitAnnotatedRawlog(rawlog);
 
@@ -540,13 +593,9 @@ CRoiLandmarksApp::TSummary CRoiLandmarksApp::run()
     progress(kfSlamLine(sum.kfSlam));
   }
   sum.wallS = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
-  auto j = summaryJson(runJson(m_args, m_options, source->name(), gtFile), sum, scores);
-  j["sensor"] = source->sensor().toJson();
-  if (kfSlam)
-    j["kf_slam"] = sum.kfSlam;
-  common::writeFileAtomically((outDir / "summary.json").string(), j.dump(2) + "\n");
+  writeSummaryJson(outDir, m_args, m_options, *source, gtFile, run, kfSlam != nullptr);
   folder.commit();
-  progress(doneLine(sum, scores));
+  progress(doneLine(sum, run.scores));
   return sum;
 }
 
