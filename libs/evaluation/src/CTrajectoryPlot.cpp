@@ -91,9 +91,15 @@ CTrajectoryPlot::CTrajectoryPlot(const TOptions& options) : m_options(options)
   chooseUpAxis(m_options.up_axis, {});  // validates the name
 }
 
-void CTrajectoryPlot::plot(
+namespace
+{
+// -------------------------------------------------------------- plot stages
+
+/** Ground truth if any, else the first non-empty estimate: it fixes the up
+ *  axis and the time origin. */
+const io::TTrajectory& plotReference(
     const std::string& pngFile, const io::TTrajectory& groundTruth,
-    const std::vector<TNamedTrajectory>& estimates) const
+    const std::vector<CTrajectoryPlot::TNamedTrajectory>& estimates)
 {
   const io::TTrajectory* reference = groundTruth.empty() ? nullptr : &groundTruth;
   for (const auto& e : estimates)
@@ -101,68 +107,125 @@ void CTrajectoryPlot::plot(
       reference = &e.second;
   if (!reference)
     throw std::runtime_error(pngFile + ": nothing to plot (all trajectories empty)");
+  return *reference;
+}
 
-  const int up = chooseUpAxis(m_options.up_axis, *reference);
-  const std::array<const char*, 3> names = {"x", "y", "z"};
-  const int h1 = up == 0 ? 1 : 0;  // top-view horizontal axis
-  const int h2 = up == 2 ? 1 : 2;  // top-view vertical axis
-  auto column = [](int axis) { return std::to_string(axis + 2); };
+struct TPlotAxes
+{
+  explicit TPlotAxes(int upAxis) : up(upAxis) {}
+  int up;
+  int h1 = up == 0 ? 1 : 0;  // top-view horizontal axis
+  int h2 = up == 2 ? 1 : 2;  // top-view vertical axis
+};
 
+std::string column(int axis)
+{
+  return std::to_string(axis + 2);
+}
+
+double earliestStamp(const io::TTrajectory& trajectory)
+{
   double t0 = std::numeric_limits<double>::infinity();
-  for (const auto& p : *reference)
+  for (const auto& p : trajectory)
     t0 = std::min(t0, p.timestamp);
+  return t0;
+}
 
-  gnuplot::TTempDir tmp;
-  std::vector<std::string> plotTop, plotHeight;
+/** The gnuplot "plot" entries of both panels, one per series. */
+struct TPlotSeries
+{
+  std::vector<std::string> top, height;
+};
+
+/** What every series' data file and entries share. */
+struct TSeriesContext
+{
+  fs::path dir;
+  double t0;
+  double gapBreak;
+  TPlotAxes axes;
+};
+
+void addSeries(
+    TPlotSeries& series, const TSeriesContext& ctx, const io::TTrajectory& t,
+    const std::string& title, const std::string& colour, int width, std::size_t idx)
+{
+  const std::string style = " with lines lw " + std::to_string(width) + " lc rgb '" + colour + "'";
+  if (t.empty())
+  {
+    const std::string entry = "keyentry" + style + " title " + quoted(title + " (no trajectory)");
+    series.top.push_back(entry);
+    series.height.push_back(entry);
+    return;
+  }
+  const fs::path data = ctx.dir / ("series" + std::to_string(idx) + ".dat");
+  writeData(data, t, ctx.t0, ctx.gapBreak);
+  const std::string f = quoted(data.string());
+  series.top.push_back(
+      f + " using " + column(ctx.axes.h1) + ":" + column(ctx.axes.h2) + style + " title " +
+      quoted(title));
+  series.height.push_back(
+      f + " using 1:" + column(ctx.axes.up) + style + " title " + quoted(title));
+}
+
+TPlotSeries writeAllSeries(
+    const TSeriesContext& ctx, const io::TTrajectory& groundTruth,
+    const std::vector<CTrajectoryPlot::TNamedTrajectory>& estimates)
+{
   const std::array<const char*, 8> colours = {"#1f77b4", "#d62728", "#2ca02c", "#ff7f0e",
                                               "#9467bd", "#8c564b", "#e377c2", "#17becf"};
-  auto addSeries = [&](const io::TTrajectory& t, const std::string& title,
-                       const std::string& colour, int width, std::size_t idx)
-  {
-    const std::string style =
-        " with lines lw " + std::to_string(width) + " lc rgb '" + colour + "'";
-    if (t.empty())
-    {
-      const std::string entry = "keyentry" + style + " title " + quoted(title + " (no trajectory)");
-      plotTop.push_back(entry);
-      plotHeight.push_back(entry);
-      return;
-    }
-    const fs::path data = tmp.path / ("series" + std::to_string(idx) + ".dat");
-    writeData(data, t, t0, m_options.gap_break);
-    const std::string f = quoted(data.string());
-    plotTop.push_back(
-        f + " using " + column(h1) + ":" + column(h2) + style + " title " + quoted(title));
-    plotHeight.push_back(f + " using 1:" + column(up) + style + " title " + quoted(title));
-  };
+  TPlotSeries series;
   if (!groundTruth.empty())
-    addSeries(groundTruth, "ground truth", "#000000", 3, 0);
+    addSeries(series, ctx, groundTruth, "ground truth", "#000000", 3, 0);
   for (std::size_t k = 0; k < estimates.size(); ++k)
-    addSeries(estimates[k].second, estimates[k].first, colours[k % colours.size()], 2, k + 1);
+    addSeries(
+        series, ctx, estimates[k].second, estimates[k].first, colours[k % colours.size()], 2,
+        k + 1);
+  return series;
+}
+
+void writeScript(
+    const fs::path& script, const fs::path& image, const CTrajectoryPlot::TOptions& options,
+    const TPlotAxes& axes, const TPlotSeries& series)
+{
+  const std::array<const char*, 3> names = {"x", "y", "z"};
+  const int h1 = axes.h1, h2 = axes.h2, up = axes.up;
+  std::ofstream gp(script);
+  gp << gnuplot::pngTerminal(options.width, options.height, image)
+     << "set grid\nset key top left box opaque\n"
+     << "set multiplot layout 1,2 title " << quoted(options.title) << "\n"
+     << "set title " << quoted(std::string("top view (") + names[h1] + "-" + names[h2] + ")")
+     << "\nset xlabel " << quoted(std::string(names[h1]) + " [m]") << "\nset ylabel "
+     << quoted(std::string(names[h2]) + " [m]") << "\nset size ratio -1\n";
+  gp << "plot ";
+  for (std::size_t k = 0; k < series.top.size(); ++k)
+    gp << (k ? ", \\\n  " : "") << series.top[k];
+  gp << "\nset size noratio\nset title "
+     << quoted(std::string("height (") + names[up] + ") over time")
+     << "\nset xlabel 'time [s]'\nset ylabel " << quoted(std::string(names[up]) + " [m]") << "\n";
+  gp << "plot ";
+  for (std::size_t k = 0; k < series.height.size(); ++k)
+    gp << (k ? ", \\\n  " : "") << series.height[k];
+  gp << "\nunset multiplot\nset output\n";
+  if (!gp)
+    throw std::runtime_error("cannot write the gnuplot script " + script.string());
+}
+}  // namespace
+
+void CTrajectoryPlot::plot(
+    const std::string& pngFile, const io::TTrajectory& groundTruth,
+    const std::vector<TNamedTrajectory>& estimates) const
+{
+  const io::TTrajectory& reference = plotReference(pngFile, groundTruth, estimates);
+  const TPlotAxes axes(chooseUpAxis(m_options.up_axis, reference));
+
+  gnuplot::TTempDir tmp;
+  const TSeriesContext ctx{tmp.path, earliestStamp(reference), m_options.gap_break, axes};
+  const TPlotSeries series = writeAllSeries(ctx, groundTruth, estimates);
 
   const fs::path image = tmp.path / "figure.png";
   const fs::path script = tmp.path / "figure.gp";
-  {
-    std::ofstream gp(script);
-    gp << gnuplot::pngTerminal(m_options.width, m_options.height, image)
-       << "set grid\nset key top left box opaque\n"
-       << "set multiplot layout 1,2 title " << quoted(m_options.title) << "\n"
-       << "set title " << quoted(std::string("top view (") + names[h1] + "-" + names[h2] + ")")
-       << "\nset xlabel " << quoted(std::string(names[h1]) + " [m]") << "\nset ylabel "
-       << quoted(std::string(names[h2]) + " [m]") << "\nset size ratio -1\n";
-    gp << "plot ";
-    for (std::size_t k = 0; k < plotTop.size(); ++k)
-      gp << (k ? ", \\\n  " : "") << plotTop[k];
-    gp << "\nset size noratio\nset title "
-       << quoted(std::string("height (") + names[up] + ") over time")
-       << "\nset xlabel 'time [s]'\nset ylabel " << quoted(std::string(names[up]) + " [m]") << "\n";
-    gp << "plot ";
-    for (std::size_t k = 0; k < plotHeight.size(); ++k)
-      gp << (k ? ", \\\n  " : "") << plotHeight[k];
-    gp << "\nunset multiplot\nset output\n";
-    if (!gp)
-      throw std::runtime_error("cannot write the gnuplot script " + script.string());
-  }
+  writeScript(script, image, m_options, axes, series);
 
   gnuplot::renderPng(m_options.gnuplot, script, image, pngFile);
 }
