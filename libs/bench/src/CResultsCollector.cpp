@@ -144,12 +144,13 @@ const nlohmann::json* summaryField(const nlohmann::json& summary, const std::str
   const auto it = parent->find(key.substr(dot + 1));
   return it == parent->end() ? nullptr : &*it;
 }
-}  // namespace
 
-std::string CResultsCollector::toCsv(const std::vector<TRunRecord>& records)
+// ------------------------------------------------------------- toCsv stages
+
+/** Known summary fields (both apps' contracts), in column order. */
+std::vector<std::string> knownSummaryKeys()
 {
-  // Known summary fields first (both apps' contracts), then anything else seen.
-  std::vector<std::string> keys{
+  return {
       "frames",
       "frames_with_roi",
       "landmarks",
@@ -175,7 +176,12 @@ std::string CResultsCollector::toCsv(const std::vector<TRunRecord>& records)
       "rpe_trans_rmse",
       "rpe_rot_rmse_deg",
       "failed"};
-  std::set<std::string> known(keys.begin(), keys.end());
+}
+
+/** Summary fields seen in the records beyond the known ones, sorted. */
+std::set<std::string> extraSummaryKeys(
+    const std::vector<TRunRecord>& records, const std::set<std::string>& known)
+{
   std::set<std::string> extra;
   // Objects one level deep (e.g. roi-landmarks' "kf_slam") become "object.key" columns.
   for (const auto& r : records)
@@ -191,30 +197,48 @@ std::string CResultsCollector::toCsv(const std::vector<TRunRecord>& records)
         else if (!known.count(k) && !v.is_array())
           extra.insert(k);
       }
-  keys.insert(keys.end(), extra.begin(), extra.end());
+  return extra;
+}
 
-  std::ostringstream out;
+void writeCsvHeader(std::ostream& out, const std::vector<std::string>& keys)
+{
   out << "run_id,test,sequence,app,mode,feature,max_features,variant,status,failure_reason,"
          "exit_code,signal,bench_wall_s,bench_cpu_s,bench_max_rss_mb,started_utc,host";
   for (const auto& k : keys)
     out << "," << k;
   out << ",command\n";
-  for (const auto& r : records)
+}
+
+void writeCsvRow(std::ostream& out, const TRunRecord& r, const std::vector<std::string>& keys)
+{
+  out << csvField(r.run.id) << "," << r.run.test << "," << csvField(r.run.sequence) << ","
+      << r.run.app << "," << r.run.mode << "," << r.run.feature << "," << r.run.maxFeatures << ","
+      << csvField(r.run.variant) << "," << (r.ok ? "ok" : "failed") << ","
+      << csvField(r.failureReason) << "," << r.exitCode << "," << r.signal << "," << fmt(r.wallS)
+      << "," << fmt(r.cpuS) << "," << fmt(r.maxRssMb) << "," << r.startedUtc << ","
+      << csvField(r.host);
+  for (const auto& k : keys)
   {
-    out << csvField(r.run.id) << "," << r.run.test << "," << csvField(r.run.sequence) << ","
-        << r.run.app << "," << r.run.mode << "," << r.run.feature << "," << r.run.maxFeatures << ","
-        << csvField(r.run.variant) << "," << (r.ok ? "ok" : "failed") << ","
-        << csvField(r.failureReason) << "," << r.exitCode << "," << r.signal << "," << fmt(r.wallS)
-        << "," << fmt(r.cpuS) << "," << fmt(r.maxRssMb) << "," << r.startedUtc << ","
-        << csvField(r.host);
-    for (const auto& k : keys)
-    {
-      out << ",";
-      if (const auto* v = summaryField(r.summary, k))
-        out << csvField(jsonScalar(*v));
-    }
-    out << "," << csvField(shellJoin(r.run.argv)) << "\n";
+    out << ",";
+    if (const auto* v = summaryField(r.summary, k))
+      out << csvField(jsonScalar(*v));
   }
+  out << "," << csvField(shellJoin(r.run.argv)) << "\n";
+}
+}  // namespace
+
+std::string CResultsCollector::toCsv(const std::vector<TRunRecord>& records)
+{
+  // Known summary fields first (both apps' contracts), then anything else seen.
+  std::vector<std::string> keys = knownSummaryKeys();
+  const std::set<std::string> known(keys.begin(), keys.end());
+  const std::set<std::string> extra = extraSummaryKeys(records, known);
+  keys.insert(keys.end(), extra.begin(), extra.end());
+
+  std::ostringstream out;
+  writeCsvHeader(out, keys);
+  for (const auto& r : records)
+    writeCsvRow(out, r, keys);
   return out.str();
 }
 
