@@ -6,10 +6,10 @@
 #include <CLI/CLI.hpp>
 #include <iostream>
 
-int main(int argc, char** argv)
+namespace
 {
-  roislam::bench::CBenchApp::TOptions o;
-  CLI::App cli{"roi-bench: reproduce the dissertation's Tests 1-3 with tables and charts"};
+void addOptions(CLI::App& cli, roislam::bench::CBenchApp::TOptions& o, bool& noCharts)
+{
   cli.add_option("--datasets", o.datasets, "Sequence folders, or folders of sequences")
       ->expected(1, -1);
   cli.add_option("--output-dir", o.outputDir, "Results folder (runs/, results.csv, report.md)")
@@ -45,8 +45,16 @@ int main(int argc, char** argv)
       "Several machines: roi-bench ... --emit-jobs | parallel --sshlogin m1,m2 (shared output\n"
       "folder), or give each machine its own --output-dir and combine them with\n"
       "roi-bench --output-dir ALL --merge DIR1 DIR2 [--datasets ...].");
-  bool noCharts = false;
   cli.add_flag("--no-charts", noCharts, "Do not draw PNG charts");
+}
+}  // namespace
+
+int main(int argc, char** argv)
+{
+  roislam::bench::CBenchApp::TOptions o;
+  CLI::App cli{"roi-bench: reproduce the dissertation's Tests 1-3 with tables and charts"};
+  bool noCharts = false;
+  addOptions(cli, o, noCharts);
   try
   {
     cli.parse(argc, argv);
