@@ -83,9 +83,12 @@ std::optional<TRunRecord> CBenchRunner::loadCompleted(const std::string& runDir)
   }
 }
 
-TRunRecord CBenchRunner::runOne(const TBenchRun& run) const
+namespace
 {
-  const fs::path dir(run.runDir);
+// ------------------------------------------------------------ runOne stages
+
+void prepareRunDir(const fs::path& dir, const TBenchRun& run)
+{
   fs::create_directories(dir);
   // A previous interrupted attempt may have left partial output behind.
   fs::remove_all(dir / "output");
@@ -93,6 +96,67 @@ TRunRecord CBenchRunner::runOne(const TBenchRun& run) const
   fs::remove(dir / "stderr.log");
   fs::remove(dir / "run.json");
   writeFileAtomically((dir / "command.sh").string(), "#!/bin/sh\n" + shellJoin(run.argv) + "\n");
+}
+
+void recordProcess(TRunRecord& rec, const TProcessResult& p)
+{
+  rec.exitCode = p.exitCode;
+  rec.signal = p.signal;
+  rec.timedOut = p.timedOut;
+  rec.wallS = p.wallS;
+  rec.cpuS = p.cpuS;
+  rec.maxRssMb = p.maxRssMb;
+}
+
+/** The app's summary.json if it wrote one; an unreadable one is the failure. */
+void readSummary(TRunRecord& rec, const fs::path& summaryFile)
+{
+  if (!fs::exists(summaryFile))
+    return;
+  try
+  {
+    rec.summary = nlohmann::json::parse(readFile(summaryFile.string()));
+  }
+  catch (const std::exception& e)
+  {
+    rec.failureReason = summaryFile.string() + ": unreadable: " + e.what();
+  }
+}
+
+/** Why the run failed, first cause first; rec.failureReason as it is if none. */
+std::string failureReason(const TProcessResult& p, const TRunRecord& rec, double timeoutS)
+{
+  if (!p.started)
+    return p.error;
+  if (p.timedOut)
+    return "timed out after " + std::to_string(timeoutS) + " s";
+  if (p.signal != 0)
+  {
+    const std::string msg = firstLine(rec.stderrTail);
+    return "killed by signal " + std::to_string(p.signal) + (msg.empty() ? "" : ": " + msg);
+  }
+  if (p.exitCode != 0)
+  {
+    const std::string msg = firstLine(rec.stderrTail);
+    return "exit code " + std::to_string(p.exitCode) + (msg.empty() ? "" : ": " + msg);
+  }
+  if (rec.failureReason.empty() && rec.summary.is_null())
+    return "no summary.json written";
+  if (rec.summary.is_object() && rec.summary.value("failed", false))
+  {
+    const auto it = rec.summary.find("error");
+    return "summary says failed" + (it != rec.summary.end() && it->is_string()
+                                        ? ": " + it->get<std::string>()
+                                        : std::string());
+  }
+  return rec.failureReason;
+}
+}  // namespace
+
+TRunRecord CBenchRunner::runOne(const TBenchRun& run) const
+{
+  const fs::path dir(run.runDir);
+  prepareRunDir(dir, run);
 
   TRunRecord rec;
   rec.run = run;
@@ -100,51 +164,11 @@ TRunRecord CBenchRunner::runOne(const TBenchRun& run) const
   rec.host = hostName();
   const std::string errLog = (dir / "stderr.log").string();
   const auto p = runProcess(run.argv, (dir / "stdout.log").string(), errLog, m_options.timeout_s);
-  rec.exitCode = p.exitCode;
-  rec.signal = p.signal;
-  rec.timedOut = p.timedOut;
-  rec.wallS = p.wallS;
-  rec.cpuS = p.cpuS;
-  rec.maxRssMb = p.maxRssMb;
+  recordProcess(rec, p);
   rec.stderrTail = fileTail(errLog, static_cast<std::size_t>(m_options.stderr_tail_lines));
 
-  const fs::path summaryFile = fs::path(run.appOutputDir) / "summary.json";
-  if (fs::exists(summaryFile))
-  {
-    try
-    {
-      rec.summary = nlohmann::json::parse(readFile(summaryFile.string()));
-    }
-    catch (const std::exception& e)
-    {
-      rec.failureReason = summaryFile.string() + ": unreadable: " + e.what();
-    }
-  }
-
-  if (!p.started)
-    rec.failureReason = p.error;
-  else if (p.timedOut)
-    rec.failureReason = "timed out after " + std::to_string(m_options.timeout_s) + " s";
-  else if (p.signal != 0)
-  {
-    const std::string msg = firstLine(rec.stderrTail);
-    rec.failureReason =
-        "killed by signal " + std::to_string(p.signal) + (msg.empty() ? "" : ": " + msg);
-  }
-  else if (p.exitCode != 0)
-  {
-    const std::string msg = firstLine(rec.stderrTail);
-    rec.failureReason = "exit code " + std::to_string(p.exitCode) + (msg.empty() ? "" : ": " + msg);
-  }
-  else if (rec.failureReason.empty() && rec.summary.is_null())
-    rec.failureReason = "no summary.json written";
-  else if (rec.summary.is_object() && rec.summary.value("failed", false))
-  {
-    const auto it = rec.summary.find("error");
-    rec.failureReason = "summary says failed" + (it != rec.summary.end() && it->is_string()
-                                                     ? ": " + it->get<std::string>()
-                                                     : std::string());
-  }
+  readSummary(rec, fs::path(run.appOutputDir) / "summary.json");
+  rec.failureReason = failureReason(p, rec, m_options.timeout_s);
   rec.ok = rec.failureReason.empty();
   writeFileAtomically((dir / "run.json").string(), rec.toJson().dump(2) + "\n");
   return rec;
