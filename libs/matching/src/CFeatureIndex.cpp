@@ -3,6 +3,8 @@
 #include <opencv2/flann.hpp>
 #include <stdexcept>
 
+#include "roislam/matching/HammingKnn.h"
+
 namespace roislam::matching
 {
 namespace
@@ -39,9 +41,10 @@ std::vector<std::vector<cv::DMatch>> CFeatureIndex::knn2(const cv::Mat& query) c
     std::lock_guard<std::mutex> lock(m_flannMutex);
     m_flann->knnMatch(query, knn, 2);
   }
+  else if (features::isBinary(m_type))
+    knn = hammingKnn(query, m_descriptors, 2);
   else
-    cv::BFMatcher(features::isBinary(m_type) ? cv::NORM_HAMMING : cv::NORM_L2)
-        .knnMatch(query, m_descriptors, knn, 2);
+    cv::BFMatcher(cv::NORM_L2).knnMatch(query, m_descriptors, knn, 2);
   return knn;
 }
 
@@ -76,8 +79,11 @@ std::vector<cv::DMatch> CFeatureIndex::match(const features::TFeatureSet& query)
 
   // Mutual check: the train feature's own best match must be the query feature.
   std::vector<std::vector<cv::DMatch>> back;
-  makeMatcher(m_options.matcher, features::isBinary(m_type))
-      ->knnMatch(m_descriptors, query.descriptors, back, 1);
+  if (m_options.matcher == EMatcherType::BRUTE_FORCE && features::isBinary(m_type))
+    back = hammingKnn(m_descriptors, query.descriptors, 1);
+  else
+    makeMatcher(m_options.matcher, features::isBinary(m_type))
+        ->knnMatch(m_descriptors, query.descriptors, back, 1);
   std::vector<cv::DMatch> out;
   for (const auto& m : fwd)
   {
