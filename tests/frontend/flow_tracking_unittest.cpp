@@ -21,6 +21,13 @@ namespace
 constexpr int kW = 640, kH = 480;
 constexpr double kF = 520, kCx = 319.5, kCy = 239.5, kZ = 2.0;
 
+/** A pinhole camera of the test (default: kW x kH, kF). */
+struct TCam
+{
+  int w = kW, h = kH;
+  double f = kF, cx = kCx, cy = kCy;
+};
+
 /** Random blobs: a texture with corners at every scale. */
 cv::Mat texture(int w, int h)
 {
@@ -36,11 +43,11 @@ cv::Mat texture(int w, int h)
 /** The plane z = kZ (in the first camera's frame) seen by a camera at
  *  `pose` (its pose in the first camera's frame): a homography of the
  *  texture, which covers the plane 1.5x the first view. */
-cv::Mat render(const cv::Mat& tex, const mrpt::poses::CPose3D& pose)
+cv::Mat render(const cv::Mat& tex, const mrpt::poses::CPose3D& pose, const TCam& cam = {})
 {
   // Texture pixel (u, v) is the plane point ((u - tw/2) s, (v - th/2) s, kZ).
-  const double s = 1.5 * kZ / kF;
-  const cv::Matx33d K(kF, 0, kCx, 0, kF, kCy, 0, 0, 1);
+  const double s = 1.5 * kZ / cam.f * static_cast<double>(cam.w) / tex.cols * 2.0;
+  const cv::Matx33d K(cam.f, 0, cam.cx, 0, cam.f, cam.cy, 0, 0, 1);
   const mrpt::poses::CPose3D inv = -pose;
   const auto R = inv.getRotationMatrix();
   cv::Matx33d M;  // texture (u, v, 1) -> camera point
@@ -52,17 +59,18 @@ cv::Mat render(const cv::Mat& tex, const mrpt::poses::CPose3D& pose)
               inv.m_coords[r];
   }
   cv::Mat out;
-  cv::warpPerspective(tex, out, cv::Mat(K * M), cv::Size(kW, kH), cv::INTER_LINEAR);
+  cv::warpPerspective(tex, out, cv::Mat(K * M), cv::Size(cam.w, cam.h), cv::INTER_LINEAR);
   return out;
 }
 
-TKeyframe keyframeWithAnchors(const cv::Mat& grey, const TFlowParams& p)
+TKeyframe keyframeWithAnchors(const cv::Mat& grey, const TFlowParams& p, const TCam& cam = {})
 {
   TKeyframe kf;
   for (const auto& k : anchorCandidates(grey, p).keypoints)
   {
     kf.anchorKeypoints.push_back(k.pt);
-    kf.anchorPoints.emplace_back((k.pt.x - kCx) / kF * kZ, (k.pt.y - kCy) / kF * kZ, kZ);
+    kf.anchorPoints.emplace_back(
+        (k.pt.x - cam.cx) / cam.f * kZ, (k.pt.y - cam.cy) / cam.f * kZ, kZ);
     kf.anchorPixels.push_back(k.pt);
   }
   return kf;
@@ -88,7 +96,7 @@ TEST(FlowTracking, AnchorsLandWhereTheMotionProjectsThem)
   // Exact prediction, and one off by about 6 px (a 0.7 deg error).
   for (const auto& prediction : {moved, moved + mrpt::poses::CPose3D(0, 0, 0, 0.012, 0, 0)})
   {
-    const TFlowTracks t = followAnchors(kf, pa, pb, prediction, K, dist, cv::Rect(), p);
+    const TFlowTracks t = followAnchors(kf, pa, pb, prediction, K, dist, a.size(), cv::Rect(), p);
     ASSERT_GT(t.set.size(), kf.anchorPoints.size() * 8 / 10);
     ASSERT_EQ(t.anchorIndex.size(), t.set.size());
     std::vector<double> err;
@@ -116,11 +124,11 @@ TEST(FlowTracking, AnchorsAreNotFollowedWhereTheFrameWasDescribed)
   const cv::Mat K = (cv::Mat_<double>(3, 3) << kF, 0, kCx, 0, kF, kCy, 0, 0, 1);
   const cv::Mat dist = cv::Mat::zeros(1, 5, CV_64F);
   const auto pa = flowPyramid(a, p, true), pb = flowPyramid(b, p, false);
-  const TFlowTracks all = followAnchors(kf, pa, pb, moved, K, dist, cv::Rect(), p);
+  const TFlowTracks all = followAnchors(kf, pa, pb, moved, K, dist, a.size(), cv::Rect(), p);
   // The left half described (the frame's ROI): only the right half's
   // anchors are followed, and about as many as lie there.
   const cv::Rect left(0, 0, kW / 2, kH);
-  const TFlowTracks rest = followAnchors(kf, pa, pb, moved, K, dist, left, p);
+  const TFlowTracks rest = followAnchors(kf, pa, pb, moved, K, dist, a.size(), left, p);
   std::size_t rightOfAll = 0;
   for (const auto& k : all.set.keypoints)
     rightOfAll += k.pt.x >= kW / 2.0f + 2;
@@ -144,4 +152,64 @@ TEST(FlowTracking, RegistrationViewAppendsTheAnchors)
   EXPECT_EQ(v.points[2].y, 1);
   EXPECT_EQ(v.pixels[2], cv::Point2f(3, 3));
   EXPECT_EQ(v.features.size(), kf.features.size());
+}
+
+TEST(FlowTracking, ShiftKeepsTheTrackedImageUnder1280PxWide)
+{
+  EXPECT_EQ(flowShift(cv::Size(640, 480)), 0);
+  EXPECT_EQ(flowShift(cv::Size(960, 540)), 0);
+  EXPECT_EQ(flowShift(cv::Size(1279, 720)), 0);
+  EXPECT_EQ(flowShift(cv::Size(1280, 720)), 1);
+  EXPECT_EQ(flowShift(cv::Size(1920, 1080)), 1);
+  EXPECT_EQ(flowShift(cv::Size(2560, 1440)), 2);
+  EXPECT_EQ(flowShift(cv::Size(320, 240)), 0);
+  // Pixel centres map onto pixel centres, and back exactly.
+  EXPECT_FLOAT_EQ(toFlowLevel(cv::Point2f(0.5f, 1.5f), 1).x, 0.0f);
+  EXPECT_FLOAT_EQ(toFlowLevel(cv::Point2f(0.5f, 1.5f), 1).y, 0.5f);
+  const cv::Point2f u(123.25f, 77.75f);
+  for (int shift : {0, 1, 2})
+  {
+    EXPECT_NEAR(fromFlowLevel(toFlowLevel(u, shift), shift).x, u.x, 1e-4);
+    EXPECT_NEAR(fromFlowLevel(toFlowLevel(u, shift), shift).y, u.y, 1e-4);
+  }
+}
+
+TEST(FlowTracking, AHighResolutionCameraTracksAtTheSameScale)
+{
+  // The same scene seen at twice the resolution: tracked one level down,
+  // with about as many anchors, each a window of that level apart, landing
+  // where the motion projects them (in the full-resolution pixels).
+  const TFlowParams p;
+  const TCam hd{2 * kW, 2 * kH, 2 * kF, 2 * kCx + 0.5, 2 * kCy + 0.5};
+  cv::Mat tex;
+  cv::resize(texture(2 * kW, 2 * kH), tex, cv::Size(), 2, 2, cv::INTER_LINEAR);
+  const mrpt::poses::CPose3D moved(0.05, -0.03, 0.04, 0.03, -0.02, 0.04);
+  const cv::Mat a = render(tex, mrpt::poses::CPose3D(), hd), b = render(tex, moved, hd);
+  ASSERT_EQ(flowShift(a.size()), 1);
+  const TKeyframe kf = keyframeWithAnchors(a, p, hd);
+  const TKeyframe vga = keyframeWithAnchors(render(texture(2 * kW, 2 * kH), {}), p);
+  ASSERT_GT(kf.anchorPoints.size(), 100u);
+  EXPECT_LT(kf.anchorPoints.size(), vga.anchorPoints.size() * 3 / 2);
+  for (std::size_t i = 1; i < 50; ++i)
+    for (std::size_t j = 0; j < i; ++j)
+      EXPECT_GE(cv::norm(kf.anchorKeypoints[i] - kf.anchorKeypoints[j]), 2 * p.window - 1e-3);
+
+  const auto pa = flowPyramid(a, p, true), pb = flowPyramid(b, p, false);
+  ASSERT_EQ(pa[0].cols, kW);  // the tracked level
+  const cv::Mat K = (cv::Mat_<double>(3, 3) << hd.f, 0, hd.cx, 0, hd.f, hd.cy, 0, 0, 1);
+  const cv::Mat dist = cv::Mat::zeros(1, 5, CV_64F);
+  const TFlowTracks t = followAnchors(kf, pa, pb, moved, K, dist, a.size(), cv::Rect(), p);
+  ASSERT_GT(t.set.size(), kf.anchorPoints.size() * 8 / 10);
+  std::vector<double> err;
+  for (std::size_t j = 0; j < t.set.size(); ++j)
+  {
+    const auto& X = kf.anchorPoints[static_cast<std::size_t>(t.anchorIndex[j])];
+    double x, y, z;
+    moved.inverseComposePoint(X.x, X.y, X.z, x, y, z);
+    const cv::Point2d truth(hd.f * x / z + hd.cx, hd.f * y / z + hd.cy);
+    err.push_back(cv::norm(cv::Point2d(t.set.keypoints[j].pt) - truth));
+  }
+  std::sort(err.begin(), err.end());
+  EXPECT_LT(err[err.size() / 2], 0.6);       // median: twice the VGA test's, in HD pixels
+  EXPECT_LT(err[err.size() * 9 / 10], 2.0);  // 90th percentile
 }

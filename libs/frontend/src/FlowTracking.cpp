@@ -6,10 +6,38 @@
 
 namespace roislam::frontend::detail
 {
+int flowShift(const cv::Size& image)
+{
+  int shift = 0;
+  while ((image.width >> (shift + 1)) >= 640)
+    ++shift;
+  return shift;
+}
+
+cv::Point2f toFlowLevel(const cv::Point2f& u, int shift)
+{
+  if (shift == 0)
+    return u;
+  const float s = static_cast<float>(1 << shift);
+  const float o = 0.5f * (s - 1.0f);
+  return {(u.x - o) / s, (u.y - o) / s};
+}
+
+cv::Point2f fromFlowLevel(const cv::Point2f& u, int shift)
+{
+  const float s = static_cast<float>(1 << shift);
+  const float o = 0.5f * (s - 1.0f);
+  return {s * u.x + o, s * u.y + o};
+}
+
 TFlowPyramid flowPyramid(const cv::Mat& grey, const TFlowParams& p, bool withDerivatives)
 {
+  cv::Mat tracked = grey;
+  for (int i = flowShift(grey.size()); i > 0; --i)
+    cv::pyrDown(tracked, tracked);
   TFlowPyramid pyr;
-  cv::buildOpticalFlowPyramid(grey, pyr, cv::Size(p.window, p.window), p.levels, withDerivatives);
+  cv::buildOpticalFlowPyramid(
+      tracked, pyr, cv::Size(p.window, p.window), p.levels, withDerivatives);
   return pyr;
 }
 
@@ -20,8 +48,10 @@ features::TFeatureSet anchorCandidates(const cv::Mat& grey, const TFlowParams& p
   // resolution 0.55-0.8 ms). Where exactly in its corner an anchor sits
   // matters little: Lucas-Kanade follows its window's texture from wherever
   // the keyframe puts it.
+  const int shift = flowShift(grey.size()) + 1;
+  const double f = 1.0 / static_cast<double>(1 << shift);
   cv::Mat half;
-  cv::resize(grey, half, cv::Size(), 0.5, 0.5, cv::INTER_AREA);
+  cv::resize(grey, half, cv::Size(), f, f, cv::INTER_AREA);
   std::vector<cv::Point2f> corners;
   // A window apart (at full resolution): no two anchors share their
   // window, the spacing bounds their number (about 700 on 640 x 480) and
@@ -33,17 +63,16 @@ features::TFeatureSet anchorCandidates(const cv::Mat& grey, const TFlowParams& p
   cv::goodFeaturesToTrack(half, corners, 0, p.anchorQuality, minDistance);
   features::TFeatureSet s;
   s.keypoints.reserve(corners.size());
-  // Pixel centres: (u + 0.5) * 2 - 0.5, inside the image for every u of the
-  // half-resolution one.
+  // Pixel centres: inside the image for every u of the reduced one.
   for (const auto& c : corners)
-    s.keypoints.emplace_back(cv::Point2f(2.0f * c.x + 0.5f, 2.0f * c.y + 0.5f), 0.0f);
+    s.keypoints.emplace_back(fromFlowLevel(c, shift), 0.0f);
   return s;
 }
 
 TFlowTracks followAnchors(
     const TKeyframe& kf, const TFlowPyramid& kfPyramid, const TFlowPyramid& curPyramid,
     const mrpt::poses::CPose3D& predictedRel, const cv::Mat& K, const cv::Mat& dist,
-    const cv::Rect& described, const TFlowParams& p)
+    const cv::Size& image, const cv::Rect& described, const TFlowParams& p)
 {
   TFlowTracks out;
   out.set.type = kf.features.type;
@@ -68,7 +97,7 @@ TFlowTracks followAnchors(
     return out;
   std::vector<cv::Point2f> predicted;
   cv::projectPoints(inCurrent, cv::Vec3d(0, 0, 0), cv::Vec3d(0, 0, 0), K, dist, predicted);
-  const cv::Size image = curPyramid[0].size();
+  const int shift = flowShift(image);
   const cv::Rect2f inside(2.0f, 2.0f, image.width - 4.0f, image.height - 4.0f);
   const cv::Rect2f describedBox(described);
   std::vector<cv::Point2f> from, to;
@@ -80,8 +109,8 @@ TFlowTracks followAnchors(
     // image, and its flow then cost as much as its description).
     if (!inside.contains(predicted[j]) || describedBox.contains(predicted[j]))
       continue;
-    from.push_back(kf.anchorKeypoints[static_cast<std::size_t>(idx[j])]);
-    to.push_back(predicted[j]);
+    from.push_back(toFlowLevel(kf.anchorKeypoints[static_cast<std::size_t>(idx[j])], shift));
+    to.push_back(toFlowLevel(predicted[j], shift));
     which.push_back(idx[j]);
   }
   if (from.empty())
@@ -94,9 +123,10 @@ TFlowTracks followAnchors(
       cv::OPTFLOW_USE_INITIAL_FLOW);
   for (std::size_t j = 0; j < from.size(); ++j)
   {
-    if (!status[j] || !inside.contains(to[j]))
+    const cv::Point2f at = fromFlowLevel(to[j], shift);
+    if (!status[j] || !inside.contains(at))
       continue;
-    out.set.keypoints.emplace_back(to[j], 0.0f);
+    out.set.keypoints.emplace_back(at, 0.0f);
     out.anchorIndex.push_back(which[j]);
   }
   // Zero descriptors of the features' layout keep the set a valid one; the

@@ -37,8 +37,18 @@ struct TFlowParams
   double anchorQuality = 0.01;
 };
 
-/** An image pyramid as cv::buildOpticalFlowPyramid makes it. */
+/** An image pyramid as cv::buildOpticalFlowPyramid makes it, its first
+ *  level the image halved flowShift() times. */
 using TFlowPyramid = std::vector<cv::Mat>;
+
+/** How many times an image of this size is halved before it is tracked:
+ *  until it is under 1280 px wide (at least 640). The window, the pyramid
+ *  depth and the anchors' spacing were measured at 640 x 480 (fr1); a
+ *  camera of twice the width (a Kinect v2's 1920 x 1080 colour) then follows
+ *  the same part of the scene with each window and about as many anchors,
+ *  instead of four times as many at 10 us each (rgbd-simul 1920 x 1080:
+ *  337 anchors a frame, 13 ms of flow). 640 x 480 and 960 x 540: 0. */
+int flowShift(const cv::Size& image);
 
 /** withDerivatives: also each level's Scharr derivatives, which
  *  Lucas-Kanade needs of the image it follows from (a keyframe's) and would
@@ -47,8 +57,14 @@ using TFlowPyramid = std::vector<cv::Mat>;
  *  levels alone (fr1, 2 cores). */
 TFlowPyramid flowPyramid(const cv::Mat& grey, const TFlowParams& p, bool withDerivatives);
 
+/** A full-resolution pixel position at flowShift() = shift, and back (pixel
+ *  centres: (u + 0.5) / 2^shift - 0.5). */
+cv::Point2f toFlowLevel(const cv::Point2f& u, int shift);
+cv::Point2f fromFlowLevel(const cv::Point2f& u, int shift);
+
 /** Candidate anchors of a keyframe image: Shi-Tomasi corners (found at
- *  half resolution), a window apart, as keypoints (size 0: not described). */
+ *  half the tracked resolution, flowShift()), a window of the tracked
+ *  image apart, as full-resolution keypoints (size 0: not described). */
 features::TFeatureSet anchorCandidates(const cv::Mat& grey, const TFlowParams& p);
 
 /** The keyframe's anchors followed into the current frame. */
@@ -64,12 +80,14 @@ struct TFlowTracks
 /** Follows kf's anchors whose predicted position lies inside the image and
  *  outside `described` from kf's image (kfPyramid) into the current one.
  *  predictedRel: the current frame's pose relative to kf; K, dist: the
- *  colour camera (OpenCV layout; images are distorted); described: the part
- *  of the frame whose features were described (empty: none). */
+ *  colour camera (OpenCV layout; images are distorted); image: the frame's
+ *  full-resolution size (the pyramids are flowShift(image) levels below);
+ *  described: the part of the frame whose features were described (empty:
+ *  none). */
 TFlowTracks followAnchors(
     const TKeyframe& kf, const TFlowPyramid& kfPyramid, const TFlowPyramid& curPyramid,
     const mrpt::poses::CPose3D& predictedRel, const cv::Mat& K, const cv::Mat& dist,
-    const cv::Rect& described, const TFlowParams& p);
+    const cv::Size& image, const cv::Rect& described, const TFlowParams& p);
 
 /** kf as the registration against its anchors sees it: its features'
  *  points and pixels followed by its anchors' (the anchors' pair indices

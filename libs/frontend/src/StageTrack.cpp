@@ -134,8 +134,8 @@ void CRgbdOdometry::followReference(TFrameWork& w, const cv::Rect& described) co
   const auto t0 = detail::Clock::now();
   const TKeyframe& kf = m_keyframes[w.ref];
   w.flow = detail::followAnchors(
-      kf, pyramid->second, w.in.flowPyramid, w.predictedWorld - kf.pose, I.K, I.dist, described,
-      I.flowParams);
+      kf, pyramid->second, w.in.flowPyramid, w.predictedWorld - kf.pose, I.K, I.dist,
+      w.in.grey.size(), described, I.flowParams);
   // Lifted and corrected for the rolling shutter like the region's features.
   w.flowLifted = I.lift(w.flow.set, w.in.frame.depth, w.depthDt, w.rateApplied, m_options);
   w.regionSet = w.cur;

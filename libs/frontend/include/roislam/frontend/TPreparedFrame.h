@@ -24,8 +24,9 @@ struct TPreparedFrame
   bool roiDetected = false;
   /** Its result: nullopt when no ROI was found (or not detected). */
   std::optional<roi::TRoi> roi;
-  /** roi_extraction = flow: the grey image's optical-flow pyramid, built
-   *  here so that it too runs ahead of the tracking thread. */
+  /** roi_extraction = flow: the grey image's optical-flow pyramid (from
+   *  the image halved until under 1280 px wide: FlowTracking.h flowShift),
+   *  built here so that it too runs ahead of the tracking thread. */
   std::vector<cv::Mat> flowPyramid;
   /** Time stage 1 took, and all of prepare() (grey image + stage 1), ms. */
   double roi_ms = 0, prepare_ms = 0;
