@@ -6,7 +6,7 @@ namespace roislam::common
 {
 std::string oneLineError(const std::string& what)
 {
-  std::string message, firstLine;
+  std::string message, first;
   std::size_t start = 0;
   while (start < what.size())
   {
@@ -18,8 +18,8 @@ std::string oneLineError(const std::string& what)
     if (b != std::string::npos)
     {
       line = line.substr(b);
-      if (firstLine.empty())
-        firstLine = line;
+      if (first.empty())
+        first = line;
       if (line.rfind("Message:", 0) == 0)
       {
         const auto m = line.find_first_not_of(" \t", 8);
@@ -28,7 +28,12 @@ std::string oneLineError(const std::string& what)
     }
     start = end + 1;
   }
-  return message.empty() ? firstLine : message;
+  return message.empty() ? first : message;
+}
+
+std::string firstLine(const std::string& text)
+{
+  return text.substr(0, text.find('\n'));
 }
 
 std::string printableExcerpt(const std::string& text, std::size_t maxChars)

@@ -53,7 +53,7 @@ features::TFeatureSet anchorCandidates(const cv::Mat& grey, const TFlowParams& p
   cv::Mat half;
   cv::resize(grey, half, cv::Size(), f, f, cv::INTER_AREA);
   std::vector<cv::Point2f> corners;
-  // A window apart (at full resolution): no two anchors share their
+  // A window apart (at the tracked resolution): no two anchors share their
   // window, the spacing bounds their number (about 700 on 640 x 480) and
   // the quality keeps them to the textured parts. Measured on the fr1
   // excerpts (12 mode x extractor runs, full resolution): half a window

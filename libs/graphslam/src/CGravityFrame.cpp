@@ -1,5 +1,6 @@
 #include <mrpt/math/geometry.h>
 #include <mrpt/poses/CPose3DQuat.h>
+#include <roislam/common/ErrorText.h>
 #include <roislam/graphslam/CGravityFrame.h>
 
 #include <Eigen/Dense>
@@ -31,10 +32,6 @@ TVector3D axis(const mrpt::poses::CPose3D& pose, int k)
   return {R(0, k), R(1, k), R(2, k)};
 }
 
-std::string firstLine(const std::string& s)
-{
-  return s.substr(0, s.find('\n'));
-}
 }  // namespace
 
 std::string CGravityFrame::toString(ESource source)
@@ -188,7 +185,7 @@ CGravityFrame::TResult CGravityFrame::choose(
     }
     catch (const std::exception& e)
     {
-      loadError = firstLine(e.what());
+      loadError = common::firstLine(e.what());
     }
   }
   TResult r = choose(estimate, groundTruthAlignment, log);

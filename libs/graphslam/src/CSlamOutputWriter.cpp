@@ -1,5 +1,6 @@
 #include <mrpt/system/CTicTac.h>
 #include <octomap/OcTree.h>
+#include <roislam/common/ErrorText.h>
 #include <roislam/evaluation/CErrorPlot.h>
 #include <roislam/evaluation/CTrajectoryPlot.h>
 #include <roislam/frontend/PoseUncertainty.h>
@@ -21,11 +22,6 @@ namespace roislam::graphslam
 {
 namespace
 {
-std::string firstLine(const std::string& s)
-{
-  return s.substr(0, s.find('\n'));
-}
-
 /** Ground truth drawn this far (s) beyond the run's first and last frames. */
 constexpr double kGroundTruthSlackS = 0.05;
 
@@ -164,7 +160,7 @@ void CSlamOutputWriter::writeGraph(const TGraph& graph) const
   }
   catch (const std::exception& e)
   {
-    throw std::runtime_error(file + ": " + firstLine(e.what()));
+    throw std::runtime_error(file + ": " + common::firstLine(e.what()));
   }
   renameOrThrow(file + ".tmp", file);
 }
@@ -231,7 +227,7 @@ std::string CSlamOutputWriter::writeScene(const viz::TSceneContent& content, boo
   }
   catch (const std::exception& e)
   {
-    return firstLine(e.what());
+    return common::firstLine(e.what());
   }
   return {};
 }
@@ -255,7 +251,7 @@ std::string CSlamOutputWriter::writePlots(const TReference& reference) const
   }
   catch (const std::exception& e)
   {
-    error = firstLine(e.what());
+    error = common::firstLine(e.what());
   }
   try
   {
@@ -266,7 +262,7 @@ std::string CSlamOutputWriter::writePlots(const TReference& reference) const
   catch (const std::exception& e)
   {
     if (error.empty())
-      error = firstLine(e.what());
+      error = common::firstLine(e.what());
   }
   return error;
 }

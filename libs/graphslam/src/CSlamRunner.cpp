@@ -1,4 +1,6 @@
 #include <mrpt/system/CTicTac.h>
+#include <roislam/common/ErrorText.h>
+#include <roislam/common/JsonOrNull.h>
 #include <roislam/evaluation/CTrajectoryEvaluator.h>
 #include <roislam/graphslam/CSlamOutputWriter.h>
 #include <roislam/graphslam/CSlamRunner.h>
@@ -16,11 +18,6 @@ namespace roislam::graphslam
 {
 namespace
 {
-std::string firstLine(const std::string& s)
-{
-  return s.substr(0, s.find('\n'));
-}
-
 double peakRssMb()
 {
   struct rusage ru
@@ -30,15 +27,6 @@ double peakRssMb()
   return ru.ru_maxrss / 1024.0;  // KiB on Linux
 }
 
-nlohmann::json optionalJson(const std::optional<double>& v)
-{
-  return v ? nlohmann::json(*v) : nlohmann::json(nullptr);
-}
-
-nlohmann::json optionalJson(const std::optional<std::size_t>& v)
-{
-  return v ? nlohmann::json(*v) : nlohmann::json(nullptr);
-}
 /** What ran on what: the sequence, the engine's deciders, the front end's
  *  configuration and the sensor. */
 nlohmann::json runJson(const CSlamPipeline& pipeline, const CSlamRunner::TSettings& settings)
@@ -83,8 +71,8 @@ nlohmann::json mapJson(
   j["landmarks"] = ctx.database().size();
   j["graph_nodes"] = s.graphNodes;
   j["graph_edges"] = s.graphEdges;
-  j["optimizations"] = optionalJson(pipeline.optimizations());
-  j["optimizations_windowed"] = optionalJson(pipeline.windowedOptimizations());
+  j["optimizations"] = common::jsonOrNull(pipeline.optimizations());
+  j["optimizations_windowed"] = common::jsonOrNull(pipeline.windowedOptimizations());
   j["final_optimization"] = finalReport ? nlohmann::json{{"iterations", finalReport->iterations},
                                                          {"chi2_before", finalReport->chi2Before},
                                                          {"chi2_after", finalReport->chi2After},
@@ -206,7 +194,7 @@ CSlamRunner::TEvaluation CSlamRunner::evaluate(
   catch (const std::exception& e)
   {
     ev.result.reset();
-    ev.error = firstLine(e.what());
+    ev.error = common::firstLine(e.what());
     progress(m_settings.app + ": warning: evaluation failed: " + ev.error);
   }
   return ev;
@@ -276,10 +264,10 @@ nlohmann::json CSlamRunner::summaryJson(
   j["map_s"] = s.mapS;
   j["snapshot_s"] = m_settings.snapshot ? nlohmann::json(s.snapshotS) : nlohmann::json(nullptr);
   j["peak_rss_mb"] = s.peakRssMb;
-  j["ate_rmse"] = optionalJson(s.ateRmse);
-  j["rpe_trans_rmse"] = optionalJson(s.rpeTransRmse);
-  j["rpe_rot_rmse_deg"] = optionalJson(s.rpeRotRmseDeg);
-  j["frontend_ate_rmse"] = optionalJson(ev.odometryAte);
+  j["ate_rmse"] = common::jsonOrNull(s.ateRmse);
+  j["rpe_trans_rmse"] = common::jsonOrNull(s.rpeTransRmse);
+  j["rpe_rot_rmse_deg"] = common::jsonOrNull(s.rpeRotRmseDeg);
+  j["frontend_ate_rmse"] = common::jsonOrNull(ev.odometryAte);
   j["edge_chi2"] = ev.edgeChi2 ? evaluation::toJson(*ev.edgeChi2) : nlohmann::json(nullptr);
   j["evaluation"] = ev.result ? evaluation::toJson(*ev.result) : nlohmann::json(nullptr);
   if (!ev.error.empty())

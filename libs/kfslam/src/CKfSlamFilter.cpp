@@ -10,6 +10,7 @@
 #include <mrpt/serialization/CSerializable.h>
 #include <mrpt/slam/CRangeBearingKFSLAM.h>
 #include <mrpt/system/string_utils.h>
+#include <roislam/common/ErrorText.h>
 
 #include <chrono>
 #include <filesystem>
@@ -19,11 +20,6 @@ namespace roislam::kfslam
 {
 namespace
 {
-std::string firstLine(const std::string& s)
-{
-  return s.substr(0, s.find('\n'));
-}
-
 void recordStep(
     const mrpt::slam::CRangeBearingKFSLAM& filter, const mrpt::obs::CSensoryFrame& sf,
     TKfSlamRun& run)
@@ -58,7 +54,7 @@ typename T::Ptr readObject(
   catch (const std::exception& e)
   {
     throw std::runtime_error(
-        file + ": corrupt at entry " + std::to_string(entry) + ": " + firstLine(e.what()));
+        file + ": corrupt at entry " + std::to_string(entry) + ": " + common::firstLine(e.what()));
   }
   auto typed = std::dynamic_pointer_cast<T>(obj);
   if (!typed)
@@ -106,7 +102,7 @@ CKfSlamFilter::CKfSlamFilter(const std::string& iniFile) : m_file(iniFile)
   }
   catch (const std::exception& e)
   {
-    throw std::invalid_argument("ini " + label + ": " + firstLine(e.what()));
+    throw std::invalid_argument("ini " + label + ": " + common::firstLine(e.what()));
   }
 }
 
@@ -140,7 +136,7 @@ TKfSlamRun CKfSlamFilter::run(const std::string& rawlog) const
     {
       throw std::runtime_error(
           rawlog + ": EKF failed at step " + std::to_string(run.robotPath.size()) + ": " +
-          firstLine(e.what()));
+          common::firstLine(e.what()));
     }
     recordStep(filter, *sf, run);
   }

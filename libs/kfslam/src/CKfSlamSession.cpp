@@ -5,7 +5,9 @@
 #include <mrpt/obs/CActionRobotMovement3D.h>
 #include <mrpt/obs/CSensoryFrame.h>
 #include <roislam/common/CStrictIniFile.h>
+#include <roislam/common/ErrorText.h>
 #include <roislam/common/IniKeyCheck.h>
+#include <roislam/common/JsonOrNull.h>
 #include <roislam/common/TextFiles.h>
 #include <roislam/evaluation/CTrajectoryEvaluator.h>
 #include <roislam/io/ObservationConversion.h>
@@ -25,17 +27,6 @@ std::string resolve(const std::string& path, const std::string& dir)
 {
   const fs::path p(path);
   return (p.is_absolute() || dir.empty() ? p : fs::path(dir) / p).lexically_normal().string();
-}
-
-std::string firstLine(const std::string& s)
-{
-  return s.substr(0, s.find('\n'));
-}
-
-template <typename T>
-nlohmann::json orNull(const std::optional<T>& v)
-{
-  return v ? nlohmann::json(*v) : nlohmann::json(nullptr);
 }
 
 /** A bearing-range measurement as a point in MRPT's sensor frame (the
@@ -80,7 +71,7 @@ frontend::CRgbdOdometry::TOptions CKfSlamSession::frontEndOptions(const TSetup& 
     }
     catch (const std::exception& e)
     {
-      throw std::runtime_error("ini " + file + ": " + firstLine(e.what()));
+      throw std::runtime_error("ini " + file + ": " + common::firstLine(e.what()));
     }
   }
   if (!readoutFromIni)
@@ -193,7 +184,7 @@ nlohmann::json CKfSlamSession::finish(const std::optional<io::TTrajectory>& gt)
   j["measurements_skipped"] = m_conditioner.skipped();
   j["measurements_gated"] = m_conditioner.gated();
   j["landmarks"] = run.landmarks.size();
-  j["first_landmark_frame"] = orNull(run.firstLandmarkStep);
+  j["first_landmark_frame"] = common::jsonOrNull(run.firstLandmarkStep);
   j["filter_s"] = run.seconds;
   for (const char* k :
        {"ate_rmse", "rpe_trans_rmse", "rpe_rot_rmse_deg", "odometry_ate_rmse",
@@ -223,7 +214,7 @@ nlohmann::json CKfSlamSession::evaluate(
   }
   catch (const std::exception& e)
   {
-    j["evaluation_error"] = firstLine(e.what());
+    j["evaluation_error"] = common::firstLine(e.what());
   }
   if (run.firstLandmarkStep)
   {
@@ -231,7 +222,7 @@ nlohmann::json CKfSlamSession::evaluate(
         referenceLandmarks(m_firstSights, gt, m_stamps.at(*run.firstLandmarkStep), m_increments);
     saveKfSlamLandmarks(
         (fs::path(m_setup.outputDir) / "kf-slam.landmarks_gt.txt").string(), reference);
-    j["landmark_error_m"] = orNull(meanLandmarkError(run.landmarks, reference));
+    j["landmark_error_m"] = common::jsonOrNull(meanLandmarkError(run.landmarks, reference));
   }
   return j;
 }

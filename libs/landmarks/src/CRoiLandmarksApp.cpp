@@ -3,6 +3,7 @@
 #include <mrpt/io/CFileGZOutputStream.h>
 #include <mrpt/obs/CObservation3DRangeScan.h>
 #include <mrpt/serialization/CArchive.h>
+#include <roislam/common/JsonOrNull.h>
 
 #include <chrono>
 #include <cmath>
@@ -67,12 +68,6 @@ std::string fmt(double v, int precision = 4)
   std::ostringstream os;
   os << std::fixed << std::setprecision(precision) << v;
   return os.str();
-}
-
-template <typename T>
-nlohmann::json orNull(const std::optional<T>& v)
-{
-  return v ? nlohmann::json(*v) : nlohmann::json(nullptr);
 }
 
 /** The annotated rawlog (--output-rawlog), written to a temporary name and
@@ -283,9 +278,9 @@ nlohmann::json alternativeJson(const CRoiLandmarksApp::TSummary& sum, const TSco
   if (!scores.alternative)
     return nullptr;
   const auto& a = *scores.alternative;
-  return {{"recall_position", sum.altRecallPosition}, {"true_positives", a.truePositives},
-          {"false_positives", a.falsePositives},      {"false_negatives", a.falseNegatives},
-          {"precision", orNull(a.precision)},         {"recall", orNull(a.recall)}};
+  return {{"recall_position", sum.altRecallPosition},     {"true_positives", a.truePositives},
+          {"false_positives", a.falsePositives},          {"false_negatives", a.falseNegatives},
+          {"precision", common::jsonOrNull(a.precision)}, {"recall", common::jsonOrNull(a.recall)}};
 }
 
 /** What the run was: input, extractor, ROI preset, ground truth. */
@@ -314,12 +309,12 @@ nlohmann::json summaryJson(
   j["confirmed_rois"] = sum.confirmedRois;
   j["landmarks"] = sum.landmarks;
   j["recalls"] = sum.recalls;
-  j["true_positives"] = orNull(sum.truePositives);
-  j["false_positives"] = orNull(sum.falsePositives);
-  j["false_negatives"] = orNull(sum.falseNegatives);
-  j["unscored"] = orNull(sum.unscored);
-  j["precision"] = orNull(sum.precision);
-  j["recall"] = orNull(sum.recall);
+  j["true_positives"] = common::jsonOrNull(sum.truePositives);
+  j["false_positives"] = common::jsonOrNull(sum.falsePositives);
+  j["false_negatives"] = common::jsonOrNull(sum.falseNegatives);
+  j["unscored"] = common::jsonOrNull(sum.unscored);
+  j["precision"] = common::jsonOrNull(sum.precision);
+  j["recall"] = common::jsonOrNull(sum.recall);
   j["recall_position"] = sum.recallPosition;
   j["alternative_scoring"] = alternativeJson(sum, scores);
   j["matches_per_frame"] = sum.matchesPerFrame;

@@ -3,6 +3,7 @@
 #include <mrpt/config/CConfigFileMemory.h>
 #include <roislam/common/CStrictIniFile.h>
 #include <roislam/common/IniKeyCheck.h>
+#include <roislam/common/JsonOrNull.h>
 #include <roislam/common/TextFiles.h>
 #include <roislam/evaluation/CTrajectoryEvaluator.h>
 #include <roislam/io/CFrameSource.h>
@@ -22,10 +23,6 @@ namespace
 {
 const char* kSection = "CvOdometry";
 
-nlohmann::json optionalJson(const std::optional<double>& v)
-{
-  return v ? nlohmann::json(*v) : nlohmann::json(nullptr);
-}
 using TProgress = std::function<void(const std::string&)>;
 
 /** The odometry's trajectory (every frame) and the frame counts and mean
@@ -115,9 +112,9 @@ nlohmann::json summaryJson(
   j["ms_per_frame"] = s.msPerFrame;
   j["wall_s"] = s.wallS;
   j["fps"] = s.fps;
-  j["ate_rmse"] = optionalJson(s.ateRmse);
-  j["rpe_trans_rmse"] = optionalJson(s.rpeTransRmse);
-  j["rpe_rot_rmse_deg"] = optionalJson(s.rpeRotRmseDeg);
+  j["ate_rmse"] = common::jsonOrNull(s.ateRmse);
+  j["rpe_trans_rmse"] = common::jsonOrNull(s.rpeTransRmse);
+  j["rpe_rot_rmse_deg"] = common::jsonOrNull(s.rpeRotRmseDeg);
   j["evaluation"] = ev.json;
   if (!ev.error.empty())
     j["evaluation_error"] = ev.error;

@@ -118,20 +118,28 @@ void validateSequence(const TOptions& o, const TKeyError& fail)
     fail("rolling_shutter_ms", "must be in [0, frame period]");
 }
 
+/** A pinhole of the image's size: its keys are prefix + fx, fy, cx, cy. */
+void validatePinhole(
+    const TOptions& o, const std::string& prefix, double fx, double fy, double cx, double cy,
+    const TKeyError& fail)
+{
+  if (!(fx > 0))
+    fail(prefix + "fx", "must be > 0");
+  if (!(fy > 0))
+    fail(prefix + "fy", "must be > 0");
+  if (!(cx >= 0 && cx <= o.width))
+    fail(prefix + "cx", "must lie inside the image");
+  if (!(cy >= 0 && cy <= o.height))
+    fail(prefix + "cy", "must lie inside the image");
+}
+
 void validateColourCamera(const TOptions& o, const TKeyError& fail)
 {
   if (o.width < 16 || o.width > 4096)
     fail("width", "must be in [16, 4096]");
   if (o.height < 16 || o.height > 4096)
     fail("height", "must be in [16, 4096]");
-  if (!(o.fx > 0))
-    fail("fx", "must be > 0");
-  if (!(o.fy > 0))
-    fail("fy", "must be > 0");
-  if (!(o.cx >= 0 && o.cx <= o.width))
-    fail("cx", "must lie inside the image");
-  if (!(o.cy >= 0 && o.cy <= o.height))
-    fail("cy", "must lie inside the image");
+  validatePinhole(o, "", o.fx, o.fy, o.cx, o.cy, fail);
 }
 
 void validateDepthNoise(const TOptions& o, const TKeyError& fail)
@@ -160,14 +168,7 @@ void validateDepthNoise(const TOptions& o, const TKeyError& fail)
 
 void validateDepthCamera(const TOptions& o, const TKeyError& fail)
 {
-  if (!(o.depthFx > 0))
-    fail("depth_fx", "must be > 0");
-  if (!(o.depthFy > 0))
-    fail("depth_fy", "must be > 0");
-  if (!(o.depthCx >= 0 && o.depthCx <= o.width))
-    fail("depth_cx", "must lie inside the image");
-  if (!(o.depthCy >= 0 && o.depthCy <= o.height))
-    fail("depth_cy", "must lie inside the image");
+  validatePinhole(o, "depth_", o.depthFx, o.depthFy, o.depthCx, o.depthCy, fail);
   try
   {
     mrpt::poses::CPose3D p;

@@ -12,6 +12,11 @@ namespace roislam::common
 {
 std::string oneLineError(const std::string& what);
 
+/** `text` up to its first newline (all of it without one), as is: for
+ *  messages of our own and the libraries' one-liners, where oneLineError's
+ *  search for MRPT's "Message:" line is not wanted. */
+std::string firstLine(const std::string& text);
+
 /** `text` as an error message may quote it: non-printable bytes (newlines,
  *  control characters, non-ASCII) as '?', at most maxChars then "...". */
 std::string printableExcerpt(const std::string& text, std::size_t maxChars = 60);
