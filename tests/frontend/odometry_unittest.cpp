@@ -115,6 +115,79 @@ TEST(RgbdOdometry, PoorlyDeterminedRegistrationsAreCombinedWithDepthIcp)
   }
 }
 
+namespace
+{
+/** Frame k of the room with its depth taken at the true pose (consistent)
+ *  or at a pose off by a few centimetres / tenths of a degree that change
+ *  from frame to frame (depth biased against colour, as on a Kinect whose
+ *  depth and colour are not captured together). */
+roislam::io::TRGBDFrame roomFrame(std::size_t k, bool depthConsistent)
+{
+  auto f = renderRoom(trajectoryPose(k), 100, k, 0.1 * k);
+  if (!depthConsistent)
+  {
+    const double x = static_cast<double>(k);
+    const CPose3D off(
+        0.02 * std::sin(1.3 * x), 0.015 * std::cos(1.7 * x), 0.02 * std::sin(0.9 * x),
+        0.006 * std::sin(2.3 * x), 0.006 * std::cos(1.1 * x), 0);
+    f.depth = renderRoom(trajectoryPose(k) + off, 100, k, 0.1 * k).depth;
+  }
+  return f;
+}
+}  // namespace
+
+TEST(RgbdOdometry, MeasuredIcpFusionFollowsHowWellDepthAgreesWithColour)
+{
+  // icp_fusion = measured: where depth agrees with colour, ICP joins every
+  // registration once its scale is known (10 comparisons) and the poses are
+  // as accurate as the features alone; where it does not, the scale grows,
+  // ICP only probes every icp_probe_interval registrations and fuses none
+  // of the well-determined ones, so the poses are those of the features.
+  const std::size_t n = 36, warmUp = 12;
+  for (const bool consistent : {true, false})
+  {
+    SCOPED_TRACE(consistent ? "consistent depth" : "biased depth");
+    double err[2] = {0, 0};
+    std::size_t ran = 0, fused = 0;
+    for (const std::string fusion : {"weak", "measured"})
+    {
+      auto o = baseOptions();
+      o.icp_fusion = fusion;
+      CRgbdOdometry odo(o);
+      odo.setInitialPose(trajectoryPose(0));
+      for (std::size_t k = 0; k < n; ++k)
+      {
+        const auto r = odo.process(roomFrame(k, consistent));
+        ASSERT_TRUE(r.pose.has_value()) << "frame " << k;
+        if (k < warmUp)
+          continue;
+        err[fusion == "measured"] += transErr(*r.pose, trajectoryPose(k)) / (n - warmUp);
+        if (fusion != "measured" || r.isNewKeyframe)
+          continue;
+        ran += r.times.icp_ms > 0 ? 1 : 0;
+        fused += r.icpRefined ? 1 : 0;
+      }
+    }
+    const std::size_t frames = n - warmUp;
+    if (consistent)
+    {
+      EXPECT_EQ(fused, ran);
+      EXPECT_GE(fused, frames - frames / 4);
+      EXPECT_LT(err[1], 1.1 * err[0] + 1e-3);
+    }
+    else
+    {
+      EXPECT_LE(ran, frames / 10 + 2);
+      EXPECT_EQ(fused, 0u);
+      EXPECT_LT(err[1], 1.1 * err[0] + 1e-3);
+    }
+    std::printf(
+        "%s depth: mean error weak %.4f m, measured %.4f m; ICP ran on %zu, fused into %zu of %zu "
+        "ordinary frames\n",
+        consistent ? "consistent" : "biased", err[0], err[1], ran, fused, frames);
+  }
+}
+
 TEST(RgbdOdometry, RegisterKeyframesAndCorrectKeyframePoses)
 {
   auto o = baseOptions();
@@ -282,6 +355,9 @@ TEST(RgbdOdometry, OptionsIniRoundTripAndErrors)
   o.max_roi_sigma_m = 0.004;
   o.max_roi_sigma_deg = 0.3;
   o.icp_refine_sigma_m = 0.02;
+  o.icp_fusion = "weak";
+  o.icp_min_share = 0.25;
+  o.icp_probe_interval = 7;
   o.rolling_shutter_ms = 25;
   o.keyframe_full_features = false;
   o.keyframe_full_registration = false;
@@ -296,6 +372,9 @@ TEST(RgbdOdometry, OptionsIniRoundTripAndErrors)
   EXPECT_DOUBLE_EQ(l.max_roi_sigma_m, 0.004);
   EXPECT_DOUBLE_EQ(l.max_roi_sigma_deg, 0.3);
   EXPECT_DOUBLE_EQ(l.icp_refine_sigma_m, 0.02);
+  EXPECT_EQ(l.icp_fusion, "weak");
+  EXPECT_DOUBLE_EQ(l.icp_min_share, 0.25);
+  EXPECT_EQ(l.icp_probe_interval, 7);
   EXPECT_DOUBLE_EQ(l.rolling_shutter_ms, 25);
   EXPECT_FALSE(l.keyframe_full_features);
   EXPECT_FALSE(l.keyframe_full_registration);
@@ -313,6 +392,18 @@ TEST(RgbdOdometry, OptionsIniRoundTripAndErrors)
   {
     EXPECT_NE(std::string(e.what()).find("[FrontEnd] mode"), std::string::npos);
   }
+  mrpt::config::CConfigFileMemory badFusion;
+  badFusion.write("FrontEnd", "icp_fusion", "sometimes");
+  try
+  {
+    CRgbdOdometry::TOptions b;
+    b.loadFromConfigFile(badFusion, "FrontEnd");
+    FAIL() << "expected an exception";
+  }
+  catch (const std::invalid_argument& e)
+  {
+    EXPECT_NE(std::string(e.what()).find("[FrontEnd] icp_fusion"), std::string::npos);
+  }
   mrpt::config::CConfigFileMemory bad2;
   bad2.write("FrontEnd", "ransac_threshold_m", -1.0);
   CRgbdOdometry::TOptions b2;
@@ -321,6 +412,8 @@ TEST(RgbdOdometry, OptionsIniRoundTripAndErrors)
            {"max_roi_sigma_m", -0.1},
            {"max_roi_sigma_deg", -0.1},
            {"icp_refine_sigma_m", -0.1},
+           {"icp_min_share", -0.5},
+           {"icp_probe_interval", 0},
            {"rolling_shutter_ms", -1001},
            {"rolling_shutter_ms", 2000}})
   {

@@ -142,9 +142,13 @@ CDepthIcp::TNormalEquations CDepthIcp::normalEquations(
     const Eigen::Vector3f q = R * p + t;
     if (q.z() < 1e-3f)
       continue;
-    const int c = static_cast<int>(std::lround(m_fx * q.x() / q.z() + m_cx));
-    const int r = static_cast<int>(std::lround(m_fy * q.y() / q.z() + m_cy));
-    if (c < 0 || r < 0 || c >= m_cols || r >= m_rows)
+    // Nearest cell; rounded inline (std::lround is a library call, and this
+    // loop runs for every pixel of every iteration).
+    const double u = m_fx * q.x() / q.z() + m_cx, v = m_fy * q.y() / q.z() + m_cy;
+    if (!(u > -0.5 && v > -0.5))
+      continue;
+    const int c = static_cast<int>(u + 0.5), r = static_cast<int>(v + 0.5);
+    if (c >= m_cols || r >= m_rows)
       continue;
     const std::size_t j = static_cast<std::size_t>(r * m_cols + c);
     const Eigen::Vector3f& nv = ref.normals[j];
@@ -158,11 +162,16 @@ CDepthIcp::TNormalEquations CDepthIcp::normalEquations(
     Vector6d J;
     const Eigen::Vector3f qxn = q.cross(nv);
     J << nv.x(), nv.y(), nv.z(), qxn.x(), qxn.y(), qxn.z();
-    eq.H.noalias() += w * J * J.transpose();
-    eq.g.noalias() += w * J * res;
+    // The upper triangle only (H is symmetric; mirrored below).
+    const Vector6d wJ = w * J;
+    for (int a = 0; a < 6; ++a)
+      for (int b = a; b < 6; ++b)
+        eq.H(a, b) += wJ[a] * J[b];
+    eq.g.noalias() += wJ * res;
     eq.sumSq += res * res;
     ++eq.pairs;
   }
+  eq.H.triangularView<Eigen::StrictlyLower>() = eq.H.transpose();
   return eq;
 }
 

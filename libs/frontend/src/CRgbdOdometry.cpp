@@ -144,6 +144,8 @@ void CRgbdOdometry::reset()
   m_impl->haveStamp = false;
   m_impl->uncorrected.reset();
   m_impl->depthTime.reset();
+  m_impl->icpConsistency.reset();
+  m_impl->framesSinceIcp = 0;
   m_impl->regionGrowth = 1;
   m_impl->lastFeaturePixels.clear();
 }

@@ -136,6 +136,9 @@ void CRgbdOdometry::TOptions::loadFromConfigFile(
   rolling_shutter_ms = c.read_double(s, "rolling_shutter_ms", rolling_shutter_ms);
   icp_fallback = c.read_bool(s, "icp_fallback", icp_fallback);
   icp_refine_sigma_m = c.read_double(s, "icp_refine_sigma_m", icp_refine_sigma_m);
+  icp_fusion = c.read_string(s, "icp_fusion", icp_fusion);
+  icp_min_share = c.read_double(s, "icp_min_share", icp_min_share);
+  icp_probe_interval = c.read_int(s, "icp_probe_interval", icp_probe_interval);
   icp_decimation = c.read_int(s, "icp_decimation", icp_decimation);
   icp_max_iterations = c.read_int(s, "icp_max_iterations", icp_max_iterations);
   icp_max_distance_m = c.read_double(s, "icp_max_distance_m", icp_max_distance_m);
@@ -190,6 +193,9 @@ void CRgbdOdometry::TOptions::saveToConfigFile(
   c.write(s, "rolling_shutter_ms", rolling_shutter_ms);
   c.write(s, "icp_fallback", icp_fallback);
   c.write(s, "icp_refine_sigma_m", icp_refine_sigma_m);
+  c.write(s, "icp_fusion", icp_fusion);
+  c.write(s, "icp_min_share", icp_min_share);
+  c.write(s, "icp_probe_interval", icp_probe_interval);
   c.write(s, "icp_decimation", icp_decimation);
   c.write(s, "icp_max_iterations", icp_max_iterations);
   c.write(s, "icp_max_distance_m", icp_max_distance_m);
@@ -309,6 +315,11 @@ void validateIcp(const TOptions& o, const std::string& s)
 {
   if (!(o.icp_refine_sigma_m >= 0))
     throwBadIniKey(s, "icp_refine_sigma_m", "must be >= 0");
+  requireOneOf(s, "icp_fusion", o.icp_fusion, {"weak", "measured"});
+  if (!(o.icp_min_share >= 0))
+    throwBadIniKey(s, "icp_min_share", "must be >= 0");
+  if (o.icp_probe_interval < 1)
+    throwBadIniKey(s, "icp_probe_interval", "must be >= 1");
   if (o.icp_decimation < 1)
     throwBadIniKey(s, "icp_decimation", "must be >= 1");
   if (o.icp_max_iterations < 1)

@@ -20,6 +20,7 @@
 #include "DepthTimeOffset.h"
 #include "FeatureLifting.h"
 #include "FlowTracking.h"
+#include "IcpConsistency.h"
 #include "KeyframeOverlap.h"
 #include "KeyframeRegistration.h"
 #include "RollingShutter.h"
@@ -62,6 +63,10 @@ struct CRgbdOdometry::TImpl
   std::optional<detail::TUncorrectedKeyframe> uncorrected;
   /** depth_time_correction: the depth images' offset from the colour ones. */
   detail::CDepthTimeOffset depthTime;
+  /** icp_fusion = measured: how far ICP agrees with the features. */
+  detail::CIcpConsistency icpConsistency;
+  /** Registrations since depth ICP last ran (icp_probe_interval). */
+  std::size_t framesSinceIcp = 0;
   /** roi_extraction = region: the tracking region's minimum area, as a
    *  multiple of roi_min_area_fraction. It grows after each region
    *  registration that failed or left the pose poorly determined, and

@@ -72,13 +72,30 @@ Matrix6d tangentInfoToPseudoLog(const Matrix6d& H, const TRigid& T)
   return 0.5 * (I + I.transpose());
 }
 
-TRigid fuseLeft(const TRigid& a, const Matrix6d& Ha, const TRigid& b, const Matrix6d& Hb)
+Vector6d leftDifference(const TRigid& a, const TRigid& b)
 {
   // b = exp(d) a with d = (v, w): Exp(w) = Rb Ra^T, v = tb - Exp(w) ta.
   const Eigen::Matrix3d dR = b.R * a.R.transpose();
   Vector6d d;
   d.head<3>() = b.t - dR * a.t;
   d.tail<3>() = geometry::logSO3(dR);
+  return d;
+}
+
+std::optional<Matrix6d> covarianceOf(const Matrix6d& information)
+{
+  const Eigen::LLT<Matrix6d> llt(0.5 * (information + information.transpose()));
+  if (llt.info() != Eigen::Success)
+    return std::nullopt;
+  const Matrix6d C = llt.solve(Matrix6d::Identity());
+  if (!C.allFinite())
+    return std::nullopt;
+  return C;
+}
+
+TRigid fuseLeft(const TRigid& a, const Matrix6d& Ha, const TRigid& b, const Matrix6d& Hb)
+{
+  const Vector6d d = leftDifference(a, b);
   const Vector6d f = (Ha + Hb).ldlt().solve(Hb * d);
   if (!f.allFinite())
     return a;

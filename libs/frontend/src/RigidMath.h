@@ -9,6 +9,7 @@
 #include <roislam/geometry/TRigid.h>
 
 #include <Eigen/Dense>
+#include <optional>
 
 namespace roislam::frontend::detail
 {
@@ -34,6 +35,13 @@ TRigid applyLeft(const Vector6d& delta, const TRigid& T);
 /** Information-weighted mean of two estimates of one motion, in the left
  *  perturbation around `a`: delta = (Ha + Hb)^-1 Hb log(b a^-1). */
 TRigid fuseLeft(const TRigid& a, const Matrix6d& Ha, const TRigid& b, const Matrix6d& Hb);
+
+/** log(b a^-1) as the left perturbation d with b = exp(d) a (applyLeft). */
+Vector6d leftDifference(const TRigid& a, const TRigid& b);
+
+/** The covariance of an information matrix; nullopt when it is not positive
+ *  definite (an undetermined direction). */
+std::optional<Matrix6d> covarianceOf(const Matrix6d& information);
 
 /** Information H of delta (left perturbation of T, as in applyLeft) ->
  *  information of (x, y, z, yaw, pitch, roll) of T (CPose3DPDFGaussianInf). */

@@ -241,11 +241,33 @@
  *                             better on fr1/xyz, mixed on fr1/rpy with ORB
  *                             (README "Depth taken at another time")
  *  - icp_fallback             bool (true): depth ICP when features fail
- *  - icp_refine_sigma_m       [m] >= 0 (0.01; 0 = off): a feature
- *                             registration whose worst translation 1-sigma
- *                             (PoseUncertainty.h) exceeds this is combined
- *                             (information-weighted) with depth ICP against
- *                             the same keyframe, started from it
+ *  - icp_refine_sigma_m       [m] >= 0 (0.01; 0 = no depth refinement at
+ *                             all): a feature registration whose worst
+ *                             translation 1-sigma (PoseUncertainty.h)
+ *                             exceeds this is combined (information-
+ *                             weighted) with depth ICP against the same
+ *                             keyframe, started from it
+ *  - icp_fusion               weak | measured (measured): which feature
+ *                             registrations depth ICP joins. weak: those
+ *                             beyond icp_refine_sigma_m, with ICP's modelled
+ *                             information. measured: the well-determined
+ *                             ones too, with that information divided by the
+ *                             scale the last 30 frames' disagreement of ICP
+ *                             and features asks for (IcpConsistency.h; as
+ *                             weak until 10 frames were compared; no fusion
+ *                             where no scale explains it). A well-determined
+ *                             registration is not fused when its own
+ *                             disagreement is beyond chi-square's 0.99
+ *                             quantile at that scale, nor while ICP's share
+ *                             is below icp_min_share
+ *  - icp_min_share            double >= 0 (0.1): measured fusion runs ICP on
+ *                             every frame while the median of ICP's scaled
+ *                             information relative to the features'
+ *                             (tr(Sf Hicp) / 6 / scale) is at least this
+ *                             (0.1: the fused pose's variance 9 % lower);
+ *                             below it only every icp_probe_interval-th
+ *                             registration (a probe: it updates the scale)
+ *  - icp_probe_interval       int >= 1 (10)
  *  - icp_decimation           int >= 1 (4): ICP uses every n-th pixel/row
  *  - icp_max_iterations       int >= 1 (15)
  *  - icp_max_distance_m       [m] > 0 (0.10): correspondence gate
@@ -369,6 +391,9 @@ class CRgbdOdometry : public mrpt::system::COutputLogger
     double rolling_shutter_ms = 0;
     bool icp_fallback = true;
     double icp_refine_sigma_m = 0.01;
+    std::string icp_fusion = "measured";
+    double icp_min_share = 0.1;
+    int icp_probe_interval = 10;
     int icp_decimation = 4;
     int icp_max_iterations = 15;
     double icp_max_distance_m = 0.10;
@@ -529,6 +554,8 @@ class CRgbdOdometry : public mrpt::system::COutputLogger
   void registerWithRecent(const TKeyframe& query, TFrameWork& w) const;
   void refineRollingShutter(TFrameWork& w);
   void refineWithDepth(TFrameWork& w) const;
+  /** icp_fusion = measured: whether this registration runs depth ICP. */
+  bool icpWorthRunning() const;
   /** Pose from the registration, or from the fallbacks; false when Lost. */
   bool resolvePose(TFrameWork& w);
   bool needsKeyframe(const TFrameWork& w) const;

@@ -186,8 +186,9 @@ struct TFrameResult
 
   /** This frame became a keyframe (id newKeyframeId). */
   bool isNewKeyframe = false;
-  /** A feature registration combined with depth ICP because it left the pose
-   *  poorly determined (TOptions::icp_refine_sigma_m). */
+  /** A feature registration combined with depth ICP: it left the pose
+   *  poorly determined (TOptions::icp_refine_sigma_m), or measured fusion
+   *  found ICP worth it (TOptions::icp_fusion). */
   bool icpRefined = false;
   std::size_t newKeyframeId = 0;
   /** For a new keyframe (except the first): constraints from the recent

@@ -1,0 +1,89 @@
+#include "IcpConsistency.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <vector>
+
+namespace roislam::frontend::detail
+{
+CIcpConsistency::CIcpConsistency(std::size_t window, std::size_t minSamples)
+    : m_window(window), m_minSamples(minSamples)
+{
+  if (window == 0 || minSamples == 0 || minSamples > window)
+    throw std::invalid_argument("CIcpConsistency: need 0 < minSamples <= window");
+}
+
+void CIcpConsistency::add(const Vector6d& d, const Matrix6d& featureCov, const Matrix6d& icpCov)
+{
+  if (!d.allFinite() || !featureCov.allFinite() || !icpCov.allFinite())
+    return;
+  const Eigen::LDLT<Matrix6d> icpLdlt(icpCov);
+  const double share = (featureCov * icpLdlt.solve(Matrix6d::Identity())).trace() / 6;
+  m_samples.push_back({d, featureCov, icpCov, std::isfinite(share) ? share : 0.0});
+  while (m_samples.size() > m_window)
+    m_samples.pop_front();
+  update();
+}
+
+void CIcpConsistency::reset()
+{
+  m_samples.clear();
+  m_scale.reset();
+  m_share = 0;
+}
+
+double CIcpConsistency::chi2(
+    const Vector6d& d, const Matrix6d& featureCov, const Matrix6d& icpCov, double k)
+{
+  const Eigen::LDLT<Matrix6d> ldlt(featureCov + k * icpCov);
+  const double v = d.dot(ldlt.solve(d));
+  return ldlt.info() == Eigen::Success && std::isfinite(v)
+             ? std::max(0.0, v)
+             : std::numeric_limits<double>::infinity();
+}
+
+double CIcpConsistency::medianChi2(double k) const
+{
+  std::vector<double> c;
+  c.reserve(m_samples.size());
+  for (const auto& s : m_samples)
+    c.push_back(chi2(s.d, s.featureCov, s.icpCov, k));
+  const auto mid = c.begin() + static_cast<std::ptrdiff_t>(c.size() / 2);
+  std::nth_element(c.begin(), mid, c.end());
+  return *mid;
+}
+
+void CIcpConsistency::update()
+{
+  std::vector<double> s;
+  s.reserve(m_samples.size());
+  for (const auto& x : m_samples)
+    s.push_back(x.share);
+  const auto mid = s.begin() + static_cast<std::ptrdiff_t>(s.size() / 2);
+  std::nth_element(s.begin(), mid, s.end());
+  m_share = *mid;
+  m_scale.reset();
+  if (m_samples.size() < m_minSamples)
+    return;
+  // Every sample's chi-square falls as k grows, so their median does too:
+  // bisection on log k (to 1e-3 relative).
+  if (medianChi2(1.0) <= kChi2Median6)
+  {
+    m_scale = 1.0;
+    return;
+  }
+  if (medianChi2(kMaxScale) > kChi2Median6)
+  {
+    m_scale = std::numeric_limits<double>::infinity();
+    return;
+  }
+  double lo = 0.0, hi = std::log(kMaxScale);
+  while (hi - lo > 1e-3)
+  {
+    const double mid = 0.5 * (lo + hi);
+    (medianChi2(std::exp(mid)) > kChi2Median6 ? lo : hi) = mid;
+  }
+  m_scale = std::exp(hi);
+}
+}  // namespace roislam::frontend::detail

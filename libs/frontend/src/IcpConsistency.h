@@ -1,0 +1,79 @@
+/* Private: how far depth ICP can be trusted beside the features, measured
+ * from their disagreement (refineWithDepth, icp_fusion = measured).
+ *
+ * Depth ICP's information is a model (CDepthIcp: the point-to-plane Hessian
+ * of ~100x fewer independent pairs than it uses, 3 mm floor). That model is
+ * honest on depth whose error is noise (a global-shutter camera, synthetic
+ * depth) and not on a camera whose depth is biased against its colour (the
+ * fr1 Kinect: unsynchronised streams, rolling shutter, depth distortion):
+ * there, ICP and the features disagree by 0.4-0.8 deg a frame where the
+ * features' own uncertainty is 0.05 deg. Each frame that has both gives the
+ * difference d of the two estimates and their covariances; if both were
+ * honest, d' (Sf + Si)^-1 d would follow chi-square with 6 degrees of
+ * freedom. The scale is the smallest k >= 1 for which the median of
+ * d' (Sf + k Si)^-1 d over the recent frames is at most chi-square's median:
+ * ICP's covariance inflated by k is what the data allow. The features'
+ * covariance is taken as honest (their edges' chi-square against ground
+ * truth, README "Honest edge information"); the model is never trusted more
+ * than as built (k >= 1).
+ */
+#pragma once
+
+#include <cstddef>
+#include <deque>
+#include <limits>
+#include <optional>
+
+#include "RigidMath.h"
+
+namespace roislam::frontend::detail
+{
+class CIcpConsistency
+{
+ public:
+  /** window: the recent comparisons kept; minSamples: fewer -> no scale. */
+  explicit CIcpConsistency(std::size_t window = 30, std::size_t minSamples = 10);
+
+  /** One frame's comparison: d = log(T_icp T_features^-1) in the left
+   *  perturbation (fuseLeft's), with each estimate's covariance there. */
+  void add(const Vector6d& d, const Matrix6d& featureCov, const Matrix6d& icpCov);
+
+  /** The scale k >= 1 of ICP's covariance, or nullopt before minSamples
+   *  comparisons. +infinity when no scale up to kMaxScale explains the
+   *  disagreement (ICP is then of no use beside the features). */
+  std::optional<double> scale() const { return m_scale; }
+
+  /** The median over the recent comparisons of ICP's information relative
+   *  to the features', tr(Sf Si^-1) / 6, at scale 1 (divide by the scale). */
+  double medianShare() const { return m_share; }
+
+  /** d' (Sf + k Si)^-1 d of one comparison (+infinity when singular). */
+  static double chi2(
+      const Vector6d& d, const Matrix6d& featureCov, const Matrix6d& icpCov, double k);
+
+  std::size_t size() const { return m_samples.size(); }
+  void reset();
+
+  /** Chi-square's median with 6 degrees of freedom. */
+  static constexpr double kChi2Median6 = 5.348120627;
+  static constexpr double kMaxScale = 1e6;
+  /** Chi-square's 0.99 quantile with 6 degrees of freedom. */
+  static constexpr double kChi2Gate6 = 16.811893829;
+
+ private:
+  struct TSample
+  {
+    Vector6d d;
+    Matrix6d featureCov, icpCov;
+    double share = 0;
+  };
+  double medianChi2(double k) const;
+  /** The scale and the median share of the samples held (after add()). */
+  void update();
+
+  std::size_t m_window, m_minSamples;
+  std::deque<TSample> m_samples;
+  std::optional<double> m_scale;
+  double m_share = 0;
+};
+}  // namespace roislam::frontend::detail

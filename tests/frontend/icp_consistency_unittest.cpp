@@ -1,0 +1,135 @@
+// How far depth ICP is trusted beside the features (libs/frontend/src/
+// IcpConsistency.h): the scale of ICP's covariance recovered from simulated
+// disagreements whose true covariance is known, its bounds, the information
+// share, and bad input.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "IcpConsistency.h"
+
+using roislam::frontend::detail::CIcpConsistency;
+using roislam::frontend::detail::Matrix6d;
+using roislam::frontend::detail::Vector6d;
+
+namespace
+{
+/** A random symmetric positive-definite covariance, eigenvalues spread over
+ *  two decades around `level` (poses are better known in some directions). */
+Matrix6d randomCovariance(std::mt19937& rng, double level)
+{
+  std::normal_distribution<double> n(0, 1);
+  Matrix6d A;
+  for (int r = 0; r < 6; ++r)
+    for (int c = 0; c < 6; ++c)
+      A(r, c) = n(rng);
+  const Eigen::HouseholderQR<Matrix6d> qr(A);
+  const Matrix6d Q = qr.householderQ();
+  Vector6d e;
+  for (int i = 0; i < 6; ++i)
+    e[i] = level * std::pow(10.0, -1.0 + 2.0 * i / 5.0);
+  return Q * e.asDiagonal() * Q.transpose();
+}
+
+/** A draw from N(0, C). */
+Vector6d draw(std::mt19937& rng, const Matrix6d& C)
+{
+  std::normal_distribution<double> n(0, 1);
+  Vector6d z;
+  for (int i = 0; i < 6; ++i)
+    z[i] = n(rng);
+  const Eigen::LLT<Matrix6d> llt(C);
+  return llt.matrixL() * z;
+}
+
+/** The scale after `samples` disagreements drawn with ICP's covariance
+ *  truly `trueScale` times the claimed one. */
+std::optional<double> scaleFor(double trueScale, int samples, std::size_t window, unsigned seed)
+{
+  std::mt19937 rng(seed);
+  CIcpConsistency c(window, 10);
+  for (int i = 0; i < samples; ++i)
+  {
+    const Matrix6d Sf = randomCovariance(rng, 1e-6);
+    const Matrix6d Si = randomCovariance(rng, 1e-7);
+    c.add(draw(rng, Sf + trueScale * Si), Sf, Si);
+  }
+  return c.scale();
+}
+}  // namespace
+
+TEST(IcpConsistency, HonestIcpKeepsItsModelledInformation)
+{
+  // Disagreements as claimed: no inflation (the scale is never below 1).
+  const auto k = scaleFor(1.0, 400, 400, 1);
+  ASSERT_TRUE(k.has_value());
+  EXPECT_GE(*k, 1.0);
+  EXPECT_LT(*k, 1.5);
+}
+
+TEST(IcpConsistency, RecoversHowFarIcpIsOverconfident)
+{
+  for (const double truth : {10.0, 100.0, 1000.0})
+  {
+    SCOPED_TRACE(truth);
+    const auto k = scaleFor(truth, 400, 400, 2);
+    ASSERT_TRUE(k.has_value());
+    EXPECT_GT(*k, truth / 2);
+    EXPECT_LT(*k, truth * 2);
+  }
+  // A short window (the front end's 30) is noisier but of the same order.
+  const auto k = scaleFor(100.0, 30, 30, 3);
+  ASSERT_TRUE(k.has_value());
+  EXPECT_GT(*k, 25.0);
+  EXPECT_LT(*k, 400.0);
+}
+
+TEST(IcpConsistency, NoScaleBeforeEnoughComparisonsAndInfinityBeyondAnyScale)
+{
+  std::mt19937 rng(4);
+  CIcpConsistency c(30, 10);
+  const Matrix6d S = 1e-12 * Matrix6d::Identity();
+  for (int i = 0; i < 9; ++i)
+    c.add(draw(rng, 1e-2 * Matrix6d::Identity()), S, S);
+  EXPECT_FALSE(c.scale().has_value());
+  c.add(draw(rng, 1e-2 * Matrix6d::Identity()), S, S);
+  ASSERT_TRUE(c.scale().has_value());
+  // 10 cm disagreements against a claimed micrometre: no scale up to 1e6.
+  EXPECT_TRUE(std::isinf(*c.scale()));
+  c.reset();
+  EXPECT_EQ(c.size(), 0u);
+  EXPECT_FALSE(c.scale().has_value());
+}
+
+TEST(IcpConsistency, ShareIsIcpInformationRelativeToTheFeatures)
+{
+  CIcpConsistency c(30, 1);
+  // Features 4x as uncertain (in variance) as ICP claims to be: ICP holds
+  // four times their information.
+  c.add(Vector6d::Zero(), 4e-6 * Matrix6d::Identity(), 1e-6 * Matrix6d::Identity());
+  EXPECT_NEAR(c.medianShare(), 4.0, 1e-9);
+  ASSERT_TRUE(c.scale().has_value());
+  EXPECT_DOUBLE_EQ(*c.scale(), 1.0);
+}
+
+TEST(IcpConsistency, WindowForgetsAndBadInputIsIgnored)
+{
+  std::mt19937 rng(5);
+  CIcpConsistency c(20, 10);
+  const Matrix6d Sf = 1e-6 * Matrix6d::Identity(), Si = 1e-8 * Matrix6d::Identity();
+  // A biased stretch, then an honest one: the window holds only the latter.
+  for (int i = 0; i < 20; ++i)
+    c.add(draw(rng, Sf + 1e4 * Si), Sf, Si);
+  EXPECT_GT(*c.scale(), 20.0);
+  for (int i = 0; i < 20; ++i)
+    c.add(draw(rng, Sf + Si), Sf, Si);
+  EXPECT_LT(*c.scale(), 3.0);
+  const std::size_t n = c.size();
+  Vector6d nan = Vector6d::Zero();
+  nan[2] = std::nan("");
+  c.add(nan, Sf, Si);
+  EXPECT_EQ(c.size(), n);
+  EXPECT_THROW(CIcpConsistency(0, 0), std::invalid_argument);
+  EXPECT_THROW(CIcpConsistency(5, 10), std::invalid_argument);
+}
