@@ -146,6 +146,7 @@ void CRgbdOdometry::reset()
   m_impl->depthTime.reset();
   m_impl->icpConsistency.reset();
   m_impl->framesSinceIcp = 0;
+  m_impl->icpProbeInterval = 0;
   m_impl->regionGrowth = 1;
   m_impl->lastFeaturePixels.clear();
 }

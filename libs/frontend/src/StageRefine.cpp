@@ -4,6 +4,7 @@
 // when features failed, the depth-only and constant-velocity fallbacks.
 #include <roislam/frontend/PoseUncertainty.h>
 
+#include <algorithm>
 #include <cmath>
 #include <tuple>
 
@@ -107,6 +108,12 @@ void CRgbdOdometry::refineWithDepth(TFrameWork& w) const
     if (featureCov && icpCov)
       I.icpConsistency.add(d, *featureCov, *icpCov);
     const auto k = I.icpConsistency.scale();
+    // A run that finds ICP still not worth running doubles the interval to
+    // the next probe (up to 8x icp_probe_interval); one that finds it worth
+    // it resets the interval.
+    const auto base = static_cast<std::size_t>(m_options.icp_probe_interval);
+    I.icpProbeInterval =
+        icpWorthRunning(true) ? base : std::min(2 * std::max(I.icpProbeInterval, base), 8 * base);
     if (!k && !weak)
       return;
     scale = k.value_or(1.0);
@@ -132,19 +139,19 @@ void CRgbdOdometry::refineWithDepth(TFrameWork& w) const
   w.res.icpRefined = true;
 }
 
-bool CRgbdOdometry::icpWorthRunning() const
+bool CRgbdOdometry::icpWorthRunning(bool ignoreProbe) const
 {
   // A depth ICP costs about as much as a frame's features (4 ms at 640 x
   // 480). Where its scaled information is a small share of the features'
   // (the fr1 Kinect: 1-10 %), fusing it changes little; it then runs only
-  // every icp_probe_interval frames, to keep the scale current.
+  // as a probe, to keep the scale current.
   const TImpl& I = *m_impl;
   const auto k = I.icpConsistency.scale();
   if (!k)
     return true;
   if (std::isfinite(*k) && I.icpConsistency.medianShare() / *k >= m_options.icp_min_share)
     return true;
-  return I.framesSinceIcp >= static_cast<std::size_t>(m_options.icp_probe_interval);
+  return !ignoreProbe && I.framesSinceIcp >= std::max<std::size_t>(I.icpProbeInterval, 1);
 }
 
 bool CRgbdOdometry::resolvePose(TFrameWork& w)

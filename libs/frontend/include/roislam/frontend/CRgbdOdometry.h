@@ -265,8 +265,12 @@
  *                             information relative to the features'
  *                             (tr(Sf Hicp) / 6 / scale) is at least this
  *                             (0.1: the fused pose's variance 9 % lower);
- *                             below it only every icp_probe_interval-th
- *                             registration (a probe: it updates the scale)
+ *                             below it only as a probe, to update the
+ *                             scale: icp_probe_interval registrations after
+ *                             the last ICP, an interval that doubles after
+ *                             each probe that finds ICP still below the
+ *                             share, up to 8x (a camera whose depth
+ *                             disagrees costs one ICP in 80 frames)
  *  - icp_probe_interval       int >= 1 (10)
  *  - icp_decimation           int >= 1 (4): ICP uses every n-th pixel/row
  *  - icp_max_iterations       int >= 1 (15)
@@ -554,8 +558,9 @@ class CRgbdOdometry : public mrpt::system::COutputLogger
   void registerWithRecent(const TKeyframe& query, TFrameWork& w) const;
   void refineRollingShutter(TFrameWork& w);
   void refineWithDepth(TFrameWork& w) const;
-  /** icp_fusion = measured: whether this registration runs depth ICP. */
-  bool icpWorthRunning() const;
+  /** icp_fusion = measured: whether this registration runs depth ICP (as
+   *  a probe too, unless ignoreProbe). */
+  bool icpWorthRunning(bool ignoreProbe = false) const;
   /** Pose from the registration, or from the fallbacks; false when Lost. */
   bool resolvePose(TFrameWork& w);
   bool needsKeyframe(const TFrameWork& w) const;
