@@ -380,29 +380,21 @@ TEST(RgbdOdometry, OptionsIniRoundTripAndErrors)
   EXPECT_FALSE(l.keyframe_full_registration);
   EXPECT_EQ(l.extractor.max_features, 500);
 
-  mrpt::config::CConfigFileMemory bad;
-  bad.write("FrontEnd", "mode", "roi_huge");
-  try
+  for (const auto& [key, value] : std::vector<std::pair<std::string, std::string>>{
+           {"mode", "roi_huge"}, {"icp_fusion", "sometimes"}})
   {
-    CRgbdOdometry::TOptions b;
-    b.loadFromConfigFile(bad, "FrontEnd");
-    FAIL() << "expected an exception";
-  }
-  catch (const std::invalid_argument& e)
-  {
-    EXPECT_NE(std::string(e.what()).find("[FrontEnd] mode"), std::string::npos);
-  }
-  mrpt::config::CConfigFileMemory badFusion;
-  badFusion.write("FrontEnd", "icp_fusion", "sometimes");
-  try
-  {
-    CRgbdOdometry::TOptions b;
-    b.loadFromConfigFile(badFusion, "FrontEnd");
-    FAIL() << "expected an exception";
-  }
-  catch (const std::invalid_argument& e)
-  {
-    EXPECT_NE(std::string(e.what()).find("[FrontEnd] icp_fusion"), std::string::npos);
+    mrpt::config::CConfigFileMemory bad;
+    bad.write("FrontEnd", key, value);
+    try
+    {
+      CRgbdOdometry::TOptions b;
+      b.loadFromConfigFile(bad, "FrontEnd");
+      FAIL() << "expected an exception for " << key;
+    }
+    catch (const std::invalid_argument& e)
+    {
+      EXPECT_NE(std::string(e.what()).find("[FrontEnd] " + key), std::string::npos);
+    }
   }
   mrpt::config::CConfigFileMemory bad2;
   bad2.write("FrontEnd", "ransac_threshold_m", -1.0);

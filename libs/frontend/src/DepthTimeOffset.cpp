@@ -4,6 +4,8 @@
 #include <cmath>
 #include <vector>
 
+#include "Median.h"
+
 namespace roislam::frontend::detail
 {
 namespace
@@ -11,13 +13,6 @@ namespace
 // About a second of frames at 30 Hz: long enough to outvote the stamps'
 // jitter, short enough to follow the two cameras' clocks drifting apart.
 constexpr std::size_t kWindow = 30;
-
-double median(std::vector<double> v)
-{
-  const auto mid = v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2);
-  std::nth_element(v.begin(), mid, v.end());
-  return *mid;
-}
 
 /** x wrapped into [-p/2, p/2). */
 double wrap(double x, double p)
@@ -35,8 +30,9 @@ void CDepthTimeOffset::reset()
 
 double CDepthTimeOffset::period() const
 {
-  return m_intervals.empty() ? 0.0
-                             : median(std::vector<double>(m_intervals.begin(), m_intervals.end()));
+  return m_intervals.empty()
+             ? 0.0
+             : upperMedian(std::vector<double>(m_intervals.begin(), m_intervals.end()));
 }
 
 double CDepthTimeOffset::update(double colourStamp, double depthStamp)
@@ -69,7 +65,7 @@ double CDepthTimeOffset::update(double colourStamp, double depthStamp)
   dev.reserve(m_differences.size());
   for (double d : m_differences)
     dev.push_back(wrap(d - mean, p));
-  const double phase = mean + median(dev);
+  const double phase = mean + upperMedian(dev);
   // The frame's depth image is the one the stamps say (before or after its
   // colour image), at the estimated phase.
   return phase + p * std::round((diff - phase) / p);

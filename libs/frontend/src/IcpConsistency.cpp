@@ -3,7 +3,10 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <utility>
 #include <vector>
+
+#include "Median.h"
 
 namespace roislam::frontend::detail
 {
@@ -49,9 +52,7 @@ double CIcpConsistency::medianChi2(double k) const
   c.reserve(m_samples.size());
   for (const auto& s : m_samples)
     c.push_back(chi2(s.d, s.featureCov, s.icpCov, k));
-  const auto mid = c.begin() + static_cast<std::ptrdiff_t>(c.size() / 2);
-  std::nth_element(c.begin(), mid, c.end());
-  return *mid;
+  return upperMedian(std::move(c));
 }
 
 void CIcpConsistency::update()
@@ -60,9 +61,7 @@ void CIcpConsistency::update()
   s.reserve(m_samples.size());
   for (const auto& x : m_samples)
     s.push_back(x.share);
-  const auto mid = s.begin() + static_cast<std::ptrdiff_t>(s.size() / 2);
-  std::nth_element(s.begin(), mid, s.end());
-  m_share = *mid;
+  m_share = upperMedian(std::move(s));
   m_scale.reset();
   if (m_samples.size() < m_minSamples)
     return;
