@@ -10,6 +10,7 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
+#include <opencv2/imgproc.hpp>
 #include <string>
 #include <utility>
 #include <vector>
@@ -345,6 +346,80 @@ TEST(RgbdOdometry, FeaturelessWithoutIcpUsesConstantVelocity)
   EXPECT_LT(transErr(*res.back().pose, trajectoryPose(0)), 1e-9);
 }
 
+namespace
+{
+/** The room seen by a camera of twice the resolution (1280 x 960): the
+ *  640 x 480 render upscaled, the intrinsics with it (pixel centres). */
+roislam::io::TRGBDFrame doubled(const roislam::io::TRGBDFrame& f)
+{
+  roislam::io::TRGBDFrame g = f;
+  cv::resize(f.rgb, g.rgb, cv::Size(), 2, 2, cv::INTER_LINEAR);
+  cv::resize(f.depth, g.depth, cv::Size(), 2, 2, cv::INTER_NEAREST);
+  g.camera.ncols = 1280;
+  g.camera.nrows = 960;
+  g.camera.setIntrinsicParamsFromValues(
+      2 * f.camera.fx(), 2 * f.camera.fy(), 2 * f.camera.cx() + 0.5, 2 * f.camera.cy() + 0.5);
+  return g;
+}
+}  // namespace
+
+TEST(RgbdOdometry, CamerasWiderThan1280PxDescribeAtHalfResolutionWhenAsked)
+{
+  // feature_resolution = auto describes the whole image at 640 x 480 (a
+  // quarter of the pixels), its keypoints in the camera's pixels; full at
+  // the camera's own. Both track the room.
+  for (const std::string res : {"full", "auto"})
+  {
+    auto o = baseOptions();
+    o.feature_resolution = res;
+    CRgbdOdometry odo(o);
+    odo.setInitialPose(trajectoryPose(0));
+    for (std::size_t k = 0; k < 6; ++k)
+    {
+      const auto r = odo.process(doubled(renderRoom(trajectoryPose(k), 100, k, 0.1 * k)));
+      const std::size_t pixels = res == "auto" ? 640u * 480u : 1280u * 960u;
+      EXPECT_EQ(r.work.extensionPixels, pixels) << res << " frame " << k;
+      ASSERT_TRUE(r.pose.has_value());
+      if (k == 0)
+        continue;
+      EXPECT_EQ(r.method, ETrackingMethod::Features) << res << " frame " << k;
+      EXPECT_LT(transErr(*r.pose, trajectoryPose(k)), 0.02) << res << " frame " << k;
+      EXPECT_LT(rotErrDeg(*r.pose, trajectoryPose(k)), 0.5) << res << " frame " << k;
+    }
+    const auto& px = odo.lastFeaturePixels();
+    ASSERT_GT(px.size(), 100u);
+    float right = 0, bottom = 0;
+    for (const auto& u : px)
+    {
+      EXPECT_TRUE(u.x >= 0 && u.x < 1280 && u.y >= 0 && u.y < 960) << u;
+      right = std::max(right, u.x);
+      bottom = std::max(bottom, u.y);
+    }
+    // In the camera's pixels, not the working image's.
+    EXPECT_GT(right, 1000.f) << res;
+    EXPECT_GT(bottom, 700.f) << res;
+  }
+}
+
+TEST(RgbdOdometry, CamerasWiderThan1280PxSampleDepthAsSparselyAsVga)
+{
+  // ICP's grid keeps a 640 x 480 camera's density: at 1280 x 960 every 8th
+  // pixel (160 x 120 cells), not every 4th (320 x 240).
+  CRgbdOdometry odo(baseOptions());
+  odo.setInitialPose(trajectoryPose(0));
+  for (std::size_t k = 0; k < 4; ++k)
+  {
+    const auto r = odo.process(doubled(renderRoom(trajectoryPose(k), 0, k, 0.1 * k)));
+    if (k == 0)
+      continue;
+    ASSERT_EQ(r.method, ETrackingMethod::DepthIcp) << "frame " << k;
+    EXPECT_LE(r.inliers, 160u * 120u) << "frame " << k;
+    EXPECT_GT(r.inliers, 160u * 120u / 2) << "frame " << k;
+    EXPECT_LT(transErr(*r.pose, trajectoryPose(k)), 0.01) << "frame " << k;
+    EXPECT_LT(rotErrDeg(*r.pose, trajectoryPose(k)), 0.3) << "frame " << k;
+  }
+}
+
 TEST(RgbdOdometry, OptionsIniRoundTripAndErrors)
 {
   auto o = baseOptions();
@@ -358,6 +433,7 @@ TEST(RgbdOdometry, OptionsIniRoundTripAndErrors)
   o.icp_fusion = "weak";
   o.icp_min_share = 0.25;
   o.icp_probe_interval = 7;
+  o.feature_resolution = "auto";
   o.rolling_shutter_ms = 25;
   o.keyframe_full_features = false;
   o.keyframe_full_registration = false;
@@ -375,13 +451,14 @@ TEST(RgbdOdometry, OptionsIniRoundTripAndErrors)
   EXPECT_EQ(l.icp_fusion, "weak");
   EXPECT_DOUBLE_EQ(l.icp_min_share, 0.25);
   EXPECT_EQ(l.icp_probe_interval, 7);
+  EXPECT_EQ(l.feature_resolution, "auto");
   EXPECT_DOUBLE_EQ(l.rolling_shutter_ms, 25);
   EXPECT_FALSE(l.keyframe_full_features);
   EXPECT_FALSE(l.keyframe_full_registration);
   EXPECT_EQ(l.extractor.max_features, 500);
 
   for (const auto& [key, value] : std::vector<std::pair<std::string, std::string>>{
-           {"mode", "roi_huge"}, {"icp_fusion", "sometimes"}})
+           {"mode", "roi_huge"}, {"icp_fusion", "sometimes"}, {"feature_resolution", "half"}})
   {
     mrpt::config::CConfigFileMemory bad;
     bad.write("FrontEnd", key, value);

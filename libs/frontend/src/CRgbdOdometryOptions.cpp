@@ -113,6 +113,7 @@ void CRgbdOdometry::TOptions::loadFromConfigFile(
   roi_min_area_fraction = c.read_double(s, "roi_min_area_fraction", roi_min_area_fraction);
   roi_min_aspect = c.read_double(s, "roi_min_aspect", roi_min_aspect);
   roi_extension_scale = c.read_double(s, "roi_extension_scale", roi_extension_scale);
+  feature_resolution = c.read_string(s, "feature_resolution", feature_resolution);
   min_inliers = c.read_int(s, "min_inliers", min_inliers);
   keyframe_translation_m = c.read_double(s, "keyframe_translation_m", keyframe_translation_m);
   keyframe_rotation_deg = c.read_double(s, "keyframe_rotation_deg", keyframe_rotation_deg);
@@ -172,6 +173,7 @@ void CRgbdOdometry::TOptions::saveToConfigFile(
   c.write(s, "roi_min_area_fraction", roi_min_area_fraction);
   c.write(s, "roi_min_aspect", roi_min_aspect);
   c.write(s, "roi_extension_scale", roi_extension_scale);
+  c.write(s, "feature_resolution", feature_resolution);
   c.write(s, "min_inliers", min_inliers);
   c.write(s, "keyframe_translation_m", keyframe_translation_m);
   c.write(s, "keyframe_rotation_deg", keyframe_rotation_deg);
@@ -244,6 +246,7 @@ void validateRoi(const TOptions& o, const std::string& s)
   requireOneOf(s, "roi_feature_cap", o.roi_feature_cap, {"image", "roi"});
   requireOneOf(s, "roi_extraction", o.roi_extraction, {"image", "region", "flow"});
   requireOneOf(s, "flow_describe_roi", o.flow_describe_roi, {"always", "when_weak"});
+  requireOneOf(s, "feature_resolution", o.feature_resolution, {"full", "auto"});
   if (o.roi_extraction == "flow" && !o.keyframe_full_features)
     throwBadIniKey(
         s, "roi_extraction",

@@ -35,6 +35,12 @@ TFlowPyramid flowPyramid(const cv::Mat& grey, const TFlowParams& p, bool withDer
   cv::Mat tracked = grey;
   for (int i = flowShift(grey.size()); i > 0; --i)
     cv::pyrDown(tracked, tracked);
+  return flowPyramidOfTracked(tracked, p, withDerivatives);
+}
+
+TFlowPyramid flowPyramidOfTracked(
+    const cv::Mat& tracked, const TFlowParams& p, bool withDerivatives)
+{
   TFlowPyramid pyr;
   cv::buildOpticalFlowPyramid(
       tracked, pyr, cv::Size(p.window, p.window), p.levels, withDerivatives);

@@ -57,6 +57,11 @@ int flowShift(const cv::Size& image);
  *  levels alone (fr1, 2 cores). */
 TFlowPyramid flowPyramid(const cv::Mat& grey, const TFlowParams& p, bool withDerivatives);
 
+/** The same from the image already halved flowShift(image) times (the
+ *  features' working image when its shift is the flow's: one pyrDown less). */
+TFlowPyramid flowPyramidOfTracked(
+    const cv::Mat& tracked, const TFlowParams& p, bool withDerivatives);
+
 /** A full-resolution pixel position at flowShift() = shift, and back (pixel
  *  centres: (u + 0.5) / 2^shift - 0.5). */
 cv::Point2f toFlowLevel(const cv::Point2f& u, int shift);

@@ -25,6 +25,7 @@
 #include "KeyframeRegistration.h"
 #include "RollingShutter.h"
 #include "Timing.h"
+#include "WorkingResolution.h"
 
 namespace roislam::frontend
 {
@@ -124,6 +125,9 @@ struct CRgbdOdometry::TFrameWork
   TFrameResult res;
 
   // extractFeatures
+  /** The grey image at the features' working resolution (in.featureGrey,
+   *  or made here for a frame prepared without it). */
+  detail::TWorkingImage featureImage;
   /** Every feature described so far: the tracking region's first, then the
    *  extension's (extendToImage). */
   features::TFeatureSet all;

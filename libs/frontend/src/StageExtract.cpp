@@ -21,18 +21,20 @@ using detail::msSince;
 namespace
 {
 /** The image outside `region`, band by band (detail::outside), with the
- *  cap's share of each band's area, at `scale` of the image's resolution:
- *  the region's pixels are never described again. Keypoints come back in
- *  image coordinates (sizes too); `pixels` counts the pixels the detector
- *  ran on, at its resolution (the work). */
+ *  cap's share of each band's area, at `scale` of the working image's
+ *  resolution: the region's pixels are never described again. Keypoints
+ *  come back in the camera's pixels (sizes too); `pixels` counts the pixels
+ *  the detector ran on, at its resolution (the work). */
 features::TFeatureSet describeOutside(
-    const features::CFeatureExtractor& extractor, const cv::Mat& grey, const cv::Rect& region,
-    int cap, double scale, std::size_t* pixels)
+    const features::CFeatureExtractor& extractor, const detail::TWorkingImage& work,
+    const cv::Rect& region, int cap, double extensionScale, std::size_t* pixels)
 {
-  const cv::Size image = grey.size();
-  cv::Mat img = grey;
-  if (scale < 1)
-    cv::resize(grey, img, cv::Size(), scale, scale, cv::INTER_AREA);
+  const cv::Size image = work.image;
+  cv::Mat img = work.grey;
+  if (extensionScale < 1)
+    cv::resize(work.grey, img, cv::Size(), extensionScale, extensionScale, cv::INTER_AREA);
+  // The detector's image relative to the camera's.
+  const double scale = extensionScale / static_cast<double>(1 << work.shift);
   features::TFeatureSet ext;
   *pixels = 0;
   for (const cv::Rect& band : detail::outside(region, image))
@@ -164,6 +166,12 @@ void CRgbdOdometry::extractFeatures(TFrameWork& w) const
   res.timestamp = w.in.frame.timestamp;
   res.imageSize = grey.size();
   const auto& o = m_options;
+  w.featureImage.image = grey.size();
+  w.featureImage.shift = w.in.featureGrey.empty()
+                             ? detail::featureShift(grey.size(), o.feature_resolution == "auto")
+                             : w.in.featureShift;
+  w.featureImage.grey =
+      w.in.featureGrey.empty() ? detail::reduced(grey, w.featureImage.shift) : w.in.featureGrey;
   // An expected keyframe describes the whole image at once (below).
   w.flowFrame = followsWithFlow() && flowAvailable(w) && !w.keyframeExpected;
   takeRoi(w);
@@ -204,7 +212,8 @@ void CRgbdOdometry::extractFeatures(TFrameWork& w) const
   // but describes the whole image at once.
   if (!work.region.empty() && !w.keyframeExpected)
   {
-    w.all = I.extractor.extractIn(grey, work.region, regionCap, &work.regionPixels);
+    w.all =
+        detail::extractIn(I.extractor, w.featureImage, work.region, regionCap, &work.regionPixels);
     work.regionFeatures = w.all.size();
     w.regionOnly = true;
   }
@@ -217,10 +226,12 @@ void CRgbdOdometry::extractFeatures(TFrameWork& w) const
   {
     // roi_feature_cap = roi: every detection now, the cap per region below.
     const bool capInRoi = isRoiMode(m_options.mode) && m_options.roi_feature_cap == "roi";
-    w.all = capInRoi ? I.extractor.extractAll(grey) : I.extractor.extract(grey);
+    const cv::Mat& fg = w.featureImage.grey;
+    w.all = capInRoi ? I.extractor.extractAll(fg) : I.extractor.extract(fg);
+    detail::toImagePixels(w.all, w.featureImage.shift);
     if (capInRoi)
       w.all = I.extractor.capWithRegion(w.all, res.roi.value_or(cv::Rect()));
-    work.extensionPixels = static_cast<std::size_t>(grey.total());
+    work.extensionPixels = static_cast<std::size_t>(fg.total());
     work.extensionFeatures = w.all.size();
     work.extension = !describesRegions()  ? EExtension::WholeImage
                      : w.keyframeExpected ? EExtension::ExpectedKeyframe
@@ -294,7 +305,7 @@ void CRgbdOdometry::extendToImage(TFrameWork& w, EExtension reason) const
   auto t0 = Clock::now();
   std::size_t px = 0;
   features::TFeatureSet ext = describeOutside(
-      I.extractor, w.in.grey, res.work.region, o.extractor.max_features, o.roi_extension_scale,
+      I.extractor, w.featureImage, res.work.region, o.extractor.max_features, o.roi_extension_scale,
       &px);
   ext.type = w.all.type;
   res.work.extensionPixels += px;
@@ -338,8 +349,9 @@ bool CRgbdOdometry::describeRoi(TFrameWork& w) const
   // Nothing was described before: the ROI's features are the frame's first.
   auto t0 = Clock::now();
   res.work.region = roi;
-  w.all = I.extractor.extractIn(
-      w.in.grey, roi, roiFeatureCap(o, roi, w.in.grey.size()), &res.work.regionPixels);
+  w.all = detail::extractIn(
+      I.extractor, w.featureImage, roi, roiFeatureCap(o, roi, w.in.grey.size()),
+      &res.work.regionPixels);
   res.work.regionFeatures = w.all.size();
   res.times.extract_ms += msSince(t0);
 

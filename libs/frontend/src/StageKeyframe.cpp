@@ -242,7 +242,10 @@ void CRgbdOdometry::insertKeyframe(TFrameWork& w, const mrpt::poses::CPose3D& po
   {
     setAnchors(m_keyframes.back(), w);
     // Followed from by the next frames: with its derivatives (FlowTracking.h).
-    I.flowPyramids[res.newKeyframeId] = detail::flowPyramid(w.in.grey, I.flowParams, true);
+    I.flowPyramids[res.newKeyframeId] =
+        w.featureImage.shift == detail::flowShift(w.in.grey.size())
+            ? detail::flowPyramidOfTracked(w.featureImage.grey, I.flowParams, true)
+            : detail::flowPyramid(w.in.grey, I.flowParams, true);
     while (I.flowPyramids.size() > keep)
       I.flowPyramids.erase(I.flowPyramids.begin());
   }

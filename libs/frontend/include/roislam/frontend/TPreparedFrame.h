@@ -28,6 +28,11 @@ struct TPreparedFrame
    *  the image halved until under 1280 px wide: FlowTracking.h flowShift),
    *  built here so that it too runs ahead of the tracking thread. */
   std::vector<cv::Mat> flowPyramid;
+  /** grey at the features' working resolution (feature_resolution,
+   *  CRgbdOdometry.h): grey halved featureShift times (grey itself at 0).
+   *  Empty in a frame prepared elsewhere: process() then makes it. */
+  cv::Mat featureGrey;
+  int featureShift = 0;
   /** Time stage 1 took, and all of prepare() (grey image + stage 1), ms. */
   double roi_ms = 0, prepare_ms = 0;
 };

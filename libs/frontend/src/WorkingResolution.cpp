@@ -1,0 +1,60 @@
+#include "WorkingResolution.h"
+
+#include <cmath>
+#include <opencv2/imgproc.hpp>
+
+#include "FlowTracking.h"
+
+namespace roislam::frontend::detail
+{
+int featureShift(const cv::Size& image, bool automatic)
+{
+  return automatic ? flowShift(image) : 0;
+}
+
+cv::Mat reduced(const cv::Mat& grey, int shift)
+{
+  cv::Mat out = grey;
+  for (int i = 0; i < shift; ++i)
+    cv::pyrDown(out, out);
+  return out;
+}
+
+void toImagePixels(features::TFeatureSet& set, int shift)
+{
+  if (shift == 0)
+    return;
+  const float s = static_cast<float>(1 << shift);
+  for (cv::KeyPoint& k : set.keypoints)
+  {
+    k.pt = fromFlowLevel(k.pt, shift);
+    k.size *= s;
+  }
+}
+
+features::TFeatureSet extractIn(
+    const features::CFeatureExtractor& e, const TWorkingImage& w, const cv::Rect& region, int cap,
+    std::size_t* pixels)
+{
+  if (w.shift == 0)
+    return e.extractIn(w.grey, region, cap, pixels);
+  // The region at the working level, rounded outwards (pixel centres: the
+  // camera's pixel u covers the level's [(u - o) / s - 0.5 / s, ...]).
+  const double s = static_cast<double>(1 << w.shift);
+  const int x0 = static_cast<int>(std::floor(region.x / s));
+  const int y0 = static_cast<int>(std::floor(region.y / s));
+  const int x1 = static_cast<int>(std::ceil(region.br().x / s));
+  const int y1 = static_cast<int>(std::ceil(region.br().y / s));
+  features::TFeatureSet found =
+      e.extractIn(w.grey, cv::Rect(x0, y0, x1 - x0, y1 - y0), cap, pixels);
+  toImagePixels(found, w.shift);
+  std::vector<int> keep;
+  const cv::Rect2f box(region);
+  for (std::size_t i = 0; i < found.size(); ++i)
+    if (box.contains(found.keypoints[i].pt))
+      keep.push_back(static_cast<int>(i));
+  if (keep.size() == found.size())
+    return found;
+  return found.select(keep);
+}
+}  // namespace roislam::frontend::detail
