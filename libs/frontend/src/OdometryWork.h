@@ -197,6 +197,15 @@ struct CRgbdOdometry::TFrameWork
   /** The flow reference as registrations against its anchors see it
    *  (detail::withAnchors). */
   TKeyframe flowRefView;
+  /** The frame's ICP map, built once: depth refinement, the depth-only
+   *  fallback and a new keyframe's storage share it. */
+  std::optional<detail::CDepthIcp::TMap> icpMap;
+  const detail::CDepthIcp::TMap& currentIcpMap(const detail::CDepthIcp& icp)
+  {
+    if (!icpMap)
+      icpMap = icp.buildMap(in.frame.depth);
+    return *icpMap;
+  }
   /** The keyframe registrations against reference `id` use. */
   const TKeyframe& reference(const std::deque<TKeyframe>& keyframes, std::size_t id) const
   {

@@ -91,7 +91,7 @@ void CRgbdOdometry::refineWithDepth(TFrameWork& w) const
   if (!weak && !(measured && icpWorthRunning()))
     return;
   const auto t0 = Clock::now();
-  const auto ir = I.icp->align(I.icpMaps[w.ref], I.icp->buildMap(w.in.frame.depth), w.reg->T);
+  const auto ir = I.icp->align(I.icpMaps[w.ref], w.currentIcpMap(*I.icp), w.reg->T);
   w.res.times.icp_ms += msSince(t0);
   I.framesSinceIcp = 0;
   if (!ir)
@@ -184,8 +184,8 @@ bool CRgbdOdometry::resolvePose(TFrameWork& w)
     if (o.icp_fallback && I.icpMaps.count(w.lastKf))
     {
       const auto t0 = Clock::now();
-      const auto curMap = I.icp->buildMap(w.in.frame.depth);
-      const auto ir = I.icp->align(I.icpMaps[w.lastKf], curMap, detail::fromPose(w.predictedRel));
+      const auto ir = I.icp->align(
+          I.icpMaps[w.lastKf], w.currentIcpMap(*I.icp), detail::fromPose(w.predictedRel));
       res.times.icp_ms += msSince(t0);
       if (ir)
       {
