@@ -296,6 +296,35 @@ TEST(RgbdOdometry, TraditionalModeDetectsRoiForKeyframesOnly)
   EXPECT_EQ(odo.stats().noRoi, 0u);
 }
 
+TEST(RgbdOdometry, FlowFramesRunStageOneOnlyWhenTheyNeedTheRoi)
+{
+  // Low contrast: features, no ROI. With flow_describe_roi = when_weak an
+  // ordinary frame follows its reference's anchors and needs no ROI, so
+  // stage 1 runs for the keyframes only (their ROI is the back end's
+  // landmark), not on every frame whose reference has none to follow.
+  auto o = baseOptions();
+  o.mode = EFrontEndMode::RoiBig;
+  o.roi_extraction = "flow";
+  o.flow_describe_roi = "when_weak";
+  CRgbdOdometry odo(o);
+  const auto res = run(odo, 25, 10);
+  std::size_t flowFrames = 0, keyframes = 0;
+  for (const auto& r : res)
+  {
+    ASSERT_TRUE(r.pose.has_value()) << "frame " << r.frameIndex;
+    EXPECT_FALSE(r.roi.has_value()) << "frame " << r.frameIndex;
+    keyframes += r.isNewKeyframe ? 1 : 0;
+    if (r.isNewKeyframe || r.method != ETrackingMethod::Flow)
+      continue;
+    ++flowFrames;
+    EXPECT_EQ(r.times.roi_ms, 0.0) << "frame " << r.frameIndex;
+    EXPECT_LT(transErr(*r.pose, trajectoryPose(r.frameIndex)), 0.03);
+  }
+  EXPECT_GE(flowFrames, 3u);
+  // Counted where stage 1 ran and found none: the keyframes.
+  EXPECT_EQ(odo.stats().noRoi, keyframes);
+}
+
 TEST(RgbdOdometry, StrictRoiLosesFramesWithoutRoi)
 {
   auto o = baseOptions();

@@ -270,7 +270,7 @@ TFrameResult CRgbdOdometry::finish(TFrameWork& w)
     m_impl->haveStamp = true;
   }
   ++m_stats.frames;
-  if (isRoiMode(m_options.mode) && !res.roi)
+  if (isRoiMode(m_options.mode) && w.roiDetected && !res.roi)
     ++m_stats.noRoi;
   ++m_stats.extensions[res.work.extension];
   m_stats.describedFractionSum += res.work.describedFraction(res.imageSize);

@@ -139,7 +139,9 @@ void CRgbdOdometry::takeRoi(TFrameWork& w) const
   // The reference keyframe's ROI (its stage-1 ROI, StageKeyframe.cpp), moved
   // by the predicted motion: the landmark stays the one the keyframe
   // described, and stage 1 runs only when it leaves the view and on frames
-  // that are no flow frames.
+  // that are no flow frames. With flow_describe_roi = when_weak an ordinary
+  // frame needs a ROI only when its anchors leave the pose undetermined, so
+  // stage 1 waits for that (describeRoi); a keyframe runs it when stored.
   if (w.flowFrame)
   {
     const TKeyframe& kf = m_keyframes[w.ref];
@@ -148,7 +150,7 @@ void CRgbdOdometry::takeRoi(TFrameWork& w) const
     if (!followed.empty())
       res.roi = followed;
   }
-  if (!res.roi)
+  if (!res.roi && !(w.flowFrame && m_options.flow_describe_roi == "when_weak"))
     detectRoi(w);
 }
 
@@ -193,7 +195,7 @@ void CRgbdOdometry::extractFeatures(TFrameWork& w) const
     if (res.roi && o.flow_describe_roi == "always")
       work.region = *res.roi & cv::Rect(cv::Point(0, 0), grey.size());
     else
-      w.roiDeferred = res.roi.has_value();
+      w.roiDeferred = res.roi.has_value() || o.flow_describe_roi == "when_weak";
     regionCap = roiFeatureCap(o, work.region, grey.size());
   }
   else
@@ -343,6 +345,12 @@ bool CRgbdOdometry::describeRoi(TFrameWork& w) const
   const TImpl& I = *m_impl;
   const TOptions& o = m_options;
   TFrameResult& res = w.res;
+  // Stage 1 waited for this when the reference keyframe's ROI had left the
+  // view (takeRoi).
+  if (!res.roi)
+    detectRoi(w);
+  if (!res.roi)
+    return false;
   const cv::Rect roi = *res.roi & cv::Rect(cv::Point(0, 0), w.in.grey.size());
   if (roi.empty())
     return false;

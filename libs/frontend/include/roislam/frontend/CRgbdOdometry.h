@@ -453,7 +453,9 @@ class CRgbdOdometry : public mrpt::system::COutputLogger
     std::size_t initial = 0, features = 0, roiFeatures = 0, flow = 0, fullImageFallback = 0,
                 depthIcp = 0, constantVelocity = 0, lost = 0;
     std::size_t keyframes = 0;
-    /** Frames of a ROI mode in which no ROI was detected at all. */
+    /** Frames of a ROI mode in which stage 1 ran and found no ROI (flow
+     *  with flow_describe_roi = when_weak: an ordinary frame runs it only
+     *  when its reference's ROI left the view and its anchors need it). */
     std::size_t noRoi = 0;
     /** Feature-tracked frames also combined with depth ICP (icp_refine_sigma_m). */
     std::size_t icpRefined = 0;
