@@ -213,3 +213,54 @@ TEST(FlowTracking, AHighResolutionCameraTracksAtTheSameScale)
   EXPECT_LT(err[err.size() / 2], 0.6);       // median: twice the VGA test's, in HD pixels
   EXPECT_LT(err[err.size() * 9 / 10], 2.0);  // 90th percentile
 }
+
+TEST(FlowTracking, FeatureAnchorsAreTheStrongestAWindowApart)
+{
+  // flow_anchors = features: the keyframe's features, strongest first, none
+  // closer to a taken one than a window of the tracked image (at 640 x 480
+  // the image itself; at 1920 x 1080 twice as many of its pixels).
+  const TFlowParams p;
+  std::vector<cv::KeyPoint> k;
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<float> x(0.f, 639.f), y(0.f, 479.f), r(0.f, 1.f);
+  for (int i = 0; i < 600; ++i)
+    k.emplace_back(cv::Point2f(x(rng), y(rng)), 31.f, -1.f, r(rng));
+  for (const cv::Size image : {cv::Size(640, 480), cv::Size(1920, 1080)})
+  {
+    const double spacing = image.width > 640 ? 2.0 * p.window : p.window;
+    const auto taken = spacedStrongest(k, image, p);
+    ASSERT_GT(taken.size(), 20u);
+    for (std::size_t a = 1; a < taken.size(); ++a)
+      EXPECT_GE(
+          k[static_cast<std::size_t>(taken[a - 1])].response,
+          k[static_cast<std::size_t>(taken[a])].response);
+    for (std::size_t a = 0; a < taken.size(); ++a)
+      for (std::size_t b = 0; b < a; ++b)
+        EXPECT_GE(
+            cv::norm(
+                k[static_cast<std::size_t>(taken[a])].pt -
+                k[static_cast<std::size_t>(taken[b])].pt),
+            spacing - 1e-4);
+    // Every keypoint left out is within the spacing of a stronger one taken.
+    std::vector<bool> isTaken(k.size(), false);
+    for (int t : taken)
+      isTaken[static_cast<std::size_t>(t)] = true;
+    for (std::size_t i = 0; i < k.size(); ++i)
+    {
+      if (isTaken[i])
+        continue;
+      bool covered = false;
+      for (int t : taken)
+        covered = covered || (k[static_cast<std::size_t>(t)].response >= k[i].response &&
+                              cv::norm(k[static_cast<std::size_t>(t)].pt - k[i].pt) < spacing);
+      EXPECT_TRUE(covered) << i;
+    }
+  }
+  // Far apart: all of them, strongest first.
+  const std::vector<cv::KeyPoint> few{
+      {cv::Point2f(10, 10), 31, -1, 0.2f},
+      {cv::Point2f(300, 200), 31, -1, 0.9f},
+      {cv::Point2f(600, 400), 31, -1, 0.5f}};
+  EXPECT_EQ(spacedStrongest(few, cv::Size(640, 480), p), (std::vector<int>{1, 2, 0}));
+  EXPECT_TRUE(spacedStrongest({}, cv::Size(640, 480), p).empty());
+}

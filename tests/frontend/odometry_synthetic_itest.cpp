@@ -233,9 +233,19 @@ TEST(OdometrySynthetic, FlowFramesDescribeOnlyTheirRoi)
       std::set<std::tuple<float, float, int>> seen;
       for (const auto& k : kf.features.keypoints)
         EXPECT_TRUE(seen.insert({k.pt.x, k.pt.y, k.octave}).second) << "keyframe " << kf.id;
-      EXPECT_GT(kf.anchorPoints.size(), 50u) << "keyframe " << kf.id;
+      EXPECT_GT(kf.anchorPoints.size(), 20u) << "keyframe " << kf.id;
       EXPECT_EQ(kf.anchorPoints.size(), kf.anchorPixels.size());
       EXPECT_EQ(kf.anchorPoints.size(), kf.anchorKeypoints.size());
+      // flow_anchors = features: each anchor is one of its features with
+      // depth (its keypoint, 3-D point and undistorted pixel).
+      for (std::size_t j = 0; j < kf.anchorKeypoints.size(); ++j)
+      {
+        bool found = false;
+        for (std::size_t i = 0; i < kf.features.keypoints.size() && !found; ++i)
+          found = kf.features.keypoints[i].pt == kf.anchorKeypoints[j] &&
+                  kf.points[i] == kf.anchorPoints[j] && kf.pixels[i] == kf.anchorPixels[j];
+        EXPECT_TRUE(found) << "keyframe " << kf.id << " anchor " << j;
+      }
       // The region its flow frames follow is its stage-1 ROI.
       if (kf.roi)
       {

@@ -463,6 +463,7 @@ TEST(RgbdOdometry, OptionsIniRoundTripAndErrors)
   o.icp_min_share = 0.25;
   o.icp_probe_interval = 7;
   o.feature_resolution = "auto";
+  o.flow_anchors = "corners";
   o.rolling_shutter_ms = 25;
   o.keyframe_full_features = false;
   o.keyframe_full_registration = false;
@@ -481,13 +482,17 @@ TEST(RgbdOdometry, OptionsIniRoundTripAndErrors)
   EXPECT_DOUBLE_EQ(l.icp_min_share, 0.25);
   EXPECT_EQ(l.icp_probe_interval, 7);
   EXPECT_EQ(l.feature_resolution, "auto");
+  EXPECT_EQ(l.flow_anchors, "corners");
   EXPECT_DOUBLE_EQ(l.rolling_shutter_ms, 25);
   EXPECT_FALSE(l.keyframe_full_features);
   EXPECT_FALSE(l.keyframe_full_registration);
   EXPECT_EQ(l.extractor.max_features, 500);
 
   for (const auto& [key, value] : std::vector<std::pair<std::string, std::string>>{
-           {"mode", "roi_huge"}, {"icp_fusion", "sometimes"}, {"feature_resolution", "half"}})
+           {"mode", "roi_huge"},
+           {"icp_fusion", "sometimes"},
+           {"feature_resolution", "half"},
+           {"flow_anchors", "edges"}})
   {
     mrpt::config::CConfigFileMemory bad;
     bad.write("FrontEnd", key, value);

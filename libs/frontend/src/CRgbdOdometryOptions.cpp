@@ -110,6 +110,7 @@ void CRgbdOdometry::TOptions::loadFromConfigFile(
   roi_feature_cap = c.read_string(s, "roi_feature_cap", roi_feature_cap);
   roi_extraction = c.read_string(s, "roi_extraction", roi_extraction);
   flow_describe_roi = c.read_string(s, "flow_describe_roi", flow_describe_roi);
+  flow_anchors = c.read_string(s, "flow_anchors", flow_anchors);
   roi_min_area_fraction = c.read_double(s, "roi_min_area_fraction", roi_min_area_fraction);
   roi_min_aspect = c.read_double(s, "roi_min_aspect", roi_min_aspect);
   roi_extension_scale = c.read_double(s, "roi_extension_scale", roi_extension_scale);
@@ -170,6 +171,7 @@ void CRgbdOdometry::TOptions::saveToConfigFile(
   c.write(s, "roi_feature_cap", roi_feature_cap);
   c.write(s, "roi_extraction", roi_extraction);
   c.write(s, "flow_describe_roi", flow_describe_roi);
+  c.write(s, "flow_anchors", flow_anchors);
   c.write(s, "roi_min_area_fraction", roi_min_area_fraction);
   c.write(s, "roi_min_aspect", roi_min_aspect);
   c.write(s, "roi_extension_scale", roi_extension_scale);
@@ -246,6 +248,7 @@ void validateRoi(const TOptions& o, const std::string& s)
   requireOneOf(s, "roi_feature_cap", o.roi_feature_cap, {"image", "roi"});
   requireOneOf(s, "roi_extraction", o.roi_extraction, {"image", "region", "flow"});
   requireOneOf(s, "flow_describe_roi", o.flow_describe_roi, {"always", "when_weak"});
+  requireOneOf(s, "flow_anchors", o.flow_anchors, {"features", "corners"});
   requireOneOf(s, "feature_resolution", o.feature_resolution, {"full", "auto"});
   if (o.roi_extraction == "flow" && !o.keyframe_full_features)
     throwBadIniKey(

@@ -1,5 +1,7 @@
 #include "FlowTracking.h"
 
+#include <algorithm>
+#include <cmath>
 #include <opencv2/calib3d.hpp>
 #include <opencv2/imgproc.hpp>
 #include <opencv2/video/tracking.hpp>
@@ -73,6 +75,50 @@ features::TFeatureSet anchorCandidates(const cv::Mat& grey, const TFlowParams& p
   for (const auto& c : corners)
     s.keypoints.emplace_back(fromFlowLevel(c, shift), 0.0f);
   return s;
+}
+
+std::vector<int> spacedStrongest(
+    const std::vector<cv::KeyPoint>& keypoints, const cv::Size& image, const TFlowParams& p)
+{
+  const float minDist = static_cast<float>(p.window * (1 << flowShift(image)));
+  std::vector<int> order(keypoints.size());
+  for (std::size_t i = 0; i < order.size(); ++i)
+    order[i] = static_cast<int>(i);
+  // Ties keep the set's order (deterministic).
+  std::stable_sort(
+      order.begin(), order.end(),
+      [&](int a, int b)
+      {
+        return keypoints[static_cast<std::size_t>(a)].response >
+               keypoints[static_cast<std::size_t>(b)].response;
+      });
+  // A grid of minDist cells: a taken keypoint's neighbours within minDist
+  // are in its cell or the eight around it.
+  const int cols = std::max(1, static_cast<int>(std::ceil(image.width / minDist)));
+  const int rows = std::max(1, static_cast<int>(std::ceil(image.height / minDist)));
+  std::vector<std::vector<cv::Point2f>> cells(static_cast<std::size_t>(cols * rows));
+  const auto cellOf = [&](float v, int n)
+  { return std::clamp(static_cast<int>(v / minDist), 0, n - 1); };
+  std::vector<int> taken;
+  for (int i : order)
+  {
+    const cv::Point2f u = keypoints[static_cast<std::size_t>(i)].pt;
+    const int cx = cellOf(u.x, cols), cy = cellOf(u.y, rows);
+    bool free = true;
+    for (int y = std::max(0, cy - 1); free && y <= std::min(rows - 1, cy + 1); ++y)
+      for (int x = std::max(0, cx - 1); free && x <= std::min(cols - 1, cx + 1); ++x)
+        for (const auto& q : cells[static_cast<std::size_t>(y * cols + x)])
+          if ((q.x - u.x) * (q.x - u.x) + (q.y - u.y) * (q.y - u.y) < minDist * minDist)
+          {
+            free = false;
+            break;
+          }
+    if (!free)
+      continue;
+    cells[static_cast<std::size_t>(cy * cols + cx)].push_back(u);
+    taken.push_back(i);
+  }
+  return taken;
 }
 
 TFlowTracks followAnchors(

@@ -72,6 +72,12 @@ cv::Point2f fromFlowLevel(const cv::Point2f& u, int shift);
  *  image apart, as full-resolution keypoints (size 0: not described). */
 features::TFeatureSet anchorCandidates(const cv::Mat& grey, const TFlowParams& p);
 
+/** flow_anchors = features: indices of `keypoints` (the keyframe's own
+ *  features with depth), strongest response first, each at least a window
+ *  of the tracked image (flowShift) from every one taken before. */
+std::vector<int> spacedStrongest(
+    const std::vector<cv::KeyPoint>& keypoints, const cv::Size& image, const TFlowParams& p);
+
 /** The keyframe's anchors followed into the current frame. */
 struct TFlowTracks
 {

@@ -38,14 +38,29 @@ void CRgbdOdometry::setAnchors(TKeyframe& kf, TFrameWork& w) const
 {
   const TImpl& I = *m_impl;
   const auto t0 = Clock::now();
+  kf.anchorKeypoints.clear();
+  kf.anchorPoints.clear();
+  kf.anchorPixels.clear();
+  if (m_options.flow_anchors == "features")
+  {
+    // The keyframe's own features with depth, lifted and corrected as they
+    // are: no detection of their own (README "Anchors from the keyframe's
+    // features").
+    for (int i : detail::spacedStrongest(kf.features.keypoints, w.in.grey.size(), I.flowParams))
+    {
+      const auto u = static_cast<std::size_t>(i);
+      kf.anchorKeypoints.push_back(kf.features.keypoints[u].pt);
+      kf.anchorPoints.push_back(kf.points[u]);
+      kf.anchorPixels.push_back(kf.pixels[u]);
+    }
+    w.res.times.flow_ms += msSince(t0);
+    return;
+  }
   const features::TFeatureSet corners = detail::anchorCandidates(w.in.grey, I.flowParams);
   // The keyframe's depth rule, depth-time and rolling-shutter corrections,
   // as its features'.
   const detail::TLiftedFeatures lifted =
       I.lift(corners, w.in.frame.depth, w.depthDt, w.rateApplied, m_options);
-  kf.anchorKeypoints.clear();
-  kf.anchorPoints.clear();
-  kf.anchorPixels.clear();
   for (int i : lifted.valid)
   {
     const auto u = static_cast<std::size_t>(i);

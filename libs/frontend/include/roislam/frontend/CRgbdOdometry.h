@@ -70,8 +70,8 @@
  *                             image, at least min_roi_features), a frame
  *                             without a ROI nothing; the rest of the view
  *                             comes from the reference keyframe's anchors
- *                             (Shi-Tomasi corners with depth, a 21-px
- *                             window apart, found when the keyframe is made)
+ *                             (points with depth a 21-px window apart,
+ *                             chosen when the keyframe is made: flow_anchors)
  *                             followed by pyramidal Lucas-Kanade optical flow
  *                             from where the predicted motion puts them; they
  *                             join the ROI's matches as known pairs in one
@@ -115,6 +115,16 @@
  *                             do: ATE within x1.10 of always's on average
  *                             over fr1 runs, front end 2-4x cheaper (README
  *                             "ROI that pays")
+ *  - flow_anchors             features|corners (features): roi_extraction =
+ *                             flow, a keyframe's anchors. features: its own
+ *                             described features with depth, strongest
+ *                             first, a window of the tracked image apart (no
+ *                             detection of their own; fewer anchors, each a
+ *                             strong corner). corners: Shi-Tomasi corners
+ *                             found for the purpose at half resolution, a
+ *                             window apart (about 1 ms a keyframe at 640 x
+ *                             480). README "Anchors from the keyframe's
+ *                             features"
  *  - roi_min_area_fraction    [0, 1] (0.15): the tracking region is the ROI
  *                             grown about its centre to at least this share
  *                             of the image ...
@@ -385,6 +395,7 @@ class CRgbdOdometry : public mrpt::system::COutputLogger
     std::string roi_feature_cap = "image";
     std::string roi_extraction = "image";
     std::string flow_describe_roi = "when_weak";
+    std::string flow_anchors = "features";
     double roi_min_area_fraction = 0.15;
     double roi_min_aspect = 0.5;
     double roi_extension_scale = 1.0;
