@@ -1,7 +1,8 @@
 /* Private: the ROI modes' way to see the rest of the image without describing
- * it (roi_extraction = flow). A keyframe keeps, besides its described
- * features, corners good to track (Shi-Tomasi, the corners Lucas-Kanade is
- * exact on) with their depth: its anchors. An ordinary frame describes its
+ * it (roi_extraction = flow). A keyframe keeps points good to track with
+ * their depth, a window apart: its anchors (flow_anchors: its own strongest
+ * features, spacedStrongest, or Shi-Tomasi corners found for the purpose,
+ * anchorCandidates). An ordinary frame describes its
  * ROI only; the reference keyframe's anchors are followed into it by
  * pyramidal Lucas-Kanade optical flow, each started where the predicted
  * motion puts its 3-D point. Their correspondence is known, so they are not
