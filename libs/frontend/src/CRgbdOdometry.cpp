@@ -200,12 +200,11 @@ TPreparedFrame CRgbdOdometry::prepare(const io::TRGBDFrame& frame) const
     p.roiDetected = true;
     p.roi_ms = msSince(t0);
   }
-  p.featureShift = detail::featureShift(p.grey.size(), m_options.feature_resolution == "auto");
-  p.featureGrey = detail::reduced(p.grey, p.featureShift);
+  const auto work = detail::workingImage(p.grey, m_options.feature_resolution == "auto");
+  p.featureGrey = work.grey;
+  p.featureShift = work.shift;
   if (followsWithFlow())
-    p.flowPyramid = p.featureShift == detail::flowShift(p.grey.size())
-                        ? detail::flowPyramidOfTracked(p.featureGrey, m_impl->flowParams, false)
-                        : detail::flowPyramid(p.grey, m_impl->flowParams, false);
+    p.flowPyramid = detail::flowPyramidOf(p.grey, work, m_impl->flowParams, false);
   p.prepare_ms = msSince(t0);
   return p;
 }

@@ -168,12 +168,9 @@ void CRgbdOdometry::extractFeatures(TFrameWork& w) const
   res.timestamp = w.in.frame.timestamp;
   res.imageSize = grey.size();
   const auto& o = m_options;
-  w.featureImage.image = grey.size();
-  w.featureImage.shift = w.in.featureGrey.empty()
-                             ? detail::featureShift(grey.size(), o.feature_resolution == "auto")
-                             : w.in.featureShift;
-  w.featureImage.grey =
-      w.in.featureGrey.empty() ? detail::reduced(grey, w.featureImage.shift) : w.in.featureGrey;
+  w.featureImage = w.in.featureGrey.empty()
+                       ? detail::workingImage(grey, o.feature_resolution == "auto")
+                       : detail::TWorkingImage{w.in.featureGrey, w.in.featureShift, grey.size()};
   // An expected keyframe describes the whole image at once (below).
   w.flowFrame = followsWithFlow() && flowAvailable(w) && !w.keyframeExpected;
   takeRoi(w);

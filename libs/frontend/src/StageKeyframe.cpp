@@ -210,7 +210,7 @@ void CRgbdOdometry::insertKeyframe(TFrameWork& w, const mrpt::poses::CPose3D& po
   // the next flow frames follow).
   detectRoi(w);
   const auto t0 = Clock::now();
-  const double icpBefore = res.times.icp_ms, flowBefore = res.times.flow_ms;
+  const double timedBefore = res.times.icp_ms + res.times.flow_ms;
   // Stored for later matching: the whole image's features (unless
   // keyframe_full_features is off), so that the next frames' ROI, which
   // moves and changes size, still finds its partners.
@@ -265,9 +265,7 @@ void CRgbdOdometry::insertKeyframe(TFrameWork& w, const mrpt::poses::CPose3D& po
     // Followed from by the next frames: with its derivatives (FlowTracking.h).
     const auto tPyramid = Clock::now();
     I.flowPyramids[res.newKeyframeId] =
-        w.featureImage.shift == detail::flowShift(w.in.grey.size())
-            ? detail::flowPyramidOfTracked(w.featureImage.grey, I.flowParams, true)
-            : detail::flowPyramid(w.in.grey, I.flowParams, true);
+        detail::flowPyramidOf(w.in.grey, w.featureImage, I.flowParams, true);
     while (I.flowPyramids.size() > keep)
       I.flowPyramids.erase(I.flowPyramids.begin());
     res.times.flow_ms += msSince(tPyramid);
@@ -277,7 +275,6 @@ void CRgbdOdometry::insertKeyframe(TFrameWork& w, const mrpt::poses::CPose3D& po
   I.lastRel = mrpt::poses::CPose3D();
   // The rest of the storage (stage 1 excepted, its own column): the search
   // index and the bookkeeping. Each part is counted in one column only.
-  res.times.keyframe_ms +=
-      msSince(t0) - res.times.icp_ms - res.times.flow_ms + icpBefore + flowBefore;
+  res.times.keyframe_ms += msSince(t0) - (res.times.icp_ms + res.times.flow_ms - timedBefore);
 }
 }  // namespace roislam::frontend

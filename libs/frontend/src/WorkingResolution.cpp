@@ -20,6 +20,19 @@ cv::Mat reduced(const cv::Mat& grey, int shift)
   return out;
 }
 
+TWorkingImage workingImage(const cv::Mat& grey, bool automatic)
+{
+  const int shift = featureShift(grey.size(), automatic);
+  return {reduced(grey, shift), shift, grey.size()};
+}
+
+std::vector<cv::Mat> flowPyramidOf(
+    const cv::Mat& grey, const TWorkingImage& w, const TFlowParams& p, bool withDerivatives)
+{
+  return w.shift == flowShift(grey.size()) ? flowPyramidOfTracked(w.grey, p, withDerivatives)
+                                           : flowPyramid(grey, p, withDerivatives);
+}
+
 void toImagePixels(features::TFeatureSet& set, int shift)
 {
   if (shift == 0)

@@ -14,6 +14,9 @@
 
 #include <cstddef>
 #include <opencv2/core.hpp>
+#include <vector>
+
+#include "FlowTracking.h"
 
 namespace roislam::frontend::detail
 {
@@ -33,6 +36,16 @@ struct TWorkingImage
   /** The camera's image size. */
   cv::Size image;
 };
+
+/** grey at the working resolution feature_resolution asks for (`automatic`:
+ *  auto): featureShift and reduced together. */
+TWorkingImage workingImage(const cv::Mat& grey, bool automatic);
+
+/** The flow's pyramid of `grey` (FlowTracking.h flowPyramid), built from
+ *  the working image when the flow tracks at its resolution (one pyrDown
+ *  less). */
+std::vector<cv::Mat> flowPyramidOf(
+    const cv::Mat& grey, const TWorkingImage& w, const TFlowParams& p, bool withDerivatives);
 
 /** Keypoints (and sizes) of `set`, found at the working level `shift`, in
  *  the camera's pixels. */
