@@ -462,6 +462,7 @@ TEST(RgbdOdometry, OptionsIniRoundTripAndErrors)
   o.icp_fusion = "weak";
   o.icp_min_share = 0.25;
   o.icp_probe_interval = 7;
+  o.icp_converged_step_sigma = 0.25;
   o.feature_resolution = "auto";
   o.flow_anchors = "corners";
   o.rolling_shutter_ms = 25;
@@ -481,6 +482,7 @@ TEST(RgbdOdometry, OptionsIniRoundTripAndErrors)
   EXPECT_EQ(l.icp_fusion, "weak");
   EXPECT_DOUBLE_EQ(l.icp_min_share, 0.25);
   EXPECT_EQ(l.icp_probe_interval, 7);
+  EXPECT_DOUBLE_EQ(l.icp_converged_step_sigma, 0.25);
   EXPECT_EQ(l.feature_resolution, "auto");
   EXPECT_EQ(l.flow_anchors, "corners");
   EXPECT_DOUBLE_EQ(l.rolling_shutter_ms, 25);
@@ -517,6 +519,7 @@ TEST(RgbdOdometry, OptionsIniRoundTripAndErrors)
            {"icp_refine_sigma_m", -0.1},
            {"icp_min_share", -0.5},
            {"icp_probe_interval", 0},
+           {"icp_converged_step_sigma", -0.1},
            {"rolling_shutter_ms", -1001},
            {"rolling_shutter_ms", 2000}})
   {

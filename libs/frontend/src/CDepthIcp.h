@@ -26,6 +26,10 @@ class CDepthIcp
   {
     int decimation = 4;
     int maxIterations = 15;
+    /** Stop once a Gauss-Newton step is below this fraction of the pose's
+     *  standard deviation under the information ICP claims (0: only the
+     *  absolute floor, 10 um / 1e-5 rad). */
+    double convergedStepSigma = 0.1;
     double maxDistance = 0.10;
     int minPairs = 500;
     double minDepth = 0.3;
@@ -49,6 +53,7 @@ class CDepthIcp
     Matrix6d edgeInformation = Matrix6d::Zero();
     std::size_t pairs = 0;
     double rmse = 0;
+    int iterations = 0;  //!< Gauss-Newton iterations run
   };
 
   CDepthIcp(const TParams& params, const mrpt::img::TCamera& camera);
@@ -75,7 +80,8 @@ class CDepthIcp
   // align()'s steps: the Gauss-Newton iterations from the guess (nullopt
   // when too few pairs or a non-finite step), and the normal equations each
   // iteration (and the final check) builds.
-  std::optional<TRigid> gaussNewton(const TMap& ref, const TMap& cur, const TRigid& guess) const;
+  std::optional<TRigid> gaussNewton(
+      const TMap& ref, const TMap& cur, const TRigid& guess, int* iterations) const;
   TNormalEquations normalEquations(
       const TMap& ref, const TMap& cur, const TRigid& T, double gate) const;
 

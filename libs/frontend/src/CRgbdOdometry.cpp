@@ -76,6 +76,7 @@ void CRgbdOdometry::TImpl::useCamera(const mrpt::img::TCamera& cam, const TOptio
   ip.decimation = o.icp_decimation << detail::flowShift(
                       cv::Size(static_cast<int>(cam.ncols), static_cast<int>(cam.nrows)));
   ip.maxIterations = o.icp_max_iterations;
+  ip.convergedStepSigma = o.icp_converged_step_sigma;
   ip.maxDistance = o.icp_max_distance_m;
   ip.minPairs = o.icp_min_pairs;
   ip.minDepth = o.min_depth_m;

@@ -143,6 +143,7 @@ void CRgbdOdometry::TOptions::loadFromConfigFile(
   icp_probe_interval = c.read_int(s, "icp_probe_interval", icp_probe_interval);
   icp_decimation = c.read_int(s, "icp_decimation", icp_decimation);
   icp_max_iterations = c.read_int(s, "icp_max_iterations", icp_max_iterations);
+  icp_converged_step_sigma = c.read_double(s, "icp_converged_step_sigma", icp_converged_step_sigma);
   icp_max_distance_m = c.read_double(s, "icp_max_distance_m", icp_max_distance_m);
   icp_min_pairs = c.read_int(s, "icp_min_pairs", icp_min_pairs);
   constant_velocity_information_scale =
@@ -202,6 +203,7 @@ void CRgbdOdometry::TOptions::saveToConfigFile(
   c.write(s, "icp_probe_interval", icp_probe_interval);
   c.write(s, "icp_decimation", icp_decimation);
   c.write(s, "icp_max_iterations", icp_max_iterations);
+  c.write(s, "icp_converged_step_sigma", icp_converged_step_sigma);
   c.write(s, "icp_max_distance_m", icp_max_distance_m);
   c.write(s, "icp_min_pairs", icp_min_pairs);
   c.write(s, "keyframe_full_features", keyframe_full_features);
@@ -330,6 +332,8 @@ void validateIcp(const TOptions& o, const std::string& s)
     throwBadIniKey(s, "icp_decimation", "must be >= 1");
   if (o.icp_max_iterations < 1)
     throwBadIniKey(s, "icp_max_iterations", "must be >= 1");
+  if (!(o.icp_converged_step_sigma >= 0))
+    throwBadIniKey(s, "icp_converged_step_sigma", "must be >= 0");
   if (!(o.icp_max_distance_m > 0))
     throwBadIniKey(s, "icp_max_distance_m", "must be > 0");
   if (o.icp_min_pairs < 6)
