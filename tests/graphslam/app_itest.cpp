@@ -48,6 +48,10 @@ TEST(RoiGraphSlamApp, TexturedLoopIsAccurateAndClosesLoops)
   ASSERT_FALSE(s["ate_rmse"].is_null());
   EXPECT_LT(s["ate_rmse"].get<double>(), 0.01);
   EXPECT_FALSE(s["failed"].get<bool>());
+  // The graph's a-posteriori variance factor (CSlamContext::varianceFactor):
+  // the loop-outlier test's scale, at least 1.
+  ASSERT_TRUE(s["final_optimization"].is_object());
+  EXPECT_GE(s["final_optimization"]["variance_factor"].get<double>(), 1.0);
 
   // graph.graph opens in MRPT's own graph-slam tool (mrpt-apps), without a
   // display: --info loads it and counts nodes and edges.

@@ -78,7 +78,8 @@ void CKeyframeGSO::optimizeForClosures(std::size_t firstNewLoop)
   const std::size_t every =
       std::max(static_cast<std::size_t>(opt.optimize_every_keyframes), nodes / 10);
   const auto window = static_cast<std::size_t>(opt.optimize_window_keyframes);
-  const bool inconsistent = worstClosureError(firstNewLoop) > opt.optimize_min_chi2;
+  const bool inconsistent =
+      worstClosureError(firstNewLoop) > opt.optimize_min_chi2 * ctx().varianceFactor();
   if (m_pendingLoopKeyframes >= every ||
       (inconsistent && window == 0 &&
        m_pendingLoopKeyframes >= std::max<std::size_t>(1, nodes / 50)))

@@ -76,6 +76,7 @@ nlohmann::json mapJson(
   j["final_optimization"] = finalReport ? nlohmann::json{{"iterations", finalReport->iterations},
                                                          {"chi2_before", finalReport->chi2Before},
                                                          {"chi2_after", finalReport->chi2After},
+                                                         {"variance_factor", ctx.varianceFactor()},
                                                          {"seconds", finalReport->seconds}}
                                         : nlohmann::json(nullptr);
   return j;

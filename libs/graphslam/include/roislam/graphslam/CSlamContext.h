@@ -36,13 +36,15 @@
  *                              0.5 m) while they are the ones that matter
  *  - loop_outlier_chi2         double > 0 (30): after an optimisation, a loop
  *                              edge whose squared Mahalanobis error exceeds
- *                              this is removed as a false closure and the
- *                              graph re-optimised (at most 3 rounds)
+ *                              this times the graph's variance factor
+ *                              (varianceFactor()) is removed as a false
+ *                              closure and the graph re-optimised (at most 3
+ *                              rounds)
  *  - optimize_min_chi2         double >= 0 (30, as loop_outlier_chi2): a
  *                              keyframe whose new loop closure disagrees with
  *                              the current estimate by more (squared
- *                              Mahalanobis error) is optimised at once;
- *                              0 = at every loop closure
+ *                              Mahalanobis error, over the variance factor) is
+ *                              optimised at once; 0 = at every loop closure
  *  - optimize_window_keyframes int >= 0 (50): such an optimisation moves only
  *                              the newest this many keyframes, the older ones
  *                              held fixed (its cost stays flat; it does not
@@ -256,6 +258,19 @@ class CSlamContext
   /** Closures removed again by optimize() as outliers. */
   std::size_t rejectedLoopClosures() const { return m_rejectedLoops; }
 
+  /** How much more the edges disagree than their information claims, as
+   *  measured by the last whole-graph optimisation (graphVarianceFactor()),
+   *  and never below 1: the chi-square tests (loop_outlier_chi2,
+   *  optimize_min_chi2) are taken relative to it. 1 before any. */
+  double varianceFactor() const { return m_varianceFactor; }
+  /** The a-posteriori variance factor of an optimised graph, robustly: the
+   *  median edge chi2 over what honest information gives an edge of the
+   *  graph's mean redundancy (5.35, the median of chi2 with 6 degrees of
+   *  freedom, times (6 edges - 6 (nodes - 1)) / (6 edges)); not below 1.
+   *  The median keeps a few false closures from hiding themselves by
+   *  inflating it. 1 when the graph has no redundancy. */
+  static double graphVarianceFactor(const TGraph& graph);
+
   /** Optimises `graph` (SPA Levenberg-Marquardt, root fixed), removes loop
    *  edges that remain inconsistent (loop_outlier_chi2) and re-optimises.
    *  window > 0 (and smaller than the graph): only the newest `window` nodes
@@ -289,6 +304,7 @@ class CSlamContext
   std::map<int32_t, std::vector<std::size_t>> m_sightings;
   std::vector<TLoopClosure> m_loops;
   std::size_t m_rejectedLoops = 0;
+  double m_varianceFactor = 1;
 };
 
 /** "landmark" | "proximity". */
