@@ -132,7 +132,7 @@ CDepthIcp::TMap CDepthIcp::buildMap(const cv::Mat& depth) const
 }
 
 CDepthIcp::TNormalEquations CDepthIcp::normalEquations(
-    const TMap& ref, const TMap& cur, const TRigid& T, double gate) const
+    const TMap& ref, const TMap& cur, const TRigid& T, double gate, int stride) const
 {
   const double huber = 0.01;
   TNormalEquations eq;
@@ -141,43 +141,44 @@ CDepthIcp::TNormalEquations CDepthIcp::normalEquations(
   const Eigen::Matrix3f R = T.R.cast<float>();
   const Eigen::Vector3f t = T.t.cast<float>();
   const float gate2 = static_cast<float>(gate * gate);
-  for (std::size_t k = 0; k < cur.points.size(); ++k)
-  {
-    const Eigen::Vector3f& p = cur.points[k];
-    if (!std::isfinite(p.z()))
-      continue;
-    const Eigen::Vector3f q = R * p + t;
-    if (q.z() < 1e-3f)
-      continue;
-    // Nearest cell; rounded inline (std::lround is a library call, and this
-    // loop runs for every pixel of every iteration).
-    const double u = m_fx * q.x() / q.z() + m_cx, v = m_fy * q.y() / q.z() + m_cy;
-    if (!(u > -0.5 && v > -0.5))
-      continue;
-    const int c = static_cast<int>(u + 0.5), r = static_cast<int>(v + 0.5);
-    if (c >= m_cols || r >= m_rows)
-      continue;
-    const std::size_t j = static_cast<std::size_t>(r * m_cols + c);
-    const Eigen::Vector3f& nv = ref.normals[j];
-    if (!std::isfinite(nv.z()))
-      continue;
-    const Eigen::Vector3f diff = q - ref.points[j];
-    if (diff.squaredNorm() > gate2)
-      continue;
-    const double res = nv.dot(diff);
-    const double w = std::abs(res) <= huber ? 1.0 : huber / std::abs(res);
-    Vector6d J;
-    const Eigen::Vector3f qxn = q.cross(nv);
-    J << nv.x(), nv.y(), nv.z(), qxn.x(), qxn.y(), qxn.z();
-    // The upper triangle only (H is symmetric; mirrored below).
-    const Vector6d wJ = w * J;
-    for (int a = 0; a < 6; ++a)
-      for (int b = a; b < 6; ++b)
-        eq.H(a, b) += wJ[a] * J[b];
-    eq.g.noalias() += wJ * res;
-    eq.sumSq += res * res;
-    ++eq.pairs;
-  }
+  for (int row = 0; row < m_rows; row += stride)
+    for (int col = 0; col < m_cols; col += stride)
+    {
+      const Eigen::Vector3f& p = cur.points[static_cast<std::size_t>(row * m_cols + col)];
+      if (!std::isfinite(p.z()))
+        continue;
+      const Eigen::Vector3f q = R * p + t;
+      if (q.z() < 1e-3f)
+        continue;
+      // Nearest cell; rounded inline (std::lround is a library call, and this
+      // loop runs for every pixel of every iteration).
+      const double u = m_fx * q.x() / q.z() + m_cx, v = m_fy * q.y() / q.z() + m_cy;
+      if (!(u > -0.5 && v > -0.5))
+        continue;
+      const int c = static_cast<int>(u + 0.5), r = static_cast<int>(v + 0.5);
+      if (c >= m_cols || r >= m_rows)
+        continue;
+      const std::size_t j = static_cast<std::size_t>(r * m_cols + c);
+      const Eigen::Vector3f& nv = ref.normals[j];
+      if (!std::isfinite(nv.z()))
+        continue;
+      const Eigen::Vector3f diff = q - ref.points[j];
+      if (diff.squaredNorm() > gate2)
+        continue;
+      const double res = nv.dot(diff);
+      const double w = std::abs(res) <= huber ? 1.0 : huber / std::abs(res);
+      Vector6d J;
+      const Eigen::Vector3f qxn = q.cross(nv);
+      J << nv.x(), nv.y(), nv.z(), qxn.x(), qxn.y(), qxn.z();
+      // The upper triangle only (H is symmetric; mirrored below).
+      const Vector6d wJ = w * J;
+      for (int a = 0; a < 6; ++a)
+        for (int b = a; b < 6; ++b)
+          eq.H(a, b) += wJ[a] * J[b];
+      eq.g.noalias() += wJ * res;
+      eq.sumSq += res * res;
+      ++eq.pairs;
+    }
   eq.H.triangularView<Eigen::StrictlyLower>() = eq.H.transpose();
   return eq;
 }
@@ -190,9 +191,15 @@ std::optional<TRigid> CDepthIcp::gaussNewton(
   {
     *iterations = it + 1;
     // Shrinking gate: wide at first to capture, tight later to reject outliers.
-    const double gate = it < 3 ? m_params.maxDistance : 0.5 * m_params.maxDistance;
-    const TNormalEquations eq = normalEquations(ref, cur, T, gate);
-    if (eq.pairs < static_cast<std::size_t>(m_params.minPairs))
+    // The wide-gate iterations only capture: every other cell of every
+    // other row of the current frame is enough for them (a quarter of the
+    // work), the tight-gate ones use every cell.
+    const bool capture = it < 3;
+    const double gate = capture ? m_params.maxDistance : 0.5 * m_params.maxDistance;
+    const int stride = capture ? 2 : 1;
+    const TNormalEquations eq = normalEquations(ref, cur, T, gate, stride);
+    if (eq.pairs * static_cast<std::size_t>(stride * stride) <
+        static_cast<std::size_t>(m_params.minPairs))
       return std::nullopt;
     // Damping keeps unobservable directions at the guess.
     const double lambda = 1e-4 * eq.H.trace() / 6.0 + 1e-9;
@@ -225,7 +232,7 @@ std::optional<CDepthIcp::TResult> CDepthIcp::align(
   const std::optional<TRigid> T = gaussNewton(ref, cur, guess, &iterations);
   if (!T)
     return std::nullopt;
-  const TNormalEquations eq = normalEquations(ref, cur, *T, 0.5 * m_params.maxDistance);
+  const TNormalEquations eq = normalEquations(ref, cur, *T, 0.5 * m_params.maxDistance, 1);
   if (eq.pairs < static_cast<std::size_t>(m_params.minPairs))
     return std::nullopt;
   if (!plausible(*T, guess))

@@ -69,7 +69,8 @@ class CDepthIcp
 
  private:
   /** Point-to-plane normal equations of cur against ref at pose T (Huber
-   *  weights), from the pairs closer than gate (metres). */
+   *  weights), from the pairs closer than gate (metres), taking every
+   *  stride-th cell of every stride-th row of cur. */
   struct TNormalEquations
   {
     Matrix6d H;
@@ -83,7 +84,7 @@ class CDepthIcp
   std::optional<TRigid> gaussNewton(
       const TMap& ref, const TMap& cur, const TRigid& guess, int* iterations) const;
   TNormalEquations normalEquations(
-      const TMap& ref, const TMap& cur, const TRigid& T, double gate) const;
+      const TMap& ref, const TMap& cur, const TRigid& T, double gate, int stride) const;
 
   TParams m_params;
   int m_cols = 0, m_rows = 0;
