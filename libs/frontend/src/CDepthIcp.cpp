@@ -141,6 +141,10 @@ CDepthIcp::TNormalEquations CDepthIcp::normalEquations(
   const Eigen::Matrix3f R = T.R.cast<float>();
   const Eigen::Vector3f t = T.t.cast<float>();
   const float gate2 = static_cast<float>(gate * gate);
+  double h[21] = {}, g[6] = {}, sumSq = 0;
+  std::size_t pairs = 0;
+  const float fx = static_cast<float>(m_fx), fy = static_cast<float>(m_fy),
+              cx = static_cast<float>(m_cx), cy = static_cast<float>(m_cy);
   for (int row = 0; row < m_rows; row += stride)
     for (int col = 0; col < m_cols; col += stride)
     {
@@ -150,12 +154,14 @@ CDepthIcp::TNormalEquations CDepthIcp::normalEquations(
       const Eigen::Vector3f q = R * p + t;
       if (q.z() < 1e-3f)
         continue;
-      // Nearest cell; rounded inline (std::lround is a library call, and this
-      // loop runs for every pixel of every iteration).
-      const double u = m_fx * q.x() / q.z() + m_cx, v = m_fy * q.y() / q.z() + m_cy;
-      if (!(u > -0.5 && v > -0.5))
+      // Nearest cell, in float with one division; rounded inline
+      // (std::lround is a library call, and this loop runs for every pixel
+      // of every iteration).
+      const float iz = 1.f / q.z();
+      const float u = fx * q.x() * iz + cx, v = fy * q.y() * iz + cy;
+      if (!(u > -0.5f && v > -0.5f))
         continue;
-      const int c = static_cast<int>(u + 0.5), r = static_cast<int>(v + 0.5);
+      const int c = static_cast<int>(u + 0.5f), r = static_cast<int>(v + 0.5f);
       if (c >= m_cols || r >= m_rows)
         continue;
       const std::size_t j = static_cast<std::size_t>(r * m_cols + c);
@@ -167,19 +173,28 @@ CDepthIcp::TNormalEquations CDepthIcp::normalEquations(
         continue;
       const double res = nv.dot(diff);
       const double w = std::abs(res) <= huber ? 1.0 : huber / std::abs(res);
-      Vector6d J;
       const Eigen::Vector3f qxn = q.cross(nv);
-      J << nv.x(), nv.y(), nv.z(), qxn.x(), qxn.y(), qxn.z();
-      // The upper triangle only (H is symmetric; mirrored below).
-      const Vector6d wJ = w * J;
-      for (int a = 0; a < 6; ++a)
-        for (int b = a; b < 6; ++b)
-          eq.H(a, b) += wJ[a] * J[b];
-      eq.g.noalias() += wJ * res;
-      eq.sumSq += res * res;
-      ++eq.pairs;
+      const double J[6] = {nv.x(), nv.y(), nv.z(), qxn.x(), qxn.y(), qxn.z()};
+      // The upper triangle only (H is symmetric; mirrored below), summed in
+      // locals the compiler can keep in registers.
+      for (int a = 0, e = 0; a < 6; ++a)
+      {
+        const double wJa = w * J[a];
+        for (int b = a; b < 6; ++b, ++e)
+          h[e] += wJa * J[b];
+        g[a] += wJa * res;
+      }
+      sumSq += res * res;
+      ++pairs;
     }
-  eq.H.triangularView<Eigen::StrictlyLower>() = eq.H.transpose();
+  for (int a = 0, e = 0; a < 6; ++a)
+  {
+    for (int b = a; b < 6; ++b, ++e)
+      eq.H(a, b) = eq.H(b, a) = h[e];
+    eq.g[a] = g[a];
+  }
+  eq.sumSq = sumSq;
+  eq.pairs = pairs;
   return eq;
 }
 
