@@ -81,10 +81,10 @@ TEST(DepthIcp, StopsOnceItsStepsAreWithinItsOwnNoise)
   // What the further iterations changed is within a standard deviation of
   // the information ICP claims, and both are near the truth.
   const Vector6d d = leftDifference(late->T, early->T);
+  const double apartSigma = std::sqrt(d.dot(late->information * d));
   std::printf(
-      "iterations %d / %d, apart %.3f sigma\n", early->iterations, late->iterations,
-      std::sqrt(d.dot(late->information * d)));
-  EXPECT_LT(std::sqrt(d.dot(late->information * d)), 1.0) << d.transpose();
+      "iterations %d / %d, apart %.3f sigma\n", early->iterations, late->iterations, apartSigma);
+  EXPECT_LT(apartSigma, 1.0) << d.transpose();
   for (const auto* r : {&*early, &*late})
   {
     const Vector6d e = leftDifference(truth(), r->T);

@@ -12,6 +12,9 @@ namespace roislam::frontend::detail
 namespace
 {
 const float kNaN = std::numeric_limits<float>::quiet_NaN();
+// Gauss-Newton's first iterations capture: a wide gate, a quarter of the
+// pairs, and no convergence test before the first tight-gate iteration.
+const int kCaptureIterations = 3;
 
 // Plausibility: ICP should only correct the prediction, not jump.
 bool plausible(const TRigid& T, const TRigid& guess)
@@ -209,7 +212,7 @@ std::optional<TRigid> CDepthIcp::gaussNewton(
     // The wide-gate iterations only capture: every other cell of every
     // other row of the current frame is enough for them (a quarter of the
     // work), the tight-gate ones use every cell.
-    const bool capture = it < 3;
+    const bool capture = it < kCaptureIterations;
     const double gate = capture ? m_params.maxDistance : 0.5 * m_params.maxDistance;
     const int stride = capture ? 2 : 1;
     const TNormalEquations eq = normalEquations(ref, cur, T, gate, stride);
@@ -232,7 +235,7 @@ std::optional<TRigid> CDepthIcp::gaussNewton(
     // and the further iterations only move the pose within its noise. Not
     // before one iteration with the tight gate has run.
     const double stop = m_params.convergedStepSigma;
-    if (it >= 3 && d.dot(modelledInformation(eq.H, eq.pairs, eq.sumSq) * d) < stop * stop)
+    if (!capture && d.dot(modelledInformation(eq.H, eq.pairs, eq.sumSq) * d) < stop * stop)
       break;
   }
   return T;

@@ -327,8 +327,8 @@ TOptimizationReport CSlamContext::optimize(TGraph& graph, std::size_t window, bo
   // The test is relative to how much the whole graph disagrees beyond its
   // information: with the estimators' information (edge_information =
   // estimator) on a real Kinect every edge claims 10-20x less spread than it
-  // has, and an absolute threshold removed 11-20 true closures a run on
-  // fr1/rpy (0-1 with the diagonal information, whose factor is 1).
+  // has, and an absolute threshold removed 11-20 closures a run on fr1/rpy
+  // that the diagonal information, whose factor is 1, kept (0-1 removed).
   for (int round = 0; round < (toOptimize ? 0 : 3); ++round)
   {
     m_varianceFactor = graphVarianceFactor(graph);
