@@ -1,4 +1,6 @@
-// CRgbdOdometry::TOptions (ini load/save/validation) and the enum names.
+// TRgbdOdometryOptions (ini load/save/validation) and the enum names.
+#include "roislam/frontend/TRgbdOdometryOptions.h"
+
 #include <mrpt/config/CConfigFileBase.h>
 #include <roislam/common/IniErrors.h>
 
@@ -7,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "roislam/frontend/CRgbdOdometry.h"
+#include "roislam/frontend/TFrameResult.h"
 
 namespace roislam::frontend
 {
@@ -90,7 +92,7 @@ std::string toString(EExtension e)
 }
 
 // ---------------------------------------------------------------- options
-void CRgbdOdometry::TOptions::loadFromConfigFile(
+void TRgbdOdometryOptions::loadFromConfigFile(
     const mrpt::config::CConfigFileBase& c, const std::string& s)
 {
   const std::string m = c.read_string(s, "mode", toString(mode));
@@ -160,7 +162,7 @@ void CRgbdOdometry::TOptions::loadFromConfigFile(
   validate(s);
 }
 
-void CRgbdOdometry::TOptions::saveToConfigFile(
+void TRgbdOdometryOptions::saveToConfigFile(
     mrpt::config::CConfigFileBase& c, const std::string& s) const
 {
   c.write(s, "mode", toString(mode));
@@ -218,7 +220,7 @@ void CRgbdOdometry::TOptions::saveToConfigFile(
 
 namespace
 {
-using TOptions = CRgbdOdometry::TOptions;
+using TOptions = TRgbdOdometryOptions;
 using common::throwBadIniKey;
 
 /** A key whose value is one of a few names: "unknown value 'x' (expected a,
@@ -341,7 +343,7 @@ void validateIcp(const TOptions& o, const std::string& s)
 }
 }  // namespace
 
-void CRgbdOdometry::TOptions::validate(const std::string& s) const
+void TRgbdOdometryOptions::validate(const std::string& s) const
 {
   validateRoi(*this, s);
   validateKeyframes(*this, s);
