@@ -157,7 +157,7 @@ TEST(RoiGraphSlamEngineApp, PrintsTheParametersItsDecidersLoaded)
        {"\nmode = traditional  (default)\n", "\nfeature_type = orb  (default)\n",
         "\nloop_min_keyframe_gap = 10  (default)\n",
         "\noptimize_window_keyframes = 50  (default)\n",
-        "\nedge_information = diagonal  (default)\n"})
+        "\nedge_information = estimator  (default)\n"})
     EXPECT_NE(r.out.find(line), std::string::npos) << line << "\n" << r.out;
   s = readSummary(out + "/defaults");
   EXPECT_EQ(s["mode"], "traditional");

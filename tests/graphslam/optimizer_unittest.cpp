@@ -71,7 +71,10 @@ namespace
  *  redundancy), true closures across it and one false closure, every edge
  *  measured with 1 cm / 0.3 deg noise but claiming `overconfidence` times
  *  less variance. The loops are registered with the context. */
-TGraph ringWithClosures(CSlamContext& ctx, int n, double overconfidence, std::size_t* falseLoop)
+TGraph ringWithClosures(
+    CSlamContext& ctx, int n, double overconfidence, std::size_t* falseLoop,
+    double loopNoiseScale = 1,
+    const mrpt::poses::CPose3D& falseError = mrpt::poses::CPose3D(0.3, 0, 0, 10 * M_PI / 180, 0, 0))
 {
   auto& rng = mrpt::random::getRandomGenerator();
   rng.randomize(11);
@@ -82,11 +85,12 @@ TGraph ringWithClosures(CSlamContext& ctx, int n, double overconfidence, std::si
     info(k, k) = overconfidence / (st * st);
   for (int k = 3; k < 6; ++k)
     info(k, k) = overconfidence / (sr * sr);
-  const auto measured = [&](int a, int b, const mrpt::poses::CPose3D& error)
+  const auto measured = [&](int a, int b, const mrpt::poses::CPose3D& error, double scale = 1)
   {
+    const double t = scale * st, r = scale * sr;
     const mrpt::poses::CPose3D noise(
-        rng.drawGaussian1D(0, st), rng.drawGaussian1D(0, st), rng.drawGaussian1D(0, st),
-        rng.drawGaussian1D(0, sr), rng.drawGaussian1D(0, sr), rng.drawGaussian1D(0, sr));
+        rng.drawGaussian1D(0, t), rng.drawGaussian1D(0, t), rng.drawGaussian1D(0, t),
+        rng.drawGaussian1D(0, r), rng.drawGaussian1D(0, r), rng.drawGaussian1D(0, r));
     return mrpt::poses::CPose3DPDFGaussianInf(
         (truePose(b, n) - truePose(a, n)) + noise + error, info);
   };
@@ -103,7 +107,7 @@ TGraph ringWithClosures(CSlamContext& ctx, int n, double overconfidence, std::si
   }
   const auto loop = [&](int a, int b, const mrpt::poses::CPose3D& error)
   {
-    g.insertEdgeAtEnd(a, b, measured(a, b, error));
+    g.insertEdgeAtEnd(a, b, measured(a, b, error, loopNoiseScale));
     roislam::graphslam::TLoopClosure lc;
     lc.fromKeyframe = static_cast<std::size_t>(a);
     lc.toKeyframe = static_cast<std::size_t>(b);
@@ -112,8 +116,9 @@ TGraph ringWithClosures(CSlamContext& ctx, int n, double overconfidence, std::si
   for (int a = 0; a < 8; ++a)
     loop(a, n - 1 - a, mrpt::poses::CPose3D());
   *falseLoop = ctx.loopClosures().size();
-  // A false closure: a place that looks alike, 0.3 m and 10 deg away.
-  loop(10, n / 2 + 5, mrpt::poses::CPose3D(0.3, 0, 0, 10 * M_PI / 180, 0, 0));
+  // A false closure: a place that looks alike (by default 0.3 m and 10 deg
+  // away).
+  loop(10, n / 2 + 5, falseError);
   return g;
 }
 }  // namespace
@@ -142,4 +147,39 @@ TEST(Optimizer, LoopOutlierTestIsRelativeToTheGraphsVarianceFactor)
     EXPECT_LT(ctx.varianceFactor(), 3 * overconfidence);
     EXPECT_DOUBLE_EQ(CSlamContext::graphVarianceFactor(g), ctx.varianceFactor());
   }
+}
+
+// Closures that all disagree with the chain more than their information
+// claims (on fr1 with the estimators' information they see the chain's
+// drift, which its own triangles do not show) are judged against each
+// other: the graph's factor stays near 1, the closures' own keeps the true
+// ones and still drops the false one. Without it every true closure went.
+TEST(Optimizer, LoopOutlierTestIsRelativeToTheClosuresOwnVarianceFactor)
+{
+  CSlamContext ctx;
+  std::size_t falseLoop = 0;
+  // True closures measured with 4x the noise they claim; a false one 1 m and
+  // 40 deg away.
+  TGraph g = ringWithClosures(
+      ctx, 40, 1.0, &falseLoop, 4.0, mrpt::poses::CPose3D(1.0, 0, 0, 40 * M_PI / 180, 0, 0));
+  ctx.optimize(g);
+  EXPECT_GT(ctx.loopVarianceFactor(), 2 * ctx.varianceFactor());
+  EXPECT_EQ(ctx.rejectedLoopClosures(), 1u);
+  ASSERT_EQ(ctx.loopClosures().size(), falseLoop);
+  for (const auto& lc : ctx.loopClosures())
+    EXPECT_NE(lc.fromKeyframe, 10u);
+}
+
+TEST(Optimizer, ClosureVarianceFactorIsTheirLowerMedianOverTheHonestOne)
+{
+  // Fewer than three closures: no factor of their own.
+  EXPECT_DOUBLE_EQ(CSlamContext::closureVarianceFactor({}), 1.0);
+  EXPECT_DOUBLE_EQ(CSlamContext::closureVarianceFactor({500, 900}), 1.0);
+  // The lower median, so one false closure among three cannot set it.
+  EXPECT_DOUBLE_EQ(CSlamContext::closureVarianceFactor({53.48, 1e6, 106.96}), 20.0);
+  EXPECT_DOUBLE_EQ(CSlamContext::closureVarianceFactor({53.48, 1e6, 106.96, 1e7}), 20.0);
+  // Closures no longer in the graph (negative) do not count.
+  EXPECT_DOUBLE_EQ(CSlamContext::closureVarianceFactor({53.48, -1, 106.96, -1}), 1.0);
+  // Never below 1.
+  EXPECT_DOUBLE_EQ(CSlamContext::closureVarianceFactor({0.1, 0.2, 0.3}), 1.0);
 }

@@ -77,6 +77,7 @@ nlohmann::json mapJson(
                                                          {"chi2_before", finalReport->chi2Before},
                                                          {"chi2_after", finalReport->chi2After},
                                                          {"variance_factor", ctx.varianceFactor()},
+                                                         {"loop_variance_factor", ctx.loopVarianceFactor()},
                                                          {"seconds", finalReport->seconds}}
                                         : nlohmann::json(nullptr);
   return j;
