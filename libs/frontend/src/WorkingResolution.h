@@ -1,5 +1,5 @@
 /* The resolution the front end detects and describes features at
- * (feature_resolution, CRgbdOdometry.h). A 1920 x 1080 camera has 6.75x the
+ * (feature_resolution, TRgbdOdometryOptions.h). A 1920 x 1080 camera has 6.75x the
  * pixels of a 640 x 480 one, and ORB / SIFT / SURF cost scales with the
  * pixels (a whole-image SIFT description took about 600 ms there, README
  * "Cameras wider than 1280 px"); halved, it still resolves the scene more

@@ -2,24 +2,28 @@
  *
  * Per frame, in stages (README "One frame's path"): prepare() checks the
  * frame, converts it to grey and, in ROI modes, detects the ROI (stage 1; it
- * may run on another thread, ahead); process() extracts features ONCE on the
- * whole image (CFeatureExtractor), the ROI selecting its subset in ROI modes;
- * lifts keypoints to 3-D with the registered depth image (undistorted,
- * invalid depth skipped, corrected for the rolling shutter); matches them
- * (CFeatureMatcher) against the last keyframe (then, if that fails, up to
- * recent_keyframes older ones); registers them by 3-D RANSAC
- * (CRigidTransformRansac) and a Gauss-Newton refinement of the symmetric
- * reprojection error over the inliers, whose Hessian gives the information
- * matrix. When features fail: depth-only projective point-to-plane ICP
- * against the reference keyframe, then constant velocity, so tracking never
- * stops (except strict_roi, see below). A new keyframe is made when the
- * motion since the last keyframe exceeds the thresholds, the feature inliers
- * drop, or the frame could only be registered against an older keyframe; it
- * brings constraints to the recent keyframes for the pose graph (keyframe id
- * == its position in keyframes(), so the back end can use it as node id) and
- * its ROI (in traditional mode detected for keyframes only), the back end's
- * landmark. The back end's optimised poses come back through
- * correctKeyframePoses().
+ * may run on another thread, ahead); process() extracts features
+ * (CFeatureExtractor): once on the whole image in traditional mode and with
+ * roi_extraction = image (the ROI selecting its subset); with region or flow
+ * (the shipped ROI configs) an ordinary ROI frame describes only its tracking
+ * region, or follows the keyframe's anchors by optical flow, and extends to
+ * the whole image at most once, when it needs to (TFrameResult's described
+ * work and extension reason); lifts keypoints to 3-D with the registered
+ * depth image (undistorted, invalid depth skipped, corrected for the rolling
+ * shutter); matches them (CFeatureMatcher) against the last keyframe (then,
+ * if that fails, up to recent_keyframes older ones); registers them by 3-D
+ * RANSAC (CRigidTransformRansac) and a Gauss-Newton refinement of the
+ * symmetric reprojection error over the inliers, whose Hessian gives the
+ * information matrix. When features fail: depth-only projective
+ * point-to-plane ICP against the reference keyframe, then constant velocity,
+ * so tracking never stops (except strict_roi, see below). A new keyframe is
+ * made when the motion since the last keyframe exceeds the thresholds, the
+ * feature inliers drop, or the frame could only be registered against an
+ * older keyframe; it brings constraints to the recent keyframes for the pose
+ * graph (keyframe id == its position in keyframes(), so the back end can use
+ * it as node id) and its ROI (in traditional mode detected for keyframes
+ * only), the back end's landmark. The back end's optimised poses come back
+ * through correctKeyframePoses().
  *
  * Called by the graph-SLAM back end (roislam::graphslam) and apps, one frame
  * at a time, in order. Not thread-safe, except prepare().

@@ -29,7 +29,7 @@ struct TPreparedFrame
    *  built here so that it too runs ahead of the tracking thread. */
   std::vector<cv::Mat> flowPyramid;
   /** grey at the features' working resolution (feature_resolution,
-   *  CRgbdOdometry.h): grey halved featureShift times (grey itself at 0).
+   *  TRgbdOdometryOptions.h): grey halved featureShift times (grey itself at 0).
    *  Empty in a frame prepared elsewhere: process() then makes it. */
   cv::Mat featureGrey;
   int featureShift = 0;

@@ -8,7 +8,7 @@
  * CRoislamOptionsChecker::createDeciders(). The first registration adds the
  * root (keyframe 0) and keyframe 1, as the engine requires.
  *
- * Parameters (loadParams()): every [FrontEnd] key of CRgbdOdometry.h, in
+ * Parameters (loadParams()): every [FrontEnd] key of TRgbdOdometryOptions.h, in
  * [NodeRegistrationDeciderParameters] in MRPT's layout, with the front end's
  * component sections ([RoiDetector], [FeatureExtractor], [FeatureMatcher]),
  * and the map and edge-weight keys of CSlamContext.h (map_decimation,

@@ -1,7 +1,7 @@
 /* The two ini layouts of the SLAM configuration (CSlamContext::TConfig) and
  * which decider's loadParams() reads which part of it.
  *
- * roi-graphslam's layout: [FrontEnd] (the front end, CRgbdOdometry.h) and
+ * roi-graphslam's layout: [FrontEnd] (the front end, TRgbdOdometryOptions.h) and
  * [GraphSlam] (the back end, CSlamContext.h). MRPT graphslam-engine's layout
  * (roi-graphslam-engine, config/graphslam-engine.ini): the same keys in
  * MRPT's sections, by the class that reads them:
