@@ -48,10 +48,13 @@ TEST(RoiGraphSlamApp, TexturedLoopIsAccurateAndClosesLoops)
   ASSERT_FALSE(s["ate_rmse"].is_null());
   EXPECT_LT(s["ate_rmse"].get<double>(), 0.01);
   EXPECT_FALSE(s["failed"].get<bool>());
-  // The graph's a-posteriori variance factor (CSlamContext::varianceFactor):
-  // the loop-outlier test's scale, at least 1.
+  // The graph's a-posteriori variance factor (CSlamContext::varianceFactor),
+  // at least 1, and the loop-outlier test's scale, at least that
+  // (CSlamContext::loopVarianceFactor: the closures' own when larger).
   ASSERT_TRUE(s["final_optimization"].is_object());
-  EXPECT_GE(s["final_optimization"]["variance_factor"].get<double>(), 1.0);
+  const double graphFactor = s["final_optimization"]["variance_factor"].get<double>();
+  EXPECT_GE(graphFactor, 1.0);
+  EXPECT_GE(s["final_optimization"]["loop_variance_factor"].get<double>(), graphFactor);
 
   // graph.graph opens in MRPT's own graph-slam tool (mrpt-apps), without a
   // display: --info loads it and counts nodes and edges.
