@@ -53,9 +53,7 @@ double CKeyframeGSO::worstClosureError(std::size_t firstLoop) const
   const TGraph& g = *this->m_graph;
   for (std::size_t i = firstLoop; i < loops.size(); ++i)
   {
-    const auto it = g.edges.find(std::make_pair(
-        static_cast<mrpt::graphs::TNodeID>(loops[i].fromKeyframe),
-        static_cast<mrpt::graphs::TNodeID>(loops[i].toKeyframe)));
+    const auto it = g.edges.find(loops[i].edge());
     if (it != g.edges.end())
       worst = std::max(worst, CSlamContext::edgeChi2(g, it));
   }

@@ -122,6 +122,9 @@ landmarks::TPipelineOptions landmarkOptions(const CSlamContext::TConfig& config)
   o.features = config.frontEnd.extractor;
   return o;
 }
+
+/** The median of chi-square with 6 degrees of freedom (a pose edge's). */
+constexpr double kChi2Median6 = 5.348;
 }  // namespace
 
 CSlamContext::CSlamContext() : CSlamContext(TConfig()) {}
@@ -324,6 +327,28 @@ TOptimizationReport CSlamContext::optimize(TGraph& graph, std::size_t window, bo
   // Only a whole-graph solution judges closures: with old nodes held fixed,
   // a good closure to them can still carry the error the window could not
   // spread.
+  for (int round = 0; round < (toOptimize ? 0 : 3); ++round)
+  {
+    const std::vector<std::size_t> outliers = closureOutliers(graph);
+    if (outliers.empty())
+      break;
+    for (auto k = outliers.rbegin(); k != outliers.rend(); ++k)
+    {
+      graph.edges.erase(graph.edges.find(m_loops[*k].edge()));
+      m_loops.erase(m_loops.begin() + static_cast<std::ptrdiff_t>(*k));
+      ++m_rejectedLoops;
+    }
+    mrpt::graphslam::optimize_graph_spa_levmarq(graph, info, toOptimize, params);
+    r.iterations += info.num_iters;
+  }
+  if (measureChi2)
+    r.chi2After = graph.chi2();
+  r.seconds = timer.Tac();
+  return r;
+}
+
+std::vector<std::size_t> CSlamContext::closureOutliers(const TGraph& graph)
+{
   // The test is relative to how much the whole graph disagrees beyond its
   // information: with the estimators' information (edge_information =
   // estimator) on a real Kinect every edge claims 10-20x less spread than it
@@ -336,42 +361,20 @@ TOptimizationReport CSlamContext::optimize(TGraph& graph, std::size_t window, bo
   // graph's factor alone removed 11 of small ROI SURF's closures on fr1/rpy
   // (ATE 0.0113 -> 0.0264 m). The closures' own median keeps a few false
   // ones from hiding among many true ones.
-  for (int round = 0; round < (toOptimize ? 0 : 3); ++round)
+  m_varianceFactor = graphVarianceFactor(graph);
+  std::vector<double> loopChi2(m_loops.size(), -1);
+  for (std::size_t i = 0; i < m_loops.size(); ++i)
   {
-    m_varianceFactor = graphVarianceFactor(graph);
-    std::vector<std::size_t> outliers;
-    std::vector<double> loopChi2(m_loops.size(), -1);
-    for (std::size_t i = 0; i < m_loops.size(); ++i)
-    {
-      const auto key = std::make_pair(
-          static_cast<mrpt::graphs::TNodeID>(m_loops[i].fromKeyframe),
-          static_cast<mrpt::graphs::TNodeID>(m_loops[i].toKeyframe));
-      const auto it = graph.edges.find(key);
-      if (it != graph.edges.end())
-        loopChi2[i] = edgeChi2(graph, it);
-    }
-    m_loopVarianceFactor = std::max(m_varianceFactor, closureVarianceFactor(loopChi2));
-    for (std::size_t i = 0; i < m_loops.size(); ++i)
-      if (loopChi2[i] > m_config.backEnd.loop_outlier_chi2 * m_loopVarianceFactor)
-        outliers.push_back(i);
-    if (outliers.empty())
-      break;
-    for (auto k = outliers.rbegin(); k != outliers.rend(); ++k)
-    {
-      const auto& lc = m_loops[*k];
-      graph.edges.erase(graph.edges.find(std::make_pair(
-          static_cast<mrpt::graphs::TNodeID>(lc.fromKeyframe),
-          static_cast<mrpt::graphs::TNodeID>(lc.toKeyframe))));
-      m_loops.erase(m_loops.begin() + static_cast<std::ptrdiff_t>(*k));
-      ++m_rejectedLoops;
-    }
-    mrpt::graphslam::optimize_graph_spa_levmarq(graph, info, toOptimize, params);
-    r.iterations += info.num_iters;
+    const auto it = graph.edges.find(m_loops[i].edge());
+    if (it != graph.edges.end())
+      loopChi2[i] = edgeChi2(graph, it);
   }
-  if (measureChi2)
-    r.chi2After = graph.chi2();
-  r.seconds = timer.Tac();
-  return r;
+  m_loopVarianceFactor = std::max(m_varianceFactor, closureVarianceFactor(loopChi2));
+  std::vector<std::size_t> outliers;
+  for (std::size_t i = 0; i < m_loops.size(); ++i)
+    if (loopChi2[i] > m_config.backEnd.loop_outlier_chi2 * m_loopVarianceFactor)
+      outliers.push_back(i);
+  return outliers;
 }
 
 double CSlamContext::graphVarianceFactor(const TGraph& graph)
@@ -386,8 +389,7 @@ double CSlamContext::graphVarianceFactor(const TGraph& graph)
     chi2.push_back(edgeChi2(graph, it));
   auto mid = chi2.begin() + static_cast<std::ptrdiff_t>(chi2.size() / 2);
   std::nth_element(chi2.begin(), mid, chi2.end());
-  // 5.348: the median of chi-square with 6 degrees of freedom.
-  const double expected = 5.348 * redundancy / (6 * edges);
+  const double expected = kChi2Median6 * redundancy / (6 * edges);
   return std::max(1.0, *mid / expected);
 }
 
@@ -403,10 +405,9 @@ double CSlamContext::closureVarianceFactor(std::vector<double> closureChi2)
   auto mid = closureChi2.begin() + static_cast<std::ptrdiff_t>((closureChi2.size() - 1) / 2);
   std::nth_element(closureChi2.begin(), mid, closureChi2.end());
   // A closure's redundancy is at most 1 (it is the only edge across its
-  // cycle): 5.348, the median of chi2 with 6 degrees of freedom, is the most
-  // an honest closure reads, so the factor errs towards keeping the test
-  // strict.
-  return std::max(1.0, *mid / 5.348);
+  // cycle): kChi2Median6 is the most an honest closure reads, so the factor
+  // errs towards keeping the test strict.
+  return std::max(1.0, *mid / kChi2Median6);
 }
 
 double CSlamContext::edgeChi2(const TGraph& graph, TGraph::edges_map_t::const_iterator it)

@@ -106,6 +106,7 @@
 #include <map>
 #include <memory>
 #include <optional>
+#include <utility>
 #include <vector>
 
 namespace roislam::graphslam
@@ -125,6 +126,13 @@ struct TLoopClosure
   std::size_t fromKeyframe = 0, toKeyframe = 0;
   ELoopSource source = ELoopSource::Proximity;
   std::size_t inliers = 0;
+  /** Its edge's key in the graph (node id == keyframe id). */
+  std::pair<mrpt::graphs::TNodeID, mrpt::graphs::TNodeID> edge() const
+  {
+    return {
+        static_cast<mrpt::graphs::TNodeID>(fromKeyframe),
+        static_cast<mrpt::graphs::TNodeID>(toKeyframe)};
+  }
 };
 
 /** Summary of one graph optimisation. */
@@ -325,6 +333,11 @@ class CSlamContext
   std::size_t m_rejectedLoops = 0;
   double m_varianceFactor = 1;
   double m_loopVarianceFactor = 1;
+
+  /** One round of optimize()'s closure test on an optimised graph: updates
+   *  both variance factors and returns the indices (into m_loops, ascending)
+   *  of the closures beyond loop_outlier_chi2 times loopVarianceFactor(). */
+  std::vector<std::size_t> closureOutliers(const TGraph& graph);
 };
 
 /** "landmark" | "proximity". */
