@@ -25,13 +25,12 @@ bool plausible(const TRigid& T, const TRigid& guess)
 }
 
 /** The information ICP claims for its pose, from the normal equations (H,
- *  pairs, sum of squared residuals). Dense ICP pairs are strongly
- *  correlated; treat them as ~100x fewer independent measurements so the
- *  graph does not over-trust ICP edges. */
+ *  pairs, sum of squared residuals): kIndependentPairShare of the pairs,
+ *  with a 3 mm floor on the residual sigma. */
 Matrix6d modelledInformation(const Matrix6d& H, std::size_t pairs, double sumSq)
 {
   const double sigma = std::max(std::sqrt(sumSq / static_cast<double>(pairs)), 0.003);
-  return H / (sigma * sigma) * 0.01;
+  return H / (sigma * sigma) * CDepthIcp::kIndependentPairShare;
 }
 
 /** The result at T from the normal equations (H, pairs, sum of squared
@@ -43,7 +42,7 @@ CDepthIcp::TResult makeResult(const TRigid& T, const Matrix6d& H, std::size_t pa
   out.pairs = pairs;
   out.rmse = std::sqrt(sumSq / static_cast<double>(pairs));
   out.information = modelledInformation(H, pairs, sumSq);
-  out.edgeInformation = H / (out.rmse * out.rmse + 1e-12) * 0.01;
+  out.edgeInformation = H / (out.rmse * out.rmse + 1e-12) * CDepthIcp::kIndependentPairShare;
   return out;
 }
 }  // namespace

@@ -191,7 +191,11 @@ bool CRgbdOdometry::resolvePose(TFrameWork& w)
       {
         res.method = ETrackingMethod::DepthIcp;
         std::tie(res.relativePose, res.relativeInformation) = detail::toMrptEstimate(*ir);
-        res.relativeEdgeInformation = detail::toSpaEstimate(*ir);
+        // Alone in the graph, unchecked by features: the conservative model.
+        auto alone = *ir;
+        alone.edgeInformation *=
+            detail::CDepthIcp::kUnverifiedPairShare / detail::CDepthIcp::kIndependentPairShare;
+        res.relativeEdgeInformation = detail::toSpaEstimate(alone);
         res.inliers = ir->pairs;
       }
     }
