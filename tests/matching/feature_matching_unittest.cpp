@@ -200,3 +200,44 @@ TEST(CFeatureIndex, matchesLikeTheMatcherForEveryTypeAndRepeatedQueries)
           std::invalid_argument);
     }
 }
+
+TEST(CFeatureIndex, flannIndexDoesNotDependOnTheThreadsRandomState)
+{
+  // FLANN builds its kd-trees from cv::theRNG(): the index must be the same
+  // whatever ran before on the thread (one seed per build), and the thread's
+  // generator must be left as it was. Descriptors: 3000 random 64-D rows;
+  // queries: 400 of them with noise, so the approximate search has to
+  // choose among close neighbours.
+  cv::RNG data(42);
+  features::TFeatureSet train, query;
+  train.type = query.type = features::EFeatureType::SURF;
+  train.descriptors.create(3000, 64, CV_32F);
+  data.fill(train.descriptors, cv::RNG::UNIFORM, 0.0, 1.0);
+  train.keypoints.resize(3000);
+  query.descriptors = train.descriptors.rowRange(0, 400).clone();
+  cv::Mat noise(query.descriptors.size(), CV_32F);
+  data.fill(noise, cv::RNG::NORMAL, 0.0, 0.15);
+  query.descriptors += noise;
+  query.keypoints.resize(400);
+
+  matching::CFeatureMatcher::TOptions o;
+  o.matcher = matching::EMatcherType::FLANN;
+  std::vector<std::vector<cv::DMatch>> results;
+  for (uint64_t state : {1ull, 2ull, 0xdeadbeefull})
+  {
+    cv::theRNG() = cv::RNG(state);
+    const matching::CFeatureIndex index(o, train);
+    EXPECT_EQ(cv::theRNG().state, state) << "the thread's generator was advanced";
+    results.push_back(index.match(query));
+  }
+  ASSERT_GT(results.front().size(), 50u);
+  for (std::size_t r = 1; r < results.size(); ++r)
+  {
+    ASSERT_EQ(results[r].size(), results.front().size());
+    for (std::size_t i = 0; i < results[r].size(); ++i)
+    {
+      EXPECT_EQ(results[r][i].queryIdx, results.front()[i].queryIdx);
+      EXPECT_EQ(results[r][i].trainIdx, results.front()[i].trainIdx);
+    }
+  }
+}

@@ -1,5 +1,7 @@
 #include "roislam/matching/CFeatureIndex.h"
 
+#include <cstdint>
+#include <opencv2/core.hpp>
 #include <opencv2/flann.hpp>
 #include <stdexcept>
 
@@ -9,6 +11,8 @@ namespace roislam::matching
 {
 namespace
 {
+constexpr uint64_t kIndexSeed = 0x5eed;
+
 cv::Ptr<cv::DescriptorMatcher> makeMatcher(EMatcherType type, bool binary)
 {
   if (type == EMatcherType::BRUTE_FORCE)
@@ -30,7 +34,18 @@ CFeatureIndex::CFeatureIndex(
     return;
   m_flann = makeMatcher(m_options.matcher, features::isBinary(m_type));
   m_flann->add(std::vector<cv::Mat>{m_descriptors});
+  // FLANN's randomised kd-trees and LSH tables draw from the thread's
+  // cv::theRNG(), whose state is whatever ran before on that thread: the
+  // same frames then built other trees, and rarely gave other matches,
+  // depending on the process's history (roi-graphslam and
+  // roi-graphslam-engine, run one after the other in one test process,
+  // disagreed by one loop closure). Each index is built from one seed, and
+  // the thread's generator is left as it was.
+  cv::RNG& rng = cv::theRNG();
+  const cv::RNG before = rng;
+  rng = cv::RNG(kIndexSeed);
   m_flann->train();
+  rng = before;
 }
 
 std::vector<std::vector<cv::DMatch>> CFeatureIndex::knn2(const cv::Mat& query) const
