@@ -43,6 +43,17 @@ struct TWarpCase
   EFeatureType type;
   matching::EMatcherType matcher;
 };
+
+/** `got` pairs the same query and train features as `expected`, in order. */
+void expectSameMatches(const std::vector<cv::DMatch>& got, const std::vector<cv::DMatch>& expected)
+{
+  ASSERT_EQ(got.size(), expected.size());
+  for (std::size_t i = 0; i < got.size(); ++i)
+  {
+    EXPECT_EQ(got[i].queryIdx, expected[i].queryIdx) << i;
+    EXPECT_EQ(got[i].trainIdx, expected[i].trainIdx) << i;
+  }
+}
 }  // namespace
 
 class WarpedPatch : public ::testing::TestWithParam<TWarpCase>
@@ -179,13 +190,7 @@ TEST(CFeatureIndex, matchesLikeTheMatcherForEveryTypeAndRepeatedQueries)
       const auto once = index.match(fa);
       ASSERT_GT(once.size(), 20u) << features::toString(t);
       // The index is reusable: a second query gives the same matches.
-      const auto twice = index.match(fa);
-      ASSERT_EQ(once.size(), twice.size());
-      for (std::size_t i = 0; i < once.size(); ++i)
-      {
-        EXPECT_EQ(once[i].queryIdx, twice[i].queryIdx);
-        EXPECT_EQ(once[i].trainIdx, twice[i].trainIdx);
-      }
+      expectSameMatches(index.match(fa), once);
       if (m == matching::EMatcherType::BRUTE_FORCE)
       {
         // Exact search: identical to a one-off match.
@@ -232,12 +237,5 @@ TEST(CFeatureIndex, flannIndexDoesNotDependOnTheThreadsRandomState)
   }
   ASSERT_GT(results.front().size(), 50u);
   for (std::size_t r = 1; r < results.size(); ++r)
-  {
-    ASSERT_EQ(results[r].size(), results.front().size());
-    for (std::size_t i = 0; i < results[r].size(); ++i)
-    {
-      EXPECT_EQ(results[r][i].queryIdx, results.front()[i].queryIdx);
-      EXPECT_EQ(results[r][i].trainIdx, results.front()[i].trainIdx);
-    }
-  }
+    expectSameMatches(results[r], results.front());
 }
