@@ -201,9 +201,11 @@ CDepthIcp::TNormalEquations CDepthIcp::normalEquations(
 }
 
 std::optional<TRigid> CDepthIcp::gaussNewton(
-    const TMap& ref, const TMap& cur, const TRigid& guess, int* iterations) const
+    const TMap& ref, const TMap& cur, const TRigid& guess, int* iterations,
+    std::optional<TNormalEquations>* converged) const
 {
   TRigid T = guess;
+  converged->reset();
   for (int it = 0; it < m_params.maxIterations; ++it)
   {
     *iterations = it + 1;
@@ -214,7 +216,7 @@ std::optional<TRigid> CDepthIcp::gaussNewton(
     const bool capture = it < kCaptureIterations;
     const double gate = capture ? m_params.maxDistance : 0.5 * m_params.maxDistance;
     const int stride = capture ? 2 : 1;
-    const TNormalEquations eq = normalEquations(ref, cur, T, gate, stride);
+    TNormalEquations eq = normalEquations(ref, cur, T, gate, stride);
     if (eq.pairs * static_cast<std::size_t>(stride * stride) <
         static_cast<std::size_t>(m_params.minPairs))
       return std::nullopt;
@@ -224,18 +226,25 @@ std::optional<TRigid> CDepthIcp::gaussNewton(
     if (!d.allFinite())
       return std::nullopt;
     T = applyLeft(d, T);
-    if (d.head<3>().norm() < 1e-5 && d.tail<3>().norm() < 1e-5)
-      break;
     // Converged once a step moves the pose by less than convergedStepSigma
     // of the standard deviation ICP itself claims (Mahalanobis norm under
     // its modelled information): projective association keeps re-pairing
-    // cells, so the steps rarely reach the absolute floor above (fr1/rpy:
-    // 48 of 90 alignments ran all 15 iterations, their last steps 10-300 um)
-    // and the further iterations only move the pose within its noise. Not
-    // before one iteration with the tight gate has run.
+    // cells, so the steps rarely reach the absolute floor (fr1/rpy: 48 of 90
+    // alignments ran all 15 iterations, their last steps 10-300 um) and the
+    // further iterations only move the pose within its noise. Not before
+    // one iteration with the tight gate has run.
     const double stop = m_params.convergedStepSigma;
-    if (!capture && d.dot(modelledInformation(eq.H, eq.pairs, eq.sumSq) * d) < stop * stop)
+    const bool floor = d.head<3>().norm() < 1e-5 && d.tail<3>().norm() < 1e-5;
+    if (floor ||
+        (!capture && d.dot(modelledInformation(eq.H, eq.pairs, eq.sumSq) * d) < stop * stop))
+    {
+      // The last tight-gate equations, built a step within the pose's noise
+      // from T, describe T as well as new ones would (which would cost one
+      // more pass over every cell, about a sixth of an alignment).
+      if (!capture)
+        *converged = std::move(eq);
       break;
+    }
   }
   return T;
 }
@@ -246,10 +255,13 @@ std::optional<CDepthIcp::TResult> CDepthIcp::align(
   if (ref.cols != m_cols || cur.cols != m_cols || ref.rows != m_rows || cur.rows != m_rows)
     throw std::invalid_argument("CDepthIcp::align: maps of a different camera");
   int iterations = 0;
-  const std::optional<TRigid> T = gaussNewton(ref, cur, guess, &iterations);
+  std::optional<TNormalEquations> converged;
+  const double tightGate = 0.5 * m_params.maxDistance;
+  const std::optional<TRigid> T = gaussNewton(ref, cur, guess, &iterations, &converged);
   if (!T)
     return std::nullopt;
-  const TNormalEquations eq = normalEquations(ref, cur, *T, 0.5 * m_params.maxDistance, 1);
+  const TNormalEquations eq =
+      converged ? *converged : normalEquations(ref, cur, *T, tightGate, 1);
   if (eq.pairs < static_cast<std::size_t>(m_params.minPairs))
     return std::nullopt;
   if (!plausible(*T, guess))

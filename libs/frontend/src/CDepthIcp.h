@@ -104,10 +104,12 @@ class CDepthIcp
     double sumSq = 0;  //!< sum of the squared residuals
   };
   // align()'s steps: the Gauss-Newton iterations from the guess (nullopt
-  // when too few pairs or a non-finite step), and the normal equations each
-  // iteration (and the final check) builds.
+  // when too few pairs or a non-finite step; *converged: the last
+  // tight-gate equations when the steps converged, to stand for T's), and
+  // the normal equations each iteration (and the final check) builds.
   std::optional<TRigid> gaussNewton(
-      const TMap& ref, const TMap& cur, const TRigid& guess, int* iterations) const;
+      const TMap& ref, const TMap& cur, const TRigid& guess, int* iterations,
+      std::optional<TNormalEquations>* converged) const;
   TNormalEquations normalEquations(
       const TMap& ref, const TMap& cur, const TRigid& T, double gate, int stride) const;
 
