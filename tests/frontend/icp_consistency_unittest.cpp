@@ -133,3 +133,68 @@ TEST(IcpConsistency, WindowForgetsAndBadInputIsIgnored)
   EXPECT_THROW(CIcpConsistency(0, 0), std::invalid_argument);
   EXPECT_THROW(CIcpConsistency(5, 10), std::invalid_argument);
 }
+
+TEST(IcpConsistency, RunsOnAShareOfThePairsMeasureTheSameScale)
+{
+  // ICP's error as modelled: a bias (k - 1) Si that fewer pairs do not
+  // change plus noise Si / q. Runs on all the pairs and on a quarter of them
+  // (claiming Si / q), interleaved, give back the k of all the pairs; a
+  // quarter-share run's own claim is scaled by q (k - 1) + 1.
+  for (const double truth : {1.0, 12.0, 60.0})
+  {
+    SCOPED_TRACE(truth);
+    std::mt19937 rng(6);
+    CIcpConsistency c(400, 10);
+    for (int i = 0; i < 400; ++i)
+    {
+      const Matrix6d Sf = randomCovariance(rng, 1e-6);
+      const Matrix6d Si = randomCovariance(rng, 1e-7);
+      const double q = i % 2 ? 0.25 : 1.0;
+      c.add(draw(rng, Sf + (truth - 1) * Si + Si / q), Sf, Si / q, q);
+    }
+    ASSERT_TRUE(c.scale().has_value());
+    EXPECT_GE(*c.scale(), std::max(1.0, truth / 1.5));
+    EXPECT_LT(*c.scale(), truth * 1.5);
+    EXPECT_NEAR(*c.scaleFor(0.25), 0.25 * (*c.scale() - 1) + 1, 1e-12);
+    EXPECT_DOUBLE_EQ(*c.scaleFor(1.0), *c.scale());
+  }
+  // Shares count the information all the pairs would give.
+  CIcpConsistency c(30, 1);
+  c.add(Vector6d::Zero(), 4e-6 * Matrix6d::Identity(), 4e-6 * Matrix6d::Identity(), 0.25);
+  EXPECT_NEAR(c.medianShare(), 4.0, 1e-9);
+  EXPECT_THROW(
+      c.add(Vector6d::Zero(), Matrix6d::Identity(), Matrix6d::Identity(), 0),
+      std::invalid_argument);
+  EXPECT_THROW(
+      c.add(Vector6d::Zero(), Matrix6d::Identity(), Matrix6d::Identity(), 1.5),
+      std::invalid_argument);
+}
+
+TEST(IcpConsistency, AQuarterOfThePairsKeepsTheInformationABiasLeaves)
+{
+  // No scale yet, or honest ICP (noise only): a quarter of the pairs keeps a
+  // quarter of the information. A bias k = 12 (a Kinect's ICP reads 10-140)
+  // keeps 12 / 15 = 0.8 of it, k = 100 nearly all.
+  CIcpConsistency none(30, 10);
+  EXPECT_DOUBLE_EQ(none.informationKept(0.25), 0.25);
+  auto withScale = [](double k)
+  {
+    CIcpConsistency c(30, 1);
+    // One comparison whose chi-square under Sf + k Si is chi-square's
+    // median: d along one axis, Sf = 0, Si = I.
+    Vector6d d = Vector6d::Zero();
+    d[0] = std::sqrt(CIcpConsistency::kChi2Median6 * k);
+    c.add(d, 1e-12 * Matrix6d::Identity(), Matrix6d::Identity());
+    return c;
+  };
+  for (const double k : {1.0, 12.0, 100.0})
+  {
+    SCOPED_TRACE(k);
+    const CIcpConsistency c = withScale(k);
+    ASSERT_TRUE(c.scale().has_value());
+    EXPECT_NEAR(*c.scale(), k, 0.01 * k);
+    EXPECT_NEAR(c.informationKept(0.25), *c.scale() / (*c.scale() + 3), 1e-12);
+    EXPECT_DOUBLE_EQ(c.informationKept(1.0), 1.0);
+  }
+  EXPECT_NEAR(withScale(12.0).informationKept(0.25), 0.8, 0.01);
+}

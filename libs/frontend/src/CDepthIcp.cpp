@@ -201,7 +201,7 @@ CDepthIcp::TNormalEquations CDepthIcp::normalEquations(
 }
 
 std::optional<TRigid> CDepthIcp::gaussNewton(
-    const TMap& ref, const TMap& cur, const TRigid& guess, int* iterations,
+    const TMap& ref, const TMap& cur, const TRigid& guess, int pairStride, int* iterations,
     std::optional<TNormalEquations>* converged) const
 {
   TRigid T = guess;
@@ -212,10 +212,10 @@ std::optional<TRigid> CDepthIcp::gaussNewton(
     // Shrinking gate: wide at first to capture, tight later to reject outliers.
     // The wide-gate iterations only capture: every other cell of every
     // other row of the current frame is enough for them (a quarter of the
-    // work), the tight-gate ones use every cell.
+    // work), the tight-gate ones use every pairStride-th cell.
     const bool capture = it < kCaptureIterations;
     const double gate = capture ? m_params.maxDistance : 0.5 * m_params.maxDistance;
-    const int stride = capture ? 2 : 1;
+    const int stride = capture ? 2 * pairStride : pairStride;
     TNormalEquations eq = normalEquations(ref, cur, T, gate, stride);
     if (eq.pairs * static_cast<std::size_t>(stride * stride) <
         static_cast<std::size_t>(m_params.minPairs))
@@ -250,19 +250,23 @@ std::optional<TRigid> CDepthIcp::gaussNewton(
 }
 
 std::optional<CDepthIcp::TResult> CDepthIcp::align(
-    const TMap& ref, const TMap& cur, const TRigid& guess) const
+    const TMap& ref, const TMap& cur, const TRigid& guess, int pairStride) const
 {
   if (ref.cols != m_cols || cur.cols != m_cols || ref.rows != m_rows || cur.rows != m_rows)
     throw std::invalid_argument("CDepthIcp::align: maps of a different camera");
+  if (pairStride < 1)
+    throw std::invalid_argument("CDepthIcp::align: pairStride must be >= 1");
   int iterations = 0;
   std::optional<TNormalEquations> converged;
   const double tightGate = 0.5 * m_params.maxDistance;
-  const std::optional<TRigid> T = gaussNewton(ref, cur, guess, &iterations, &converged);
+  const std::optional<TRigid> T = gaussNewton(ref, cur, guess, pairStride, &iterations, &converged);
   if (!T)
     return std::nullopt;
   const TNormalEquations eq =
-      converged ? *converged : normalEquations(ref, cur, *T, tightGate, 1);
-  if (eq.pairs < static_cast<std::size_t>(m_params.minPairs))
+      converged ? *converged : normalEquations(ref, cur, *T, tightGate, pairStride);
+  // minPairs counts the pairs all cells would give.
+  if (eq.pairs * static_cast<std::size_t>(pairStride * pairStride) <
+      static_cast<std::size_t>(m_params.minPairs))
     return std::nullopt;
   if (!plausible(*T, guess))
     return std::nullopt;

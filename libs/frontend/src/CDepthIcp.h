@@ -87,8 +87,11 @@ class CDepthIcp
   TMap buildMap(const cv::Mat& depth) const;
 
   /** Aligns cur to ref starting at guess; nullopt when too few pairs or the
-   *  solution jumps implausibly far from the guess. */
-  std::optional<TResult> align(const TMap& ref, const TMap& cur, const TRigid& guess) const;
+   *  solution jumps implausibly far from the guess. pairStride > 1 pairs
+   *  only every pairStride-th cell of every pairStride-th row of cur (1 /
+   *  pairStride^2 of the work; the information claimed falls alike). */
+  std::optional<TResult> align(
+      const TMap& ref, const TMap& cur, const TRigid& guess, int pairStride = 1) const;
 
   const TParams& params() const { return m_params; }
 
@@ -108,7 +111,7 @@ class CDepthIcp
   // tight-gate equations when the steps converged, to stand for T's), and
   // the normal equations each iteration (and the final check) builds.
   std::optional<TRigid> gaussNewton(
-      const TMap& ref, const TMap& cur, const TRigid& guess, int* iterations,
+      const TMap& ref, const TMap& cur, const TRigid& guess, int pairStride, int* iterations,
       std::optional<TNormalEquations>* converged) const;
   TNormalEquations normalEquations(
       const TMap& ref, const TMap& cur, const TRigid& T, double gate, int stride) const;

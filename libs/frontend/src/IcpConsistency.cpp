@@ -17,13 +17,16 @@ CIcpConsistency::CIcpConsistency(std::size_t window, std::size_t minSamples)
     throw std::invalid_argument("CIcpConsistency: need 0 < minSamples <= window");
 }
 
-void CIcpConsistency::add(const Vector6d& d, const Matrix6d& featureCov, const Matrix6d& icpCov)
+void CIcpConsistency::add(
+    const Vector6d& d, const Matrix6d& featureCov, const Matrix6d& icpCov, double pairShare)
 {
+  if (!(pairShare > 0 && pairShare <= 1))
+    throw std::invalid_argument("CIcpConsistency::add: pairShare must be in (0, 1]");
   if (!d.allFinite() || !featureCov.allFinite() || !icpCov.allFinite())
     return;
   const Eigen::LDLT<Matrix6d> icpLdlt(icpCov);
-  const double share = (featureCov * icpLdlt.solve(Matrix6d::Identity())).trace() / 6;
-  m_samples.push_back({d, featureCov, icpCov, std::isfinite(share) ? share : 0.0});
+  const double share = (featureCov * icpLdlt.solve(Matrix6d::Identity())).trace() / 6 / pairShare;
+  m_samples.push_back({d, featureCov, icpCov, std::isfinite(share) ? share : 0.0, pairShare});
   while (m_samples.size() > m_window)
     m_samples.pop_front();
   update();
@@ -34,6 +37,20 @@ void CIcpConsistency::reset()
   m_samples.clear();
   m_scale.reset();
   m_share = 0;
+}
+
+std::optional<double> CIcpConsistency::scaleFor(double pairShare) const
+{
+  if (!m_scale)
+    return std::nullopt;
+  return pairShare * (*m_scale - 1) + 1;
+}
+
+double CIcpConsistency::informationKept(double pairShare) const
+{
+  if (!m_scale || !std::isfinite(*m_scale))
+    return pairShare;
+  return *m_scale / (*m_scale - 1 + 1 / pairShare);
 }
 
 double CIcpConsistency::chi2(
@@ -51,7 +68,7 @@ double CIcpConsistency::medianChi2(double k) const
   std::vector<double> c;
   c.reserve(m_samples.size());
   for (const auto& s : m_samples)
-    c.push_back(chi2(s.d, s.featureCov, s.icpCov, k));
+    c.push_back(chi2(s.d, s.featureCov, s.icpCov, s.pairShare * (k - 1) + 1));
   return upperMedian(std::move(c));
 }
 

@@ -17,6 +17,14 @@
  * covariance is taken as honest (their edges' chi-square against ground
  * truth, README "Honest edge information"); the model is never trusted more
  * than as built (k >= 1).
+ *
+ * ICP may also run on a share q of its pairs (every other cell of every
+ * other row: q = 1/4), claiming Si / q. Its error is then modelled as a
+ * part that fewer pairs do not change (the bias above: (k - 1) Si) plus
+ * its noise, which grows as 1/q (Si / q, as claimed): the covariance of a
+ * run on share q is (k - 1 + 1/q) Si, i.e. its own claim scaled by
+ * kq = q (k - 1) + 1 (scaleFor). k is always that of all the pairs, so runs
+ * on either share measure the same k.
  */
 #pragma once
 
@@ -36,16 +44,26 @@ class CIcpConsistency
   explicit CIcpConsistency(std::size_t window = 30, std::size_t minSamples = 10);
 
   /** One frame's comparison: d = log(T_icp T_features^-1) in the left
-   *  perturbation (fuseLeft's), with each estimate's covariance there. */
-  void add(const Vector6d& d, const Matrix6d& featureCov, const Matrix6d& icpCov);
+   *  perturbation (fuseLeft's), with each estimate's covariance there, ICP
+   *  having run on pairShare of its pairs (0 < pairShare <= 1). */
+  void add(
+      const Vector6d& d, const Matrix6d& featureCov, const Matrix6d& icpCov, double pairShare = 1);
 
   /** The scale k >= 1 of ICP's covariance, or nullopt before minSamples
    *  comparisons. +infinity when no scale up to kMaxScale explains the
    *  disagreement (ICP is then of no use beside the features). */
   std::optional<double> scale() const { return m_scale; }
+  /** The scale of the claimed covariance of an ICP run on pairShare of its
+   *  pairs: pairShare (k - 1) + 1 (k = scale(); nullopt as scale()). */
+  std::optional<double> scaleFor(double pairShare) const;
+  /** The share of a full run's information that an ICP run on pairShare of
+   *  its pairs keeps, under the model above: k / (k - 1 + 1 / pairShare);
+   *  pairShare itself (noise alone) while no finite scale is known. */
+  double informationKept(double pairShare) const;
 
   /** The median over the recent comparisons of ICP's information relative
-   *  to the features', tr(Sf Si^-1) / 6, at scale 1 (divide by the scale). */
+   *  to the features', tr(Sf Si^-1) / 6 for all the pairs (a run on share
+   *  q counts tr(Sf Si^-1) / 6 / q), at scale 1 (divide by the scale). */
   double medianShare() const { return m_share; }
 
   /** d' (Sf + k Si)^-1 d of one comparison (+infinity when singular). */
@@ -67,6 +85,7 @@ class CIcpConsistency
     Vector6d d;
     Matrix6d featureCov, icpCov;
     double share = 0;
+    double pairShare = 1;
   };
   double medianChi2(double k) const;
   /** The scale and the median share of the samples held (after add()). */

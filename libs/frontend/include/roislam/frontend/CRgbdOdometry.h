@@ -196,9 +196,9 @@ class CRgbdOdometry : public mrpt::system::COutputLogger
   void registerWithRecent(const TKeyframe& query, TFrameWork& w) const;
   void refineRollingShutter(TFrameWork& w);
   void refineWithDepth(TFrameWork& w) const;
-  /** icp_fusion = measured: whether this registration runs depth ICP (as
-   *  a probe too, unless ignoreProbe). */
-  bool icpWorthRunning(bool ignoreProbe = false) const;
+  /** icp_fusion = measured: whether this registration runs depth ICP on
+   *  pairShare of its pairs (as a probe too, unless ignoreProbe). */
+  bool icpWorthRunning(double pairShare, bool ignoreProbe = false) const;
   /** Pose from the registration, or from the fallbacks; false when Lost. */
   bool resolvePose(TFrameWork& w);
   bool needsKeyframe(const TFrameWork& w) const;
