@@ -86,6 +86,10 @@ TEST(KfSlamApp, SyntheticLoopRoundTripAndStockApp)
   EXPECT_TRUE(k["odometry_ate_rmse"].is_number());
   EXPECT_TRUE(k["odometry_rpe_rot_rmse_deg"].is_number());
   EXPECT_TRUE(k["landmark_error_m"].is_number());
+  // The rawlog where it ended up, not the staging folder it was written in.
+  ASSERT_TRUE(k["rawlog"].is_string());
+  EXPECT_EQ(fs::path(k["rawlog"].get<std::string>()), fs::path(out) / "kf-slam.rawlog");
+  EXPECT_TRUE(fs::exists(k["rawlog"].get<std::string>()));
 
   // MRPT reads the rawlog back: a pair per frame, our IDs, the odometry.
   mrpt::io::CFileGZInputStream in(out + "/kf-slam.rawlog");

@@ -175,7 +175,10 @@ nlohmann::json CKfSlamSession::finish(const std::optional<io::TTrajectory>& gt)
   writeOutputs(ekf, odometry, run);
 
   nlohmann::json j;
-  j["rawlog"] = rawlogFile();
+  j["rawlog"] =
+      (fs::path(m_setup.finalOutputDir.empty() ? m_setup.outputDir : m_setup.finalOutputDir) /
+       "kf-slam.rawlog")
+          .string();
   j["kf_slam_ini"] = m_kfSlamIni;
   j["front_end"] = frontend::toString(m_odometry.options().mode);
   j["odometry_covariance"] = m_setup.options.odometry_covariance;

@@ -521,7 +521,8 @@ CRoiLandmarksApp::CRoiLandmarksApp(TArguments arguments) : m_args(std::move(argu
 }
 
 kfslam::CKfSlamSession::TSetup CRoiLandmarksApp::kfSlamSetup(
-    const io::CFrameSource& source, const std::string& outputDir) const
+    const io::CFrameSource& source, const std::string& outputDir,
+    const std::string& finalOutputDir) const
 {
   kfslam::CKfSlamSession::TSetup s;
   s.options = m_options.kfSlam;
@@ -529,6 +530,7 @@ kfslam::CKfSlamSession::TSetup CRoiLandmarksApp::kfSlamSetup(
       m_args.iniFile.empty() ? std::string() : fs::path(m_args.iniFile).parent_path().string();
   s.sensorPose = m_options.observations.sensor_pose;
   s.outputDir = outputDir;
+  s.finalOutputDir = finalOutputDir;
   if (m_args.feature)
     s.feature = m_options.features.feature_type;
   s.maxFeatures = m_args.maxFeatures;
@@ -563,10 +565,9 @@ CRoiLandmarksApp::TSummary CRoiLandmarksApp::run()
   progress("roi-landmarks: " + source->sensor().summary());
 
   TAnnotatedRawlog rawlog = openRunRawlog(m_args, outDir, rawlogInFolder);
-  auto kfSlam =
-      m_args.kfSlam
-          ? std::make_unique<kfslam::CKfSlamSession>(kfSlamSetup(*source, outDir.string()))
-          : nullptr;
+  auto kfSlam = m_args.kfSlam ? std::make_unique<kfslam::CKfSlamSession>(
+                                    kfSlamSetup(*source, outDir.string(), folder.target()))
+                              : nullptr;
   CObservationProcessor processor(m_options);
   const TFrameLog log = processFrames(
       *source, m_args.maxFrames, processor, m_options.observations.sensor_pose, patchesDir, rawlog,

@@ -55,7 +55,10 @@ class CKfSlamSession
     std::string iniDir;
     /** sensorLocationOnRobot of the observations ([ObservationProcessor] sensor_pose). */
     mrpt::poses::CPose3D sensorPose;
-    std::string outputDir;
+    /** Where the files are written, and where they end up (the paths
+     *  summary() reports; empty: outputDir). They differ when the app
+     *  writes into a staging folder renamed at the end (COutputFolder). */
+    std::string outputDir, finalOutputDir;
     /** Extractor overrides (roi-landmarks --feature / --max-features). */
     std::optional<features::EFeatureType> feature;
     std::optional<int> maxFeatures;

@@ -130,9 +130,11 @@ class CRoiLandmarksApp
   common::COutputFolder::TOptions outputFolderOptions(
       const std::optional<std::filesystem::path>& rawlogInFolder) const;
   void progress(const std::string& line) const;
-  /** EKF-SLAM's setup for `source`, writing into `outputDir` (the staging folder). */
+  /** EKF-SLAM's setup for `source`, writing into `outputDir` (the staging
+   *  folder) and reporting paths in `finalOutputDir` (the target). */
   kfslam::CKfSlamSession::TSetup kfSlamSetup(
-      const io::CFrameSource& source, const std::string& outputDir) const;
+      const io::CFrameSource& source, const std::string& outputDir,
+      const std::string& finalOutputDir) const;
 
   TArguments m_args;
   TPipelineOptions m_options;
