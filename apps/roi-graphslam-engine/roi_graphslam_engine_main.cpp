@@ -1,9 +1,8 @@
 /* roi-graphslam-engine: MRPT's CGraphSlamEngine<CNetworkOfPoses3DInf> on an
- * RGB-D rawlog, with the command line of MRPT's graphslam-engine and our
- * deciders chosen by name (CKeyframeNRD, CKeyframeERD, CKeyframeGSO by
- * default), headless unless --gui (the live view, as roi-graphslam's); writes the same outputs as
- * roi-graphslam into
- * --output-dir. All the work is in roislam::graphslam::CRoiGraphSlamEngineApp.
+ * RGB-D rawlog, with graphslam-engine's command line and our deciders by
+ * name (CKeyframeNRD, CKeyframeERD, CKeyframeGSO by default), headless
+ * unless --gui (roi-graphslam's live view); writes roi-graphslam's outputs
+ * into --output-dir. The work is in graphslam::CRoiGraphSlamEngineApp.
  */
 #include <roislam/common/ProcessTuning.h>
 #include <roislam/graphslam/CRoiGraphSlamEngineApp.h>
@@ -63,7 +62,8 @@ void addOptions(
       "Exit 0 when the evaluation or snapshot failed (else 3; summary.json says what)");
 }
 
-void listDeciders(const TCliFlags& flags)
+/** --list-*: prints the lists asked for; false when none was. */
+bool listDeciders(const TCliFlags& flags)
 {
   if (flags.listRegs || flags.listNode)
     std::cout << CRoiGraphSlamEngineApp::list("node");
@@ -71,6 +71,7 @@ void listDeciders(const TCliFlags& flags)
     std::cout << CRoiGraphSlamEngineApp::list("edge");
   if (flags.listOpt)
     std::cout << CRoiGraphSlamEngineApp::list("optimizer");
+  return flags.listing();
 }
 }  // namespace
 
@@ -85,26 +86,15 @@ int main(int argc, char** argv)
   addOptions(cli, args, flags, liveView);
   CLI11_PARSE(cli, argc, argv);
 
-  if (flags.listing())
-  {
-    listDeciders(flags);
+  if (listDeciders(flags))
     return 0;
-  }
   if (!flags.gt.empty())
     args.groundTruth = flags.gt;
   args.snapshot = !flags.noSnapshot;
   args.progress = [](const std::string& line) { std::cerr << line << std::endl; };
   const int rc = roislam::graphslam::slamMain(
       "roi-graphslam-engine", args.outputDir, flags.allowPartial,
-      [&]
-      {
-        CRoiGraphSlamEngineApp app(args);  // checks the arguments before a window opens
-        liveView.open(args.iniFile, args.outputDir);
-        app.setObserver(liveView.observer());
-        const auto summary = app.run();
-        liveView.finish(args.outputDir);
-        return summary;
-      });
+      [&] { return liveView.runObserved<CRoiGraphSlamEngineApp>(args); });
   // A window that was open ends the process here, whatever happened.
   return liveView.end(rc);
 }

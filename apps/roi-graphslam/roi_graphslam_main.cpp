@@ -51,14 +51,6 @@ void addOptions(CLI::App& cli, CRoiGraphSlamApp::TArguments& args, TCliFlags& fl
   cli.add_flag("--list-edge-regs", flags.listEdge, "List the edge registration deciders and exit");
 }
 
-void listDeciders(const TCliFlags& flags)
-{
-  if (flags.listNode)
-    std::cout << "Node registration deciders (3-D):\n" << CRoiGraphSlamApp::listRegistrars("node");
-  if (flags.listEdge)
-    std::cout << "Edge registration deciders (3-D):\n" << CRoiGraphSlamApp::listRegistrars("edge");
-}
-
 void applyFlags(const TCliFlags& flags, CRoiGraphSlamApp::TArguments& args)
 {
   if (!flags.mode.empty())
@@ -85,11 +77,12 @@ int main(int argc, char** argv)
   liveView.addFlags(cli);
   CLI11_PARSE(cli, argc, argv);
 
+  if (flags.listNode)
+    std::cout << "Node registration deciders (3-D):\n" << CRoiGraphSlamApp::listRegistrars("node");
+  if (flags.listEdge)
+    std::cout << "Edge registration deciders (3-D):\n" << CRoiGraphSlamApp::listRegistrars("edge");
   if (flags.listNode || flags.listEdge)
-  {
-    listDeciders(flags);
     return 0;
-  }
   applyFlags(flags, args);
   const int rc = roislam::graphslam::slamMain(
       "roi-graphslam", args.outputDir, flags.allowPartial,
@@ -97,12 +90,7 @@ int main(int argc, char** argv)
       {
         if (args.input.empty() || args.outputDir.empty())
           throw std::invalid_argument("--input and --output-dir are required");
-        CRoiGraphSlamApp app(args);  // checks the ini before a window opens
-        liveView.open(args.iniFile, args.outputDir);
-        app.setObserver(liveView.observer());
-        const auto summary = app.run();
-        liveView.finish(args.outputDir);
-        return summary;
+        return liveView.runObserved<CRoiGraphSlamApp>(args);
       });
   // A window that was open ends the process here, whatever happened.
   return liveView.end(rc);

@@ -12,6 +12,7 @@
 #pragma once
 
 #include <roislam/graphslam/CSlamObserver.h>
+#include <roislam/graphslam/TSlamSummary.h>
 
 #include <memory>
 #include <string>
@@ -63,6 +64,21 @@ class CLiveViewSession
    *  screenshot (a failure only warns: the outputs are complete), then the
    *  wait for the user with --gui-keep-open. Does nothing without a window. */
   void finish(const std::string& outputDir);
+
+  /** The run both apps hand to slamMain: the app built from `args` (it
+   *  checks them before a window opens), the window opened, the run
+   *  observed, then finish(). TApp: CRoiGraphSlamApp or
+   *  CRoiGraphSlamEngineApp (TArguments with iniFile and outputDir). */
+  template <class TApp>
+  graphslam::TSlamSummary runObserved(const typename TApp::TArguments& args)
+  {
+    TApp app(args);
+    open(args.iniFile, args.outputDir);
+    app.setObserver(observer());
+    const graphslam::TSlamSummary summary = app.run();
+    finish(args.outputDir);
+    return summary;
+  }
 
   /** main()'s last call: returns `rc` when no window was opened; otherwise
    *  closes it and ends the process with `rc` (exitAfterLiveView, which says
