@@ -13,10 +13,10 @@ namespace
 {
 constexpr uint64_t kIndexSeed = 0x5eed;
 
-cv::Ptr<cv::DescriptorMatcher> makeMatcher(EMatcherType type, bool binary)
+/** FLANN's matcher for the descriptor kind (brute force needs none: exact
+ *  search goes through hammingKnn or cv::BFMatcher directly). */
+cv::Ptr<cv::DescriptorMatcher> makeFlannMatcher(bool binary)
 {
-  if (type == EMatcherType::BRUTE_FORCE)
-    return cv::BFMatcher::create(binary ? cv::NORM_HAMMING : cv::NORM_L2);
   if (binary)
     // Multi-probe LSH as recommended by FLANN for binary descriptors.
     return cv::makePtr<cv::FlannBasedMatcher>(
@@ -32,7 +32,7 @@ CFeatureIndex::CFeatureIndex(
 {
   if (m_descriptors.empty() || m_options.matcher == EMatcherType::BRUTE_FORCE)
     return;
-  m_flann = makeMatcher(m_options.matcher, features::isBinary(m_type));
+  m_flann = makeFlannMatcher(features::isBinary(m_type));
   m_flann->add(std::vector<cv::Mat>{m_descriptors});
   // FLANN's randomised kd-trees and LSH tables draw from the thread's
   // cv::theRNG(), whose state is whatever ran before on that thread: the
@@ -92,13 +92,18 @@ std::vector<cv::DMatch> CFeatureIndex::match(const features::TFeatureSet& query)
   if (!m_options.cross_check)
     return fwd;
 
-  // Mutual check: the train feature's own best match must be the query feature.
+  // Mutual check: the train feature's own best match must be the query
+  // feature. FLANN's reverse search goes through an index over the query
+  // built like this one (seeded: a FlannBasedMatcher trained inside
+  // knnMatch drew from the thread's generator, and the same query could
+  // keep other matches on a second call).
   std::vector<std::vector<cv::DMatch>> back;
-  if (m_options.matcher == EMatcherType::BRUTE_FORCE && features::isBinary(m_type))
+  if (m_options.matcher == EMatcherType::FLANN)
+    back = CFeatureIndex(m_options, query).knn2(m_descriptors);
+  else if (features::isBinary(m_type))
     back = hammingKnn(m_descriptors, query.descriptors, 1);
   else
-    makeMatcher(m_options.matcher, features::isBinary(m_type))
-        ->knnMatch(m_descriptors, query.descriptors, back, 1);
+    cv::BFMatcher(cv::NORM_L2).knnMatch(m_descriptors, query.descriptors, back, 1);
   std::vector<cv::DMatch> out;
   for (const auto& m : fwd)
   {
