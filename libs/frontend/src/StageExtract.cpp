@@ -46,13 +46,9 @@ features::TFeatureSet describeOutside(
                 : 0;
     // The band in the scaled image, rounded outwards (keypoints that land in
     // the region once scaled back are dropped below).
-    const int x0 = static_cast<int>(std::floor(band.x * scale));
-    const int y0 = static_cast<int>(std::floor(band.y * scale));
-    const int x1 = static_cast<int>(std::ceil(band.br().x * scale));
-    const int y1 = static_cast<int>(std::ceil(band.br().y * scale));
     std::size_t px = 0;
     ext = features::concat(
-        ext, extractor.extractIn(img, cv::Rect(x0, y0, x1 - x0, y1 - y0), bandCap, &px));
+        ext, extractor.extractIn(img, detail::scaledOutwards(band, scale), bandCap, &px));
     *pixels += px;
   }
   if (scale >= 1)

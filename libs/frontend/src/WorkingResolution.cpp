@@ -45,6 +45,15 @@ void toImagePixels(features::TFeatureSet& set, int shift)
   }
 }
 
+cv::Rect scaledOutwards(const cv::Rect& r, double scale)
+{
+  const int x0 = static_cast<int>(std::floor(r.x * scale));
+  const int y0 = static_cast<int>(std::floor(r.y * scale));
+  const int x1 = static_cast<int>(std::ceil(r.br().x * scale));
+  const int y1 = static_cast<int>(std::ceil(r.br().y * scale));
+  return cv::Rect(x0, y0, x1 - x0, y1 - y0);
+}
+
 features::TFeatureSet extractIn(
     const features::CFeatureExtractor& e, const TWorkingImage& w, const cv::Rect& region, int cap,
     std::size_t* pixels)
@@ -53,13 +62,8 @@ features::TFeatureSet extractIn(
     return e.extractIn(w.grey, region, cap, pixels);
   // The region at the working level, rounded outwards (pixel centres: the
   // camera's pixel u covers the level's [(u - o) / s - 0.5 / s, ...]).
-  const double s = static_cast<double>(1 << w.shift);
-  const int x0 = static_cast<int>(std::floor(region.x / s));
-  const int y0 = static_cast<int>(std::floor(region.y / s));
-  const int x1 = static_cast<int>(std::ceil(region.br().x / s));
-  const int y1 = static_cast<int>(std::ceil(region.br().y / s));
-  features::TFeatureSet found =
-      e.extractIn(w.grey, cv::Rect(x0, y0, x1 - x0, y1 - y0), cap, pixels);
+  features::TFeatureSet found = e.extractIn(
+      w.grey, scaledOutwards(region, 1.0 / static_cast<double>(1 << w.shift)), cap, pixels);
   toImagePixels(found, w.shift);
   std::vector<int> keep;
   const cv::Rect2f box(region);

@@ -51,6 +51,10 @@ std::vector<cv::Mat> flowPyramidOf(
  *  the camera's pixels. */
 void toImagePixels(features::TFeatureSet& set, int shift);
 
+/** `r` (camera pixels) in an image scaled by `scale`, rounded outwards so
+ *  that it covers every pixel r touches there. */
+cv::Rect scaledOutwards(const cv::Rect& r, double scale);
+
 /** CFeatureExtractor::extractIn at the working resolution: `region` (camera
  *  pixels) taken outwards there; only keypoints inside `region` come back,
  *  in camera pixels. `pixels`: the pixels the detector ran on (at its
