@@ -143,13 +143,15 @@ TEST(RgbdOdometry, MeasuredIcpFusionFollowsHowWellDepthAgreesWithColour)
   // registration once its scale is known (10 comparisons) and the poses are
   // as accurate as the features alone; where it does not, the scale grows,
   // ICP only probes every icp_probe_interval registrations and fuses none
-  // of the well-determined ones, so the poses are those of the features.
+  // of the well-determined ones, so the poses are those of the features,
+  // and the probes pair a quarter of the cells.
   const std::size_t n = 36, warmUp = 12;
   for (const bool consistent : {true, false})
   {
     SCOPED_TRACE(consistent ? "consistent depth" : "biased depth");
     double err[2] = {0, 0};
     std::size_t ran = 0, fused = 0;
+    std::vector<double> shares;  // of the ICP runs' pairs
     for (const std::string fusion : {"weak", "measured"})
     {
       auto o = baseOptions();
@@ -167,6 +169,8 @@ TEST(RgbdOdometry, MeasuredIcpFusionFollowsHowWellDepthAgreesWithColour)
           continue;
         ran += r.times.icp_ms > 0 ? 1 : 0;
         fused += r.icpRefined ? 1 : 0;
+        if (r.icpPairShare > 0)
+          shares.push_back(r.icpPairShare);
       }
     }
     const std::size_t frames = n - warmUp;
@@ -182,6 +186,12 @@ TEST(RgbdOdometry, MeasuredIcpFusionFollowsHowWellDepthAgreesWithColour)
       EXPECT_EQ(fused, 0u);
       EXPECT_LT(err[1], 1.1 * err[0] + 1e-3);
     }
+    // Depth that agrees: ICP's error is noise, every pair counts. Biased
+    // depth: its error is a bias (k >= 12), so the probes pair a quarter of
+    // the cells (IcpConsistency.h's model).
+    ASSERT_FALSE(shares.empty());
+    for (const double q : shares)
+      EXPECT_DOUBLE_EQ(q, consistent ? 1.0 : 0.25);
     std::printf(
         "%s depth: mean error weak %.4f m, measured %.4f m; ICP ran on %zu, fused into %zu of %zu "
         "ordinary frames\n",

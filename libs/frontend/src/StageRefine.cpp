@@ -118,6 +118,7 @@ void CRgbdOdometry::refineWithDepth(TFrameWork& w) const
   I.framesSinceIcp = 0;
   if (!ir)
     return;
+  w.res.icpPairShare = pairShare;
   double scale = 1;
   if (measured)
   {

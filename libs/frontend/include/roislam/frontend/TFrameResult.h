@@ -190,6 +190,10 @@ struct TFrameResult
    *  poorly determined (TOptions::icp_refine_sigma_m), or measured fusion
    *  found ICP worth it (TOptions::icp_fusion). */
   bool icpRefined = false;
+  /** The share of its pairs the frame's refinement ICP used (1, or 0.25
+   *  where measured fusion found ICP's error mostly bias: StageRefine.cpp);
+   *  0 when none ran. */
+  double icpPairShare = 0;
   std::size_t newKeyframeId = 0;
   /** For a new keyframe (except the first): constraints from the recent
    *  keyframes to it. The first entry is always from referenceKeyframe (the
