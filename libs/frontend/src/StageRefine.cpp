@@ -135,9 +135,8 @@ void CRgbdOdometry::refineWithDepth(TFrameWork& w) const
     // the next probe (up to 8x icp_probe_interval); one that finds it worth
     // it resets the interval.
     const auto base = static_cast<std::size_t>(m_options.icp_probe_interval);
-    I.icpProbeInterval = icpWorthRunning(pairShare, true)
-                             ? base
-                             : std::min(2 * std::max(I.icpProbeInterval, base), 8 * base);
+    const bool worth = icpWorthRunning(pairShare, true);
+    I.icpProbeInterval = worth ? base : std::min(2 * std::max(I.icpProbeInterval, base), 8 * base);
     if (!k && !weak)
       return;
     scale = k.value_or(1.0);
@@ -150,7 +149,7 @@ void CRgbdOdometry::refineWithDepth(TFrameWork& w) const
     // scaled share is below icp_min_share (the frame was a probe, it only
     // measured), nor when its own disagreement is beyond what the scale
     // explains (a fast turn, where depth and colour differ most).
-    if (!weak && k && !icpWorthRunning(pairShare, true))
+    if (!weak && k && !worth)
       return;
     if (!weak && featureCov && icpCov &&
         detail::CIcpConsistency::chi2(d, *featureCov, *icpCov, scale) >

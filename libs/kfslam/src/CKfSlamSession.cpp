@@ -99,9 +99,11 @@ CKfSlamSession::CKfSlamSession(const TSetup& setup)
   m_rawlog = std::make_unique<io::CRawlogWriter>(rawlogFile());
 }
 
-std::string CKfSlamSession::rawlogFile() const
+std::string CKfSlamSession::rawlogFile(bool final) const
 {
-  return (fs::path(m_setup.outputDir) / "kf-slam.rawlog").string();
+  const std::string& dir =
+      final && !m_setup.finalOutputDir.empty() ? m_setup.finalOutputDir : m_setup.outputDir;
+  return (fs::path(dir) / "kf-slam.rawlog").string();
 }
 
 void CKfSlamSession::addFrame(
@@ -175,10 +177,7 @@ nlohmann::json CKfSlamSession::finish(const std::optional<io::TTrajectory>& gt)
   writeOutputs(ekf, odometry, run);
 
   nlohmann::json j;
-  j["rawlog"] =
-      (fs::path(m_setup.finalOutputDir.empty() ? m_setup.outputDir : m_setup.finalOutputDir) /
-       "kf-slam.rawlog")
-          .string();
+  j["rawlog"] = rawlogFile(true);
   j["kf_slam_ini"] = m_kfSlamIni;
   j["front_end"] = frontend::toString(m_odometry.options().mode);
   j["odometry_covariance"] = m_setup.options.odometry_covariance;

@@ -93,17 +93,11 @@ std::vector<cv::DMatch> CFeatureIndex::match(const features::TFeatureSet& query)
     return fwd;
 
   // Mutual check: the train feature's own best match must be the query
-  // feature. FLANN's reverse search goes through an index over the query
-  // built like this one (seeded: a FlannBasedMatcher trained inside
+  // feature. The reverse search goes through an index over the query built
+  // like this one (for FLANN: seeded; a FlannBasedMatcher trained inside
   // knnMatch drew from the thread's generator, and the same query could
   // keep other matches on a second call).
-  std::vector<std::vector<cv::DMatch>> back;
-  if (m_options.matcher == EMatcherType::FLANN)
-    back = CFeatureIndex(m_options, query).knn2(m_descriptors);
-  else if (features::isBinary(m_type))
-    back = hammingKnn(m_descriptors, query.descriptors, 1);
-  else
-    cv::BFMatcher(cv::NORM_L2).knnMatch(m_descriptors, query.descriptors, back, 1);
+  const auto back = CFeatureIndex(m_options, query).knn2(m_descriptors);
   std::vector<cv::DMatch> out;
   for (const auto& m : fwd)
   {

@@ -84,8 +84,9 @@ class CKfSlamSession
    *  trajectories against gt when given (sorted by stamp). */
   nlohmann::json finish(const std::optional<io::TTrajectory>& gt);
 
-  /** The files, for the caller's messages. */
-  std::string rawlogFile() const;
+  /** The files, for the caller's messages: the rawlog where it is written,
+   *  or (final) where it ends up (TSetup::finalOutputDir). */
+  std::string rawlogFile(bool final = false) const;
   std::string kfSlamIni() const { return m_kfSlamIni; }
 
  private:
