@@ -116,3 +116,60 @@ TEST(EdgeChi2, ExactEdgesAndMissingGroundTruth)
   EXPECT_EQ(j.at("direction").size(), 6u);
   EXPECT_TRUE(j.at("by_kind").empty());
 }
+
+/* A ground truth with its own white noise (1 mm, 0.1 deg per sample, at
+ * 100 Hz on a smooth path): groundTruthNoise measures it, edges drawn from
+ * their own information read high against it, and with its covariance added
+ * read chi²(6) again. */
+TEST(EdgeChi2, TheGroundTruthsOwnNoiseIsMeasuredAndAccountedFor)
+{
+  std::mt19937 rng(11);
+  std::normal_distribution<double> N(0, 1);
+  const double sigmaM = 0.001, sigmaRad = 0.1 * M_PI / 180;
+  std::vector<CPose3D> path;
+  roislam::io::TTrajectory gt;
+  for (int i = 0; i < 3000; ++i)
+  {
+    const double t = 0.01 * i, a = 0.4 * t;
+    path.emplace_back(std::cos(a), std::sin(a), 0.05 * t, a, 0.2 * std::sin(0.3 * t), 0.1);
+    Eigen::Matrix<double, 6, 1> n;
+    for (int k = 0; k < 6; ++k)
+      n[k] = (k < 3 ? sigmaM : sigmaRad) * N(rng);
+    gt.push_back({t, perturbRight(path.back(), n)});
+  }
+  const auto noise = evaluation::groundTruthNoise(gt);
+  ASSERT_TRUE(noise);
+  EXPECT_NEAR(noise->sigmaM, sigmaM, 0.05 * sigmaM);
+  EXPECT_NEAR(noise->sigmaRad, sigmaRad, 0.05 * sigmaRad);
+  EXPECT_GT(noise->triplets, 2900u);
+
+  // Keyframe edges every 10 samples (10 cm apart), claiming 0.5 mm and
+  // 0.02 deg: far more precise than the ground truth.
+  const double edgeM = 0.0005, edgeRad = 0.02 * M_PI / 180;
+  mrpt::math::CMatrixDouble66 I;
+  I.setZero();
+  for (int k = 0; k < 6; ++k)
+    I(k, k) = 1.0 / std::pow(k < 3 ? edgeM : edgeRad, 2);
+  mrpt::graphs::CNetworkOfPoses3DInf graph;
+  for (std::size_t i = 0; i + 10 < path.size(); i += 10)
+  {
+    Eigen::Matrix<double, 6, 1> z;
+    for (int k = 0; k < 6; ++k)
+      z[k] = (k < 3 ? edgeM : edgeRad) * N(rng);
+    graph.insertEdgeAtEnd(
+        i / 10, i / 10 + 1,
+        mrpt::poses::CPose3DPDFGaussianInf(perturbRight(path[i + 10] - path[i], z), I));
+  }
+  const auto s = evaluation::edgeChi2(
+      graph, [](mrpt::graphs::TNodeID id) { return 0.1 * static_cast<double>(id); }, gt);
+  ASSERT_TRUE(s && s->withGroundTruthNoise);
+  EXPECT_GT(s->mean, 60.0);  // the ground truth's noise read as the edges'
+  EXPECT_NEAR(s->withGroundTruthNoise->mean, 6.0, 0.6);
+  EXPECT_NEAR(s->withGroundTruthNoise->median, 5.35, 0.6);
+  const auto j = evaluation::toJson(*s);
+  EXPECT_NEAR(j.at("ground_truth_noise").at("sigma_deg").get<double>(), 0.1, 0.005);
+  EXPECT_TRUE(j.at("with_ground_truth_noise").is_object());
+
+  // A ground truth too sparse to measure: no second set.
+  EXPECT_FALSE(evaluation::groundTruthNoise({gt.begin(), gt.begin() + 5}));
+}

@@ -4,6 +4,7 @@
 
 #include <Eigen/Dense>
 #include <algorithm>
+#include <cmath>
 #include <numeric>
 
 namespace roislam::evaluation
@@ -38,20 +39,22 @@ nlohmann::json statsJson(const TEdgeChi2Stats& s)
       {"mean", s.mean},
       {"direction", std::vector<double>(s.direction.begin(), s.direction.end())}};
 }
-}  // namespace
 
-TEdgeError edgeError(
-    const mrpt::poses::CPose3D& edge, const mrpt::math::CMatrixDouble66& information,
-    const mrpt::poses::CPose3D& truth)
+/** The residual SPA minimises: pseudo-log of inv(D) (+) (P2 (-) P1), i.e.
+ *  [translation, rotation vector] (MRPT's SO<3>::log gives NaN when rounding
+ *  puts the trace a hair above 3, as it does for exact edges). */
+Eigen::Matrix<double, 6, 1> residual(
+    const mrpt::poses::CPose3D& edge, const mrpt::poses::CPose3D& truth)
 {
-  // The residual SPA minimises: pseudo-log of inv(D) (+) (P2 (-) P1), i.e.
-  // [translation, rotation vector] (MRPT's SO<3>::log gives NaN when rounding
-  // puts the trace a hair above 3, as it does for exact edges).
   const mrpt::poses::CPose3D E = truth - edge;
   Eigen::Matrix<double, 6, 1> e;
   e.head<3>() << E.x(), E.y(), E.z();
   e.tail<3>() = geometry::logSO3(E.getRotationMatrix().asEigen());
-  const Eigen::Matrix<double, 6, 6>& I = information.asEigen();
+  return e;
+}
+
+TEdgeError errorUnder(const Eigen::Matrix<double, 6, 1>& e, const Eigen::Matrix<double, 6, 6>& I)
+{
   TEdgeError out;
   out.chi2 = e.dot(I * e);
   // A singular information (a direction it claims nothing about) gives an
@@ -60,6 +63,80 @@ TEdgeError edgeError(
   for (int k = 0; k < 6; ++k)
     out.direction[k] = S(k, k) > 0 ? e[k] * e[k] / S(k, k) : 0.0;
   return out;
+}
+}  // namespace
+
+TEdgeError edgeError(
+    const mrpt::poses::CPose3D& edge, const mrpt::math::CMatrixDouble66& information,
+    const mrpt::poses::CPose3D& truth)
+{
+  return errorUnder(residual(edge, truth), information.asEigen());
+}
+
+TEdgeError edgeError(
+    const mrpt::poses::CPose3D& edge, const mrpt::math::CMatrixDouble66& information,
+    const mrpt::poses::CPose3D& truth, const Eigen::Matrix<double, 6, 6>& extraCovariance)
+{
+  const Eigen::Matrix<double, 6, 6>& I = information.asEigen();
+  const Eigen::Matrix<double, 6, 6> A =
+      Eigen::Matrix<double, 6, 6>::Identity() + extraCovariance * I;
+  Eigen::Matrix<double, 6, 6> combined = I * A.inverse();
+  combined = 0.5 * (combined + combined.transpose()).eval();
+  return errorUnder(residual(edge, truth), combined);
+}
+
+std::optional<TGroundTruthNoise> groundTruthNoise(const io::TTrajectory& sorted)
+{
+  double sumT = 0, sumR = 0;
+  std::size_t n = 0;
+  for (std::size_t i = 1; i + 1 < sorted.size(); ++i)
+  {
+    const auto &a = sorted[i - 1], &b = sorted[i], &c = sorted[i + 1];
+    const double dt1 = b.timestamp - a.timestamp, dt2 = c.timestamp - b.timestamp;
+    if (!(dt1 > 0 && dt2 > 0) || std::abs(dt1 - dt2) > 0.2 * std::min(dt1, dt2))
+      continue;
+    const Eigen::Vector3d ta(a.pose.x(), a.pose.y(), a.pose.z()),
+        tb(b.pose.x(), b.pose.y(), b.pose.z()), tc(c.pose.x(), c.pose.y(), c.pose.z());
+    const Eigen::Matrix3d Ra = a.pose.getRotationMatrix().asEigen(),
+                          Rb = b.pose.getRotationMatrix().asEigen(),
+                          Rc = c.pose.getRotationMatrix().asEigen();
+    const Eigen::Vector3d w1 = geometry::logSO3(Ra.transpose() * Rb),
+                          w2 = geometry::logSO3(Rb.transpose() * Rc);
+    sumT += (tc - 2 * tb + ta).squaredNorm();
+    sumR += (w2 - w1).squaredNorm();
+    ++n;
+  }
+  if (n < 10)
+    return std::nullopt;
+  // Per axis: a second difference of white noise has variance 6 sigma².
+  TGroundTruthNoise g;
+  g.sigmaM = std::sqrt(sumT / (3.0 * static_cast<double>(n)) / 6.0);
+  g.sigmaRad = std::sqrt(sumR / (3.0 * static_cast<double>(n)) / 6.0);
+  g.triplets = n;
+  return g;
+}
+
+Eigen::Matrix<double, 6, 6> groundTruthCovariance(
+    const mrpt::poses::CPose3D& truth, const TGroundTruthNoise& noise)
+{
+  // Relative pose T = inv(A) B = (R, t), each end perturbed on the right by
+  // its own noise (p, φ). B's noise enters T's error as it is; A's as
+  // (-R^T p + [R^T t]x R^T φ, -R^T φ): its rotation noise swings B's position
+  // by the lever arm t.
+  const double vt = noise.sigmaM * noise.sigmaM, vr = noise.sigmaRad * noise.sigmaRad;
+  const Eigen::Matrix3d R = truth.getRotationMatrix().asEigen();
+  const Eigen::Vector3d u = R.transpose() * Eigen::Vector3d(truth.x(), truth.y(), truth.z());
+  Eigen::Matrix3d ux;
+  ux << 0, -u.z(), u.y(), u.z(), 0, -u.x(), -u.y(), u.x(), 0;
+  Eigen::Matrix<double, 6, 6> J = Eigen::Matrix<double, 6, 6>::Zero();
+  J.topLeftCorner<3, 3>() = -R.transpose();
+  J.topRightCorner<3, 3>() = ux * R.transpose();
+  J.bottomRightCorner<3, 3>() = -R.transpose();
+  Eigen::Matrix<double, 6, 1> v;
+  v << vt, vt, vt, vr, vr, vr;
+  Eigen::Matrix<double, 6, 6> C = J * v.asDiagonal() * J.transpose();
+  C.diagonal() += v;
+  return C;
 }
 
 double edgeChi2(
@@ -76,7 +153,8 @@ std::optional<TEdgeChi2> edgeChi2(
     const std::function<std::string(mrpt::graphs::TNodeID, mrpt::graphs::TNodeID)>& kind)
 {
   TEdgeChi2 s;
-  std::vector<TEdgeError> all;
+  s.groundTruthNoise = groundTruthNoise(groundTruth);
+  std::vector<TEdgeError> all, withNoise;
   std::map<std::string, std::vector<TEdgeError>> kinds;
   for (const auto& [ids, edge] : graph.edges)
   {
@@ -87,7 +165,11 @@ std::optional<TEdgeChi2> edgeChi2(
       ++s.skipped;
       continue;
     }
-    all.push_back(edgeError(edge.mean, edge.cov_inv, *b - *a));
+    const mrpt::poses::CPose3D truth = *b - *a;
+    all.push_back(edgeError(edge.mean, edge.cov_inv, truth));
+    if (s.groundTruthNoise)
+      withNoise.push_back(edgeError(
+          edge.mean, edge.cov_inv, truth, groundTruthCovariance(truth, *s.groundTruthNoise)));
     s.chi2.push_back(all.back().chi2);
     if (kind)
       kinds[kind(ids.first, ids.second)].push_back(all.back());
@@ -97,6 +179,8 @@ std::optional<TEdgeChi2> edgeChi2(
   static_cast<TEdgeChi2Stats&>(s) = statsOf(all);
   for (const auto& [k, errors] : kinds)
     s.byKind[k] = statsOf(errors);
+  if (s.groundTruthNoise)
+    s.withGroundTruthNoise = statsOf(withNoise);
   return s;
 }
 
@@ -109,6 +193,14 @@ nlohmann::json toJson(const TEdgeChi2& s)
   for (const auto& [k, st] : s.byKind)
     kinds[k] = statsJson(st);
   j["by_kind"] = kinds;
+  j["ground_truth_noise"] = nullptr;
+  if (s.groundTruthNoise)
+    j["ground_truth_noise"] = {
+        {"sigma_m", s.groundTruthNoise->sigmaM},
+        {"sigma_deg", s.groundTruthNoise->sigmaRad * 180.0 / M_PI},
+        {"triplets", s.groundTruthNoise->triplets}};
+  j["with_ground_truth_noise"] =
+      s.withGroundTruthNoise ? statsJson(*s.withGroundTruthNoise) : nlohmann::json(nullptr);
   return j;
 }
 }  // namespace roislam::evaluation

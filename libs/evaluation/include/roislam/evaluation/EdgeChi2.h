@@ -9,12 +9,19 @@
  * information is overconfident in; per edge kind (the caller's labels, e.g.
  * odometry / keyframe / loop) which edges. Read by CSlamRunner
  * (summary.json "edge_chi2") and its tests.
+ *
+ * How much of a high chi² is the ground truth's own noise: the per-sample
+ * noise of the ground truth, measured from its second differences
+ * (groundTruthNoise), is added to each edge's covariance for a second set of
+ * statistics (TEdgeChi2::withGroundTruthNoise). Only its white part shows
+ * there; a time offset between the streams or a calibration error does not.
  */
 #pragma once
 
 #include <mrpt/graphs/CNetworkOfPoses.h>
 #include <roislam/io/TumTrajectory.h>
 
+#include <Eigen/Core>
 #include <array>
 #include <cstddef>
 #include <functional>
@@ -35,6 +42,15 @@ struct TEdgeChi2Stats
   std::array<double, 6> direction{};
 };
 
+/** A ground truth's white noise per sample, isotropic in translation and
+ *  in rotation (measured by groundTruthNoise). */
+struct TGroundTruthNoise
+{
+  double sigmaM = 0;         //!< per axis, metres
+  double sigmaRad = 0;       //!< per axis, radians
+  std::size_t triplets = 0;  //!< evenly spaced sample triplets measured
+};
+
 struct TEdgeChi2 : TEdgeChi2Stats
 {
   std::size_t skipped = 0;  //!< edges without (a node's stamp has no ground truth)
@@ -43,6 +59,10 @@ struct TEdgeChi2 : TEdgeChi2Stats
   std::vector<double> chi2;
   /** The same statistics per edge kind (when the caller labels edges). */
   std::map<std::string, TEdgeChi2Stats> byKind;
+  /** The ground truth's measured noise, and the statistics with it added to
+   *  each edge's covariance (nullopt: too few evenly spaced samples). */
+  std::optional<TGroundTruthNoise> groundTruthNoise;
+  std::optional<TEdgeChi2Stats> withGroundTruthNoise;
 };
 
 /** One edge's error against the truth. */
@@ -51,6 +71,22 @@ struct TEdgeError
   double chi2 = 0;
   std::array<double, 6> direction{};  //!< e_i² / Σ_ii
 };
+
+/** The white noise of a ground truth (sorted by stamp), from its second
+ *  differences over evenly spaced sample triplets (gaps within 20 % of each
+ *  other): x[i+1] - 2 x[i] + x[i-1] has variance 6 sigma² for white noise,
+ *  and the motion's own second difference is negligible at mocap rates
+ *  (1 m/s² at 100 Hz: 0.1 mm). Rotation likewise, from the difference of
+ *  consecutive relative rotations' logs. Root mean square, so glitches count
+ *  as they count in an edge's error. nullopt below 10 triplets. */
+std::optional<TGroundTruthNoise> groundTruthNoise(const io::TTrajectory& sorted);
+
+/** The covariance the ground truth's noise adds to a relative pose `truth`
+ *  (both ends' noise, with the rotation noise of the first end moving the
+ *  second's position by the lever arm), in the [x y z rx ry rz] of the
+ *  edge's error. */
+Eigen::Matrix<double, 6, 6> groundTruthCovariance(
+    const mrpt::poses::CPose3D& truth, const TGroundTruthNoise& noise);
 
 /** Chi² of every edge of `graph` against `groundTruth` (sorted; a node's pose
  *  at stamp(node), interpolated, |dt| <= maxDifference). `kind` (may be
@@ -68,12 +104,22 @@ TEdgeError edgeError(
     const mrpt::poses::CPose3D& edge, const mrpt::math::CMatrixDouble66& information,
     const mrpt::poses::CPose3D& truth);
 
+/** The same error under the edge's covariance plus `extraCovariance` (the
+ *  ground truth's): information I (Id + C I)^-1, which is (Σ + C)^-1 and
+ *  stays right where I is singular. */
+TEdgeError edgeError(
+    const mrpt::poses::CPose3D& edge, const mrpt::math::CMatrixDouble66& information,
+    const mrpt::poses::CPose3D& truth, const Eigen::Matrix<double, 6, 6>& extraCovariance);
+
 /** edgeError(...).chi2. */
 double edgeChi2(
     const mrpt::poses::CPose3D& edge, const mrpt::math::CMatrixDouble66& information,
     const mrpt::poses::CPose3D& truth);
 
 /** {"edges", "skipped", "median", "mean", "expected", "direction" [6],
- *  "by_kind": {kind: {"edges", "median", "mean", "direction"}}}. */
+ *  "by_kind": {kind: {"edges", "median", "mean", "direction"}},
+ *  "ground_truth_noise": {"sigma_m", "sigma_deg", "triplets"} or null,
+ *  "with_ground_truth_noise": {"edges", "median", "mean", "direction"} or
+ *  null}. */
 nlohmann::json toJson(const TEdgeChi2& s);
 }  // namespace roislam::evaluation

@@ -22,7 +22,8 @@
  *  - summary.json    counts, speed, memory, ATE/RPE when ground truth is known,
  *                    edge_chi2 (the graph edges' chi² against the ground
  *                    truth's relative poses, per direction and per edge
- *                    kind, evaluation::edgeChi2),
+ *                    kind, and with the ground truth's measured noise
+ *                    added, evaluation::edgeChi2),
  *                    display_frame (CGravityFrame::TResult::toJson()), the
  *                    deciders' names ("engine"); "partial" and "incomplete"
  *                    (TSlamSummary::incomplete)
