@@ -80,7 +80,9 @@ std::vector<TRunRecord> fakeResults()
              {"rpe_rot_rmse_deg", 1.0},
              {"wall_s", 10.0},
              {"fps", 20.0},
-             {"frontend_ms_per_frame", 40.0}}));
+             {"frontend_ms_per_frame", 40.0},
+             {"edge_chi2",
+              {{"median", ate * 1000}, {"with_ground_truth_noise", {{"median", ate * 100}}}}}}));
     v.push_back(
         rec(2, seq, "roi_big", "surf", "fallback",
             {{"ate_rmse", ate / 2},
@@ -147,6 +149,14 @@ TEST(CReportWriter, tablesHaveOurAndDissertationCells)
       md.find("| big ROI + fallback (**ours**) | 0.0750 ± 0.0354 (n=2) |"), std::string::npos);
   // Per-sequence table shows the failure.
   EXPECT_NE(md.find("FAILED (exit code 1: no ROI)"), std::string::npos);
+  // The edges' chi² per sequence: median / with the ground truth's noise; a
+  // run without it reads a dash, a failed one FAILED.
+  EXPECT_NE(md.find("are the graph's edges honest?"), std::string::npos) << md;
+  EXPECT_NE(md.find("| a | traditional | 100.0 / 10.0 |"), std::string::npos) << md;
+  EXPECT_NE(md.find("| b | traditional | 200.0 / 20.0 |"), std::string::npos) << md;
+  EXPECT_NE(
+      md.find("| b | big ROI — strict (dissertation's behaviour) | FAILED |"), std::string::npos)
+      << md;
   // Test 3 row with the dissertation's 50-feature figures.
   EXPECT_NE(
       md.find("| traditional | 0.3000 (n=1) | 0.470 ± 0.363 | 0.0500 (n=1) | 0.074 | 4.000 (n=1) | "

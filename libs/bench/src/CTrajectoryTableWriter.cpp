@@ -4,6 +4,7 @@
 #include <mrpt/system/string_utils.h>
 #include <roislam/bench/CReportWriter.h>
 
+#include <algorithm>
 #include <array>
 
 #include "ReportTables.h"
@@ -94,6 +95,47 @@ void CTrajectoryTableWriter::renderTest2(std::ostream& md, const TRecordList& t2
         return d ? num(*d, 1) : std::string("—");
       });
   renderTest2PerSequence(md, t2);
+  renderTest2EdgeChi2(md, t2);
+}
+
+void CTrajectoryTableWriter::renderTest2EdgeChi2(std::ostream& md, const TRecordList& t2) const
+{
+  const bool any = std::any_of(
+      t2.begin(), t2.end(), [](const TRunRecord* r) { return r->number("edge_chi2.median"); });
+  if (!any)
+    return;
+  const auto feats = featuresOf(t2);
+  md << "### Per sequence: are the graph's edges honest?\n\n"
+        "Median chi² of the graph's edges against the ground truth's relative poses (6 degrees "
+        "of freedom: an honest information reads about 5.35), then the same with the ground "
+        "truth's own noise, measured from its second differences, added to each edge's "
+        "covariance (summary.json edge_chi2; an exact synthetic ground truth reads the same "
+        "twice).\n\n| sequence | version |";
+  for (const auto& f : feats)
+    md << " " << mrpt::system::upperCase(f) << " |";
+  md << "\n|---|---|";
+  for (std::size_t k = 0; k < feats.size(); ++k)
+    md << "---|";
+  md << "\n";
+  const auto keys = versionKeys(t2);
+  for (const auto& s : distinct(t2, [](const TRunRecord& r) { return r.run.sequence; }))
+    for (const auto& vk : keys)
+    {
+      md << "| " << s << " | " << labelOf(t2, vk) << " |";
+      for (const auto& f : feats)
+      {
+        const TRunRecord* rec = findRun(t2, s, vk, f);
+        std::string cell = "—";
+        if (rec && !rec->ok)
+          cell = "FAILED";
+        else if (rec && rec->number("edge_chi2.median"))
+          cell = optNum(rec->number("edge_chi2.median"), 1) + " / " +
+                 optNum(rec->number("edge_chi2.with_ground_truth_noise.median"), 1);
+        md << " " << cell << " |";
+      }
+      md << "\n";
+    }
+  md << "\n";
 }
 
 void CTrajectoryTableWriter::renderTest2PerSequence(std::ostream& md, const TRecordList& t2) const

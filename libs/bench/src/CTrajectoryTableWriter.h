@@ -1,6 +1,7 @@
 /* The trajectory sections of report.md: Test 2 (roi-graphslam, mean ± std
  * of ATE / RPE and durations per version x extractor next to the
- * dissertation's, then per sequence), Test 3 (reduced features) and Test 4
+ * dissertation's, then per sequence, and how honest the graph's edges
+ * are: their chi² against ground truth), Test 3 (reduced features) and Test 4
  * (EKF-SLAM vs odometry alone vs graph SLAM). Called by
  * CReportWriter::render; private to libs/bench.
  */
@@ -41,6 +42,9 @@ class CTrajectoryTableWriter
       std::ostream& md, const TRecordList& t2, const std::string& title,
       const std::string& refLabel, int decimals, const TGetter& get, const TReference& ref) const;
   void renderTest2PerSequence(std::ostream& md, const TRecordList& t2) const;
+  /** Per sequence, the graph edges' chi² against ground truth (median,
+   *  and with the ground truth's own noise; EdgeChi2.h), when any run has it. */
+  void renderTest2EdgeChi2(std::ostream& md, const TRecordList& t2) const;
 
   const CDissertationReference& m_ref;
 };
