@@ -104,58 +104,31 @@ void CTrajectoryTableWriter::renderTest2EdgeChi2(std::ostream& md, const TRecord
       t2.begin(), t2.end(), [](const TRunRecord* r) { return r->number("edge_chi2.median"); });
   if (!any)
     return;
-  const auto feats = featuresOf(t2);
-  md << "### Per sequence: are the graph's edges honest?\n\n"
-        "Median chi² of the graph's edges against the ground truth's relative poses (6 degrees "
-        "of freedom: an honest information reads about 5.35), then the same with the ground "
-        "truth's own noise, measured from its second differences, added to each edge's "
-        "covariance (summary.json edge_chi2; an exact synthetic ground truth reads the same "
-        "twice).\n\n| sequence | version |";
-  for (const auto& f : feats)
-    md << " " << mrpt::system::upperCase(f) << " |";
-  md << "\n|---|---|";
-  for (std::size_t k = 0; k < feats.size(); ++k)
-    md << "---|";
-  md << "\n";
-  const auto keys = versionKeys(t2);
-  for (const auto& s : distinct(t2, [](const TRunRecord& r) { return r.run.sequence; }))
-    for (const auto& vk : keys)
-    {
-      md << "| " << s << " | " << labelOf(t2, vk) << " |";
-      for (const auto& f : feats)
+  renderPerSequenceTable(
+      md, t2,
+      "### Per sequence: are the graph's edges honest?\n\n"
+      "Median chi² of the graph's edges against the ground truth's relative poses (6 degrees "
+      "of freedom: an honest information reads about 5.35), then the same with the ground "
+      "truth's own noise, measured from its second differences, added to each edge's "
+      "covariance (summary.json edge_chi2; an exact synthetic ground truth reads the same "
+      "twice).\n\n",
+      [](const TRunRecord* rec)
       {
-        const TRunRecord* rec = findRun(t2, s, vk, f);
-        std::string cell = "—";
         if (rec && !rec->ok)
-          cell = "FAILED";
-        else if (rec && rec->number("edge_chi2.median"))
-          cell = optNum(rec->number("edge_chi2.median"), 1) + " / " +
+          return std::string("FAILED");
+        if (rec && rec->number("edge_chi2.median"))
+          return optNum(rec->number("edge_chi2.median"), 1) + " / " +
                  optNum(rec->number("edge_chi2.with_ground_truth_noise.median"), 1);
-        md << " " << cell << " |";
-      }
-      md << "\n";
-    }
-  md << "\n";
+        return std::string("—");
+      });
 }
 
 void CTrajectoryTableWriter::renderTest2PerSequence(std::ostream& md, const TRecordList& t2) const
 {
-  const auto feats = featuresOf(t2);
-  md << "### Per sequence: ATE RMSE (m) / duration (s)\n\n| sequence | version |";
-  for (const auto& f : feats)
-    md << " " << mrpt::system::upperCase(f) << " |";
-  md << "\n|---|---|";
-  for (std::size_t k = 0; k < feats.size(); ++k)
-    md << "---|";
-  md << "\n";
-  const auto keys = versionKeys(t2);
-  for (const auto& s : distinct(t2, [](const TRunRecord& r) { return r.run.sequence; }))
-    for (const auto& vk : keys)
-    {
-      md << "| " << s << " | " << labelOf(t2, vk) << " |";
-      for (const auto& f : feats)
+  renderPerSequenceTable(
+      md, t2, "### Per sequence: ATE RMSE (m) / duration (s)\n\n",
+      [](const TRunRecord* rec)
       {
-        const TRunRecord* rec = findRun(t2, s, vk, f);
         std::string cell = "—";
         if (rec && !rec->ok)
           cell = "FAILED (" + rec->failureReason + ")";
@@ -166,8 +139,29 @@ void CTrajectoryTableWriter::renderTest2PerSequence(std::ostream& md, const TRec
           if (const auto fb = rec->number("fallback_frames"); fb && *fb > 0)
             cell += " (fallback " + num(*fb, 0) + " frames)";
         }
-        md << " " << oneLine(cell) << " |";
-      }
+        return oneLine(cell);
+      });
+}
+
+void CTrajectoryTableWriter::renderPerSequenceTable(
+    std::ostream& md, const TRecordList& t2, const std::string& heading,
+    const std::function<std::string(const TRunRecord*)>& cellOf) const
+{
+  const auto feats = featuresOf(t2);
+  md << heading << "| sequence | version |";
+  for (const auto& f : feats)
+    md << " " << mrpt::system::upperCase(f) << " |";
+  md << "\n|---|---|";
+  for (std::size_t k = 0; k < feats.size(); ++k)
+    md << "---|";
+  md << "\n";
+  const auto keys = versionKeys(t2);
+  for (const auto& s : distinct(t2, [](const TRunRecord& r) { return r.run.sequence; }))
+    for (const auto& vk : keys)
+    {
+      md << "| " << s << " | " << labelOf(t2, vk) << " |";
+      for (const auto& f : feats)
+        md << " " << cellOf(findRun(t2, s, vk, f)) << " |";
       md << "\n";
     }
   md << "\n";

@@ -45,6 +45,11 @@ class CTrajectoryTableWriter
   /** Per sequence, the graph edges' chi² against ground truth (median,
    *  and with the ground truth's own noise; EdgeChi2.h), when any run has it. */
   void renderTest2EdgeChi2(std::ostream& md, const TRecordList& t2) const;
+  /** A table under `heading`: a row per sequence and version, a column per
+   *  extractor, each cell cellOf(the run, or null when there is none). */
+  void renderPerSequenceTable(
+      std::ostream& md, const TRecordList& t2, const std::string& heading,
+      const std::function<std::string(const TRunRecord*)>& cellOf) const;
 
   const CDissertationReference& m_ref;
 };

@@ -1,5 +1,6 @@
 #include "roislam/evaluation/EdgeChi2.h"
 
+#include <mrpt/math/geometry.h>
 #include <roislam/geometry/Rotation.h>
 
 #include <Eigen/Dense>
@@ -126,11 +127,9 @@ Eigen::Matrix<double, 6, 6> groundTruthCovariance(
   const double vt = noise.sigmaM * noise.sigmaM, vr = noise.sigmaRad * noise.sigmaRad;
   const Eigen::Matrix3d R = truth.getRotationMatrix().asEigen();
   const Eigen::Vector3d u = R.transpose() * Eigen::Vector3d(truth.x(), truth.y(), truth.z());
-  Eigen::Matrix3d ux;
-  ux << 0, -u.z(), u.y(), u.z(), 0, -u.x(), -u.y(), u.x(), 0;
   Eigen::Matrix<double, 6, 6> J = Eigen::Matrix<double, 6, 6>::Zero();
   J.topLeftCorner<3, 3>() = -R.transpose();
-  J.topRightCorner<3, 3>() = ux * R.transpose();
+  J.topRightCorner<3, 3>() = mrpt::math::skew_symmetric3(u).asEigen() * R.transpose();
   J.bottomRightCorner<3, 3>() = -R.transpose();
   Eigen::Matrix<double, 6, 1> v;
   v << vt, vt, vt, vr, vr, vr;
