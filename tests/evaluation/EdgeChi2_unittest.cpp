@@ -173,3 +173,70 @@ TEST(EdgeChi2, TheGroundTruthsOwnNoiseIsMeasuredAndAccountedFor)
   // A ground truth too sparse to measure: no second set.
   EXPECT_FALSE(evaluation::groundTruthNoise({gt.begin(), gt.begin() + 5}));
 }
+
+/* Frames stamped with 2 ms of white jitter (a driver's arrival times) on a
+ * camera turning at 1 rad/s and moving at 0.5 m/s, against an exact ground
+ * truth: stampJitter measures the jitter from the stamps alone, edges
+ * between the true exposure times read high against the ground truth at the
+ * stamps, and chi²(6) again with the jitter's term; a dropped frame breaks
+ * no measurement. */
+TEST(EdgeChi2, TheFramesStampJitterIsMeasuredAndAccountedFor)
+{
+  std::mt19937 rng(5);
+  std::normal_distribution<double> N(0, 1);
+  const auto poseAt = [](double t)
+  { return CPose3D(0.5 * t, 0.1 * std::sin(t), 0.05 * t, t, 0.3 * std::sin(2 * t), 0.1 * t); };
+  roislam::io::TTrajectory gt;
+  for (int i = 0; i < 4000; ++i)
+    gt.push_back({0.005 * i, poseAt(0.005 * i)});
+
+  const double jitter = 0.002;
+  std::vector<double> exposure, stamps;
+  for (int i = 0; i < 500; ++i)
+  {
+    if (i % 50 == 25)
+      continue;  // a dropped frame
+    exposure.push_back(1.0 + i / 30.0);
+    stamps.push_back(exposure.back() + jitter * N(rng));
+  }
+  const auto measured = evaluation::stampJitter(stamps);
+  ASSERT_TRUE(measured);
+  EXPECT_NEAR(measured->sigmaS, jitter, 0.1 * jitter);
+  EXPECT_FALSE(evaluation::stampJitter({stamps.begin(), stamps.begin() + 8}));
+
+  // Consecutive frames' edges, claiming 1 mm and 0.05 deg, measured between
+  // the true exposure times.
+  const double edgeM = 0.001, edgeRad = 0.05 * M_PI / 180;
+  mrpt::math::CMatrixDouble66 I;
+  I.setZero();
+  for (int k = 0; k < 6; ++k)
+    I(k, k) = 1.0 / std::pow(k < 3 ? edgeM : edgeRad, 2);
+  mrpt::graphs::CNetworkOfPoses3DInf graph;
+  for (std::size_t i = 0; i + 1 < exposure.size(); ++i)
+  {
+    Eigen::Matrix<double, 6, 1> z;
+    for (int k = 0; k < 6; ++k)
+      z[k] = (k < 3 ? edgeM : edgeRad) * N(rng);
+    graph.insertEdgeAtEnd(
+        i, i + 1,
+        mrpt::poses::CPose3DPDFGaussianInf(
+            perturbRight(poseAt(exposure[i + 1]) - poseAt(exposure[i]), z), I));
+  }
+  const auto stampOf = [&stamps](mrpt::graphs::TNodeID id) { return stamps[id]; };
+  const auto without = evaluation::edgeChi2(graph, stampOf, gt);
+  const auto with = evaluation::edgeChi2(graph, stampOf, gt, 0.02, {}, stamps);
+  ASSERT_TRUE(without && without->withGroundTruthNoise && with && with->withGroundTruthNoise);
+  EXPECT_GT(without->withGroundTruthNoise->median, 10.0);  // the jitter read as the edges'
+  EXPECT_NEAR(with->withGroundTruthNoise->mean, 6.0, 0.8);
+  EXPECT_NEAR(with->withGroundTruthNoise->median, 5.35, 0.8);
+  EXPECT_NEAR(with->groundTruthNoise->stampJitterS, jitter, 0.1 * jitter);
+  EXPECT_NEAR(
+      evaluation::toJson(*with).at("ground_truth_noise").at("stamp_jitter_ms").get<double>(), 2.0,
+      0.2);
+
+  // The twist the jitter moves a pose by: 1 rad/s about z at t = 0 (yaw).
+  const auto twist = evaluation::groundTruthTwist(gt, 5.0);
+  ASSERT_TRUE(twist);
+  EXPECT_GT(twist->tail<3>().norm(), 0.9);
+  EXPECT_FALSE(evaluation::groundTruthTwist(gt, 100.0));
+}

@@ -109,9 +109,9 @@ void CTrajectoryTableWriter::renderTest2EdgeChi2(std::ostream& md, const TRecord
       "### Per sequence: are the graph's edges honest?\n\n"
       "Median chi² of the graph's edges against the ground truth's relative poses (6 degrees "
       "of freedom: an honest information reads about 5.35), then the same with the ground "
-      "truth's own noise, measured from its second differences, added to each edge's "
-      "covariance (summary.json edge_chi2; an exact synthetic ground truth reads the same "
-      "twice).\n\n",
+      "truth's own noise, measured from its second differences, and the frames' stamp jitter "
+      "(the ground truth is read at the stamps) added to each edge's covariance (summary.json "
+      "edge_chi2; an exact synthetic ground truth with exact stamps reads the same twice).\n\n",
       [](const TRunRecord* rec)
       {
         if (rec && !rec->ok)

@@ -6,6 +6,7 @@
 #include <roislam/graphslam/CSlamRunner.h>
 #include <sys/resource.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <iomanip>
 #include <set>
@@ -209,6 +210,11 @@ std::optional<evaluation::TEdgeChi2> CSlamRunner::edgeChi2(
   std::set<std::pair<std::size_t, std::size_t>> loops;
   for (const auto& lc : pipeline.context().loopClosures())
     loops.insert({lc.fromKeyframe, lc.toKeyframe});
+  // Every frame's stamp: their jitter is measured over all of them.
+  std::vector<double> stamps;
+  for (const auto& r : pipeline.records())
+    stamps.push_back(r.result.timestamp);
+  std::sort(stamps.begin(), stamps.end());
   return evaluation::edgeChi2(
       pipeline.graph(),
       [&keyframes](mrpt::graphs::TNodeID id)
@@ -219,7 +225,8 @@ std::optional<evaluation::TEdgeChi2> CSlamRunner::edgeChi2(
         if (loops.count({from, to}))
           return "loop";
         return to == from + 1 ? "odometry" : "keyframe";
-      });
+      },
+      stamps);
 }
 
 TSlamSummary CSlamRunner::summarize(

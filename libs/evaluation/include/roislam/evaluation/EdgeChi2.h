@@ -15,6 +15,12 @@
  * (groundTruthNoise), is added to each edge's covariance for a second set of
  * statistics (TEdgeChi2::withGroundTruthNoise). Only its white part shows
  * there; a time offset between the streams or a calibration error does not.
+ * The frames' stamps carry their own jitter too (a driver's arrival time, not
+ * the exposure's), and the ground truth is read at those stamps: a stamp dt
+ * off reads the camera where it was dt away, its velocity times dt. That
+ * jitter is measured from the frames' stamps the same way (stampJitter) and
+ * added with each end's velocity from the ground truth. A steady offset
+ * between the clocks does not show there either.
  */
 #pragma once
 
@@ -49,6 +55,16 @@ struct TGroundTruthNoise
   double sigmaM = 0;         //!< per axis, metres
   double sigmaRad = 0;       //!< per axis, radians
   std::size_t triplets = 0;  //!< evenly spaced sample triplets measured
+  /** The frames' stamp jitter (stampJitter), s; 0: not measured. */
+  double stampJitterS = 0;
+  std::size_t stampTriplets = 0;
+};
+
+/** A series of stamps' white jitter about a steady clock. */
+struct TStampJitter
+{
+  double sigmaS = 0;
+  std::size_t triplets = 0;
 };
 
 struct TEdgeChi2 : TEdgeChi2Stats
@@ -81,6 +97,18 @@ struct TEdgeError
  *  as they count in an edge's error. nullopt below 10 triplets. */
 std::optional<TGroundTruthNoise> groundTruthNoise(const io::TTrajectory& sorted);
 
+/** The white jitter of stamps (sorted) about a steady clock, from second
+ *  differences over consecutive intervals each within 50 % of the median
+ *  interval (a dropped frame breaks a triplet): t[i+1] - 2 t[i] + t[i-1] has
+ *  variance 6 sigma². Root mean square. nullopt below 10 triplets. */
+std::optional<TStampJitter> stampJitter(const std::vector<double>& sorted);
+
+/** A ground-truth pose's velocity at `stamp`: the body-frame twist
+ *  [v; omega] (right perturbation per second) over +-h, nullopt where the
+ *  ground truth has no pose within maxDifference of stamp +- h. */
+std::optional<Eigen::Matrix<double, 6, 1>> groundTruthTwist(
+    const io::TTrajectory& sorted, double stamp, double h = 0.02, double maxDifference = 0.02);
+
 /** The covariance the ground truth's noise adds to a relative pose `truth`
  *  (both ends' noise, with the rotation noise of the first end moving the
  *  second's position by the lever arm), in the [x y z rx ry rz] of the
@@ -88,15 +116,24 @@ std::optional<TGroundTruthNoise> groundTruthNoise(const io::TTrajectory& sorted)
 Eigen::Matrix<double, 6, 6> groundTruthCovariance(
     const mrpt::poses::CPose3D& truth, const TGroundTruthNoise& noise);
 
+/** The same plus the frames' stamp jitter (noise.stampJitterS): each end read
+ *  at a stamp off by the jitter, moved by its twist (groundTruthTwist) times
+ *  it, the first end's motion entering as its noise does. */
+Eigen::Matrix<double, 6, 6> groundTruthCovariance(
+    const mrpt::poses::CPose3D& truth, const TGroundTruthNoise& noise,
+    const Eigen::Matrix<double, 6, 1>& twistFrom, const Eigen::Matrix<double, 6, 1>& twistTo);
+
 /** Chi² of every edge of `graph` against `groundTruth` (sorted; a node's pose
  *  at stamp(node), interpolated, |dt| <= maxDifference). `kind` (may be
- *  empty) labels each edge for TEdgeChi2::byKind. nullopt when no edge could
- *  be evaluated. */
+ *  empty) labels each edge for TEdgeChi2::byKind. `frameStamps` (sorted, may
+ *  be empty): every frame's stamp, whose jitter joins the ground truth's
+ *  noise. nullopt when no edge could be evaluated. */
 std::optional<TEdgeChi2> edgeChi2(
     const mrpt::graphs::CNetworkOfPoses3DInf& graph,
     const std::function<double(mrpt::graphs::TNodeID)>& stamp, const io::TTrajectory& groundTruth,
     double maxDifference = 0.02,
-    const std::function<std::string(mrpt::graphs::TNodeID, mrpt::graphs::TNodeID)>& kind = {});
+    const std::function<std::string(mrpt::graphs::TNodeID, mrpt::graphs::TNodeID)>& kind = {},
+    const std::vector<double>& frameStamps = {});
 
 /** The SE(3) pseudo-log error of one edge (mean, information) against the
  *  true relative pose. */
@@ -118,7 +155,8 @@ double edgeChi2(
 
 /** {"edges", "skipped", "median", "mean", "expected", "direction" [6],
  *  "by_kind": {kind: {"edges", "median", "mean", "direction"}},
- *  "ground_truth_noise": {"sigma_m", "sigma_deg", "triplets"} or null,
+ *  "ground_truth_noise": {"sigma_m", "sigma_deg", "triplets",
+ *  "stamp_jitter_ms", "stamp_triplets"} or null,
  *  "with_ground_truth_noise": {"edges", "median", "mean", "direction"} or
  *  null}. */
 nlohmann::json toJson(const TEdgeChi2& s);
