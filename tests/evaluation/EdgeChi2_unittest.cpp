@@ -203,6 +203,7 @@ TEST(EdgeChi2, TheFramesStampJitterIsMeasuredAndAccountedFor)
   ASSERT_TRUE(measured);
   EXPECT_NEAR(measured->sigmaS, jitter, 0.1 * jitter);
   EXPECT_FALSE(evaluation::stampJitter({stamps.begin(), stamps.begin() + 8}));
+  EXPECT_FALSE(evaluation::stampJitter(std::vector<double>(50, 1.0)));  // one stamp for all
 
   // Consecutive frames' edges, claiming 1 mm and 0.05 deg, measured between
   // the true exposure times.

@@ -65,6 +65,7 @@ TEdgeError errorUnder(const Eigen::Matrix<double, 6, 1>& e, const Eigen::Matrix<
     out.direction[k] = S(k, k) > 0 ? e[k] * e[k] / S(k, k) : 0.0;
   return out;
 }
+
 /** How a right perturbation (p, phi) of the first end of the relative pose
  *  T = inv(A) B = (R, t) enters T's error: (-R^T p + [R^T t]x R^T phi,
  *  -R^T phi); its rotation swings B's position by the lever arm t. (B's own
@@ -165,6 +166,8 @@ std::optional<TStampJitter> stampJitter(const std::vector<double>& sorted)
   auto mid = intervals.begin() + static_cast<std::ptrdiff_t>(intervals.size() / 2);
   std::nth_element(intervals.begin(), mid, intervals.end());
   const double period = *mid;
+  if (!(period > 0))
+    return std::nullopt;
   // A dropped frame doubles an interval; jitter moves it by a few percent.
   // The gate is wide so that it does not cut the jitter's own tails (a gate
   // at 20 % read 2 ms of jitter at 30 Hz as 1.3 ms).
@@ -174,7 +177,7 @@ std::optional<TStampJitter> stampJitter(const std::vector<double>& sorted)
   for (std::size_t i = 1; i + 1 < sorted.size(); ++i)
   {
     const double dt1 = sorted[i] - sorted[i - 1], dt2 = sorted[i + 1] - sorted[i];
-    if (!(period > 0) || !regular(dt1) || !regular(dt2))
+    if (!regular(dt1) || !regular(dt2))
       continue;
     sum += (dt2 - dt1) * (dt2 - dt1);
     ++n;
