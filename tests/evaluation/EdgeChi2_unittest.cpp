@@ -25,6 +25,29 @@ CPose3D perturbRight(const CPose3D& truth, const Eigen::Matrix<double, 6, 1>& e)
   return truth + E;
 }
 
+/** An edge claiming sigmaM per translation axis and sigmaRad per rotation
+ *  axis, uncorrelated: its information, and errors drawn from it. */
+struct TAxisSigmas
+{
+  double sigmaM = 0, sigmaRad = 0;
+  double sigma(int k) const { return k < 3 ? sigmaM : sigmaRad; }
+  mrpt::math::CMatrixDouble66 information() const
+  {
+    mrpt::math::CMatrixDouble66 I;
+    I.setZero();
+    for (int k = 0; k < 6; ++k)
+      I(k, k) = 1.0 / std::pow(sigma(k), 2);
+    return I;
+  }
+  Eigen::Matrix<double, 6, 1> draw(std::mt19937& rng, std::normal_distribution<double>& N) const
+  {
+    Eigen::Matrix<double, 6, 1> z;
+    for (int k = 0; k < 6; ++k)
+      z[k] = sigma(k) * N(rng);
+    return z;
+  }
+};
+
 struct TGraphWithTruth
 {
   mrpt::graphs::CNetworkOfPoses3DInf graph;
@@ -126,16 +149,14 @@ TEST(EdgeChi2, TheGroundTruthsOwnNoiseIsMeasuredAndAccountedFor)
   std::mt19937 rng(11);
   std::normal_distribution<double> N(0, 1);
   const double sigmaM = 0.001, sigmaRad = 0.1 * M_PI / 180;
+  const TAxisSigmas gtNoise{sigmaM, sigmaRad};
   std::vector<CPose3D> path;
   roislam::io::TTrajectory gt;
   for (int i = 0; i < 3000; ++i)
   {
     const double t = 0.01 * i, a = 0.4 * t;
     path.emplace_back(std::cos(a), std::sin(a), 0.05 * t, a, 0.2 * std::sin(0.3 * t), 0.1);
-    Eigen::Matrix<double, 6, 1> n;
-    for (int k = 0; k < 6; ++k)
-      n[k] = (k < 3 ? sigmaM : sigmaRad) * N(rng);
-    gt.push_back({t, perturbRight(path.back(), n)});
+    gt.push_back({t, perturbRight(path.back(), gtNoise.draw(rng, N))});
   }
   const auto noise = evaluation::groundTruthNoise(gt);
   ASSERT_TRUE(noise);
@@ -145,17 +166,12 @@ TEST(EdgeChi2, TheGroundTruthsOwnNoiseIsMeasuredAndAccountedFor)
 
   // Keyframe edges every 10 samples (10 cm apart), claiming 0.5 mm and
   // 0.02 deg: far more precise than the ground truth.
-  const double edgeM = 0.0005, edgeRad = 0.02 * M_PI / 180;
-  mrpt::math::CMatrixDouble66 I;
-  I.setZero();
-  for (int k = 0; k < 6; ++k)
-    I(k, k) = 1.0 / std::pow(k < 3 ? edgeM : edgeRad, 2);
+  const TAxisSigmas claim{0.0005, 0.02 * M_PI / 180};
+  const mrpt::math::CMatrixDouble66 I = claim.information();
   mrpt::graphs::CNetworkOfPoses3DInf graph;
   for (std::size_t i = 0; i + 10 < path.size(); i += 10)
   {
-    Eigen::Matrix<double, 6, 1> z;
-    for (int k = 0; k < 6; ++k)
-      z[k] = (k < 3 ? edgeM : edgeRad) * N(rng);
+    const Eigen::Matrix<double, 6, 1> z = claim.draw(rng, N);
     graph.insertEdgeAtEnd(
         i / 10, i / 10 + 1,
         mrpt::poses::CPose3DPDFGaussianInf(perturbRight(path[i + 10] - path[i], z), I));
@@ -207,17 +223,12 @@ TEST(EdgeChi2, TheFramesStampJitterIsMeasuredAndAccountedFor)
 
   // Consecutive frames' edges, claiming 1 mm and 0.05 deg, measured between
   // the true exposure times.
-  const double edgeM = 0.001, edgeRad = 0.05 * M_PI / 180;
-  mrpt::math::CMatrixDouble66 I;
-  I.setZero();
-  for (int k = 0; k < 6; ++k)
-    I(k, k) = 1.0 / std::pow(k < 3 ? edgeM : edgeRad, 2);
+  const TAxisSigmas claim{0.001, 0.05 * M_PI / 180};
+  const mrpt::math::CMatrixDouble66 I = claim.information();
   mrpt::graphs::CNetworkOfPoses3DInf graph;
   for (std::size_t i = 0; i + 1 < exposure.size(); ++i)
   {
-    Eigen::Matrix<double, 6, 1> z;
-    for (int k = 0; k < 6; ++k)
-      z[k] = (k < 3 ? edgeM : edgeRad) * N(rng);
+    const Eigen::Matrix<double, 6, 1> z = claim.draw(rng, N);
     graph.insertEdgeAtEnd(
         i, i + 1,
         mrpt::poses::CPose3DPDFGaussianInf(

@@ -238,10 +238,14 @@ std::optional<TEdgeChi2> edgeChi2(
     all.push_back(edgeError(edge.mean, edge.cov_inv, truth));
     if (s.groundTruthNoise)
     {
-      // Without a velocity at either end (the ground truth's edge), the
-      // jitter's term is left out for this edge.
-      const auto va = groundTruthTwist(groundTruth, stamp(ids.first));
-      const auto vb = groundTruthTwist(groundTruth, stamp(ids.second));
+      // Without a measured jitter, or a velocity at either end (the ground
+      // truth's edge), the jitter's term is left out for this edge.
+      std::optional<Eigen::Matrix<double, 6, 1>> va, vb;
+      if (s.groundTruthNoise->stampJitterS > 0)
+      {
+        va = groundTruthTwist(groundTruth, stamp(ids.first));
+        vb = groundTruthTwist(groundTruth, stamp(ids.second));
+      }
       const Eigen::Matrix<double, 6, 6> C =
           va && vb ? groundTruthCovariance(truth, *s.groundTruthNoise, *va, *vb)
                    : groundTruthCovariance(truth, *s.groundTruthNoise);
