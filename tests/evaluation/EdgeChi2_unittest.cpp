@@ -116,6 +116,18 @@ TEST(EdgeChi2, EdgesDrawnFromTheirInformationReadChi2Of6)
   const auto over = evaluation::edgeChi2(noisyChain(4000, 10.0).graph, stampOf, g.gt);
   ASSERT_TRUE(over);
   EXPECT_NEAR(over->mean, 60.0, 3.0);
+  // The likelihood: 0.5 (chi² + log det Σ) + 3 log 2π per edge, Σ = L L^T
+  // (lower triangular: log det Σ = 2 sum log L_ii); too tight and too wide
+  // both read higher.
+  double logDet = 0;
+  for (int r = 0; r < 6; ++r)
+    logDet += 2 * std::log(r < 3 ? 0.004 : 0.002);
+  EXPECT_NEAR(s->nll, 0.5 * (6.0 + logDet) + 3 * std::log(2 * M_PI), 0.15);
+  const auto wide = evaluation::edgeChi2(noisyChain(4000, 0.25).graph, stampOf, g.gt);
+  ASSERT_TRUE(wide);
+  EXPECT_GT(over->nll, s->nll + 1.0);
+  EXPECT_GT(wide->nll, s->nll + 1.0);
+  EXPECT_TRUE(evaluation::toJson(*s).at("nll").is_number());
 }
 
 TEST(EdgeChi2, ExactEdgesAndMissingGroundTruth)

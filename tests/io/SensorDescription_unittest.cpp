@@ -33,6 +33,7 @@ TSensorDescription unusual()
   d.rolling_shutter_ms = 12.5;
   d.rolling_shutter_bottom_to_top = true;
   d.frame_rate = 60;
+  d.common_pixel_sigma_px = 0.35;
   auto& n = d.depth_noise;
   n.model = "disparity";
   n.a = 0.002;
@@ -78,6 +79,7 @@ void expectSame(const TSensorDescription& a, const TSensorDescription& b)
   EXPECT_DOUBLE_EQ(a.rolling_shutter_ms, b.rolling_shutter_ms);
   EXPECT_EQ(a.rolling_shutter_bottom_to_top, b.rolling_shutter_bottom_to_top);
   EXPECT_DOUBLE_EQ(a.frame_rate, b.frame_rate);
+  EXPECT_DOUBLE_EQ(a.common_pixel_sigma_px, b.common_pixel_sigma_px);
   const auto &n = a.depth_noise, &m = b.depth_noise;
   EXPECT_EQ(n.model, m.model);
   EXPECT_DOUBLE_EQ(n.a, m.a);
@@ -103,9 +105,9 @@ TEST(SensorDescription, EveryKeyRoundTrips)
   // Every documented key is written.
   for (const char* key :
        {"name", "depth_registered", "depth_pose_in_colour", "depth_scale", "rolling_shutter_ms",
-        "rolling_shutter_direction", "frame_rate", "depth_noise_model", "depth_noise_a",
-        "depth_noise_b", "depth_noise_z0", "disparity_bf", "disparity_steps_per_px",
-        "disparity_noise_steps", "lateral_sigma_px"})
+        "rolling_shutter_direction", "frame_rate", "common_pixel_sigma_px", "depth_noise_model",
+        "depth_noise_a", "depth_noise_b", "depth_noise_z0", "disparity_bf",
+        "disparity_steps_per_px", "disparity_noise_steps", "lateral_sigma_px"})
     EXPECT_NE(ini.find(std::string(key) + " "), std::string::npos) << key;
   EXPECT_NE(ini.find("[DEPTH_CAMERA_PARAMS]"), std::string::npos);
   const TSensorDescription back = reload(ini);
@@ -127,6 +129,8 @@ TEST(SensorDescription, PresetsRoundTripAndCarryTheReadout)
     EXPECT_DOUBLE_EQ(p.frame_rate, 30);
     EXPECT_DOUBLE_EQ(p.rolling_shutter_ms, std::string(name) == "ros" ? 0 : 25) << name;
     EXPECT_FALSE(p.rolling_shutter_bottom_to_top);
+    // Measured on fr1 only (CameraPresets.cpp).
+    EXPECT_DOUBLE_EQ(p.common_pixel_sigma_px, std::string(name) == "fr1" ? 0.3 : 0) << name;
   }
   EXPECT_THROW(roislam::io::sensorPreset("fr4"), std::invalid_argument);
 }
@@ -145,6 +149,8 @@ TEST(SensorDescription, BadValuesNameSectionAndKey)
       {"rolling_shutter_ms", "20"},  // longer than a 60 Hz frame
       {"rolling_shutter_direction", "sideways"},
       {"frame_rate", "0"},
+      {"common_pixel_sigma_px", "-0.1"},
+      {"common_pixel_sigma_px", "nan"},
       {"depth_noise_model", "gaussian"},
       {"depth_noise_a", "-0.1"},
       {"depth_noise_b", "-1"},

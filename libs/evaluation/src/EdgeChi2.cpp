@@ -6,6 +6,7 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numeric>
 
 namespace roislam::evaluation
@@ -22,6 +23,8 @@ TEdgeChi2Stats statsOf(const std::vector<TEdgeError>& errors)
   for (const auto& e : errors)
   {
     sorted.push_back(e.chi2);
+    s.nll += (0.5 * (e.chi2 + e.logDetCovariance) + 3.0 * std::log(2.0 * M_PI)) /
+             static_cast<double>(errors.size());
     for (int k = 0; k < 6; ++k)
       s.direction[k] += e.direction[k] / static_cast<double>(errors.size());
   }
@@ -38,6 +41,7 @@ nlohmann::json statsJson(const TEdgeChi2Stats& s)
       {"edges", s.edges},
       {"median", s.median},
       {"mean", s.mean},
+      {"nll", std::isfinite(s.nll) ? nlohmann::json(s.nll) : nlohmann::json(nullptr)},
       {"direction", std::vector<double>(s.direction.begin(), s.direction.end())}};
 }
 
@@ -63,6 +67,10 @@ TEdgeError errorUnder(const Eigen::Matrix<double, 6, 1>& e, const Eigen::Matrix<
   const Eigen::Matrix<double, 6, 6> S = I.completeOrthogonalDecomposition().pseudoInverse();
   for (int k = 0; k < 6; ++k)
     out.direction[k] = S(k, k) > 0 ? e[k] * e[k] / S(k, k) : 0.0;
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, 6, 6>> eig(I);
+  const auto& lambda = eig.eigenvalues();
+  out.logDetCovariance = lambda.minCoeff() > 0 ? -lambda.array().log().sum()
+                                               : std::numeric_limits<double>::quiet_NaN();
   return out;
 }
 

@@ -69,6 +69,7 @@ TRefineParams refineParams(const CRgbdOdometry::TOptions& o)
   rp.inlierThreshold3d = 2 * o.ransac_threshold_m;
   rp.pixelSigma = o.pixel_sigma_px;
   rp.depthSigma = [noise = o.depth_noise](double z) { return noise.sigma(z); };
+  rp.commonPixelSigma = o.common_pixel_sigma_px;
   return rp;
 }
 

@@ -113,6 +113,18 @@ std::vector<std::size_t> selectInliers(
   }
   return out;
 }
+/** How a residual moves with the pixel its 3-D point X was lifted from
+ *  (depth held): the lift X = z K^-1 u, rotated by R, reprojected by Jp. */
+Eigen::Matrix2d liftedPixelJacobian(
+    const TPinhole& cam, const Eigen::Matrix<double, 2, 3>& Jp, const Eigen::Matrix3d& R,
+    const Eigen::Vector3d& X)
+{
+  Eigen::Matrix<double, 3, 2> G = Eigen::Matrix<double, 3, 2>::Zero();
+  G(0, 0) = X.z() / cam.fx;
+  G(1, 1) = X.z() / cam.fy;
+  return Jp * R * G;
+}
+
 /** One direction's residual covariance (px^2): the pixel noise of the
  *  keypoint it is compared with and of the one it was lifted from (carried
  *  through the reprojection), and the lifted point's axial depth noise. */
@@ -120,12 +132,8 @@ Eigen::Matrix2d residualCovariance(
     const TPinhole& cam, const Eigen::Matrix<double, 2, 3>& Jp, const Eigen::Matrix3d& R,
     const Eigen::Vector3d& X, double sigmaPx, double sigmaZ)
 {
-  Eigen::Matrix<double, 3, 2> G = Eigen::Matrix<double, 3, 2>::Zero();
-  G(0, 0) = X.z() / cam.fx;
-  G(1, 1) = X.z() / cam.fy;
-  const Eigen::Matrix<double, 2, 3> JR = Jp * R;
-  const Eigen::Matrix<double, 2, 2> A = JR * G;
-  const Eigen::Vector2d d = JR * (X / X.z());
+  const Eigen::Matrix2d A = liftedPixelJacobian(cam, Jp, R, X);
+  const Eigen::Vector2d d = Jp * R * (X / X.z());
   // Both directions see the same keypoints: their pixel noise counts twice
   // over the pair's two residuals, so each carries it doubled; the depth
   // noise of a and of b are separate readings.
@@ -138,6 +146,10 @@ Matrix6d estimatorInformation(
     const std::vector<std::size_t>& idx, const TRefineParams& p)
 {
   Matrix6d H = Matrix6d::Zero();
+  // How the weighted normal equations' right-hand side moves with a shift
+  // common to all keypoints of image a (Ka) and of image b (Kb).
+  Eigen::Matrix<double, 6, 2> Ka = Eigen::Matrix<double, 6, 2>::Zero();
+  Eigen::Matrix<double, 6, 2> Kb = Eigen::Matrix<double, 6, 2>::Zero();
   double chi2 = 0;
   std::size_t n = 0;
   const TRigid Tinv = T.inverse();
@@ -155,6 +167,8 @@ Matrix6d estimatorInformation(
       const Eigen::Matrix<double, 2, 6> J = Jp * leftJacobian(X);
       const Eigen::Vector2d r = u - c.ua[i];
       H.noalias() += J.transpose() * W * J;
+      Ka.noalias() -= J.transpose() * W;
+      Kb.noalias() += J.transpose() * W * liftedPixelJacobian(cam, Jp, T.R, c.b[i]);
       chi2 += r.dot(W * r);
       n += 2;
     }
@@ -165,6 +179,8 @@ Matrix6d estimatorInformation(
       const Eigen::Matrix<double, 2, 6> J = -Jp * Tinv.R * leftJacobian(c.a[i]);
       const Eigen::Vector2d r = u - c.ub[i];
       H.noalias() += J.transpose() * W * J;
+      Kb.noalias() -= J.transpose() * W;
+      Ka.noalias() += J.transpose() * W * liftedPixelJacobian(cam, Jp, Tinv.R, c.a[i]);
       chi2 += r.dot(W * r);
       n += 2;
     }
@@ -177,7 +193,21 @@ Matrix6d estimatorInformation(
   // reads low (unclamped, the edges of the global-shutter test loop read
   // chi2 median 12.7 instead of 2.9).
   const double factor = dof > 0 ? std::max(1.0, chi2 / dof) : 1.0;
-  return H / factor;
+  if (p.commonPixelSigma <= 0)
+    return H / factor;
+  // A shift common to all of an image's keypoints moves the estimate by
+  // -H^-1 K delta whatever the keypoint count: its covariance adds to the
+  // per-keypoint part instead of averaging down with it.
+  const Eigen::LDLT<Matrix6d> ldlt(H);
+  if (ldlt.info() != Eigen::Success)
+    return H / factor;
+  const Eigen::Matrix<double, 6, 2> Ma = ldlt.solve(Ka);
+  const Eigen::Matrix<double, 6, 2> Mb = ldlt.solve(Kb);
+  const double s2 = p.commonPixelSigma * p.commonPixelSigma;
+  const Matrix6d cov =
+      factor * ldlt.solve(Matrix6d::Identity()) + s2 * (Ma * Ma.transpose() + Mb * Mb.transpose());
+  const Matrix6d info = cov.inverse();
+  return info.allFinite() ? Matrix6d(0.5 * (info + info.transpose())) : Matrix6d(H / factor);
 }
 }  // namespace
 

@@ -43,6 +43,10 @@ struct TRefineParams
   /** Axial depth noise (1 sigma, m) at depth z (m) for the estimator's
    *  information; empty = exact depth. */
   std::function<double(double)> depthSigma;
+  /** 1-sigma (px, per image axis) of a shift common to all keypoints of
+   *  one image, for the estimator's information: an error that does not
+   *  average down with the keypoint count. 0 = none. */
+  double commonPixelSigma = 0.0;
 };
 
 struct TRefineResult

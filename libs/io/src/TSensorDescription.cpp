@@ -102,6 +102,8 @@ void readScalars(
         "must be top_to_bottom or bottom_to_top (got '" + dir + "')");
   d.rolling_shutter_bottom_to_top = dir == "bottom_to_top";
   d.frame_rate = common::readDouble(cfg, s, "frame_rate", d.frame_rate);
+  d.common_pixel_sigma_px =
+      common::readDouble(cfg, s, "common_pixel_sigma_px", d.common_pixel_sigma_px);
   n.model = common::readString(cfg, s, "depth_noise_model", n.model);
   n.a = common::readDouble(cfg, s, "depth_noise_a", n.a);
   n.b = common::readDouble(cfg, s, "depth_noise_b", n.b);
@@ -175,6 +177,9 @@ void TSensorDescription::validate(const std::string& s) const
   common::require(
       rolling_shutter_ms >= 0 && rolling_shutter_ms <= 1000 / frame_rate, s, "rolling_shutter_ms",
       rolling_shutter_ms, "in [0, one frame period]");
+  common::require(
+      common_pixel_sigma_px >= 0 && std::isfinite(common_pixel_sigma_px), s,
+      "common_pixel_sigma_px", common_pixel_sigma_px, ">= 0 px");
   const auto& n = depth_noise;
   if (n.model != "kinect" && n.model != "disparity" && n.model != "none")
     common::throwBadIniKey(
@@ -224,6 +229,7 @@ void TSensorDescription::saveToConfigFile(
       s, "rolling_shutter_direction",
       std::string(rolling_shutter_bottom_to_top ? "bottom_to_top" : "top_to_bottom"));
   w("frame_rate", frame_rate);
+  w("common_pixel_sigma_px", common_pixel_sigma_px);
   cfg.write(s, "depth_noise_model", n.model);
   w("depth_noise_a", n.a);
   w("depth_noise_b", n.b);

@@ -46,6 +46,12 @@ struct TEdgeChi2Stats
   double median = 0, mean = 0;
   /** Mean of e_i² / Σ_ii per direction [x y z rx ry rz] (expected 1). */
   std::array<double, 6> direction{};
+  /** Mean Gaussian negative log-likelihood per edge, nats (metres and
+   *  radians): 0.5 (chi² + log det Σ) + 3 log 2π. Unlike the chi² it also
+   *  charges a covariance for being too wide, so of two noise models for
+   *  the same edges the lower one fits them better. NaN when an edge's
+   *  information is singular. */
+  double nll = 0;
 };
 
 /** A ground truth's white noise per sample, isotropic in translation and
@@ -86,6 +92,8 @@ struct TEdgeError
 {
   double chi2 = 0;
   std::array<double, 6> direction{};  //!< e_i² / Σ_ii
+  /** log det Σ (NaN: singular information). */
+  double logDetCovariance = 0;
 };
 
 /** The white noise of a ground truth (sorted by stamp), from its second

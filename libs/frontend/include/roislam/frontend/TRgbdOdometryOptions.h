@@ -406,6 +406,10 @@ struct TRgbdOdometryOptions : public mrpt::config::CLoadableOptions
    *  from the sensor description by whoever opens the source; default the
    *  Kinect v1's). Weighs the estimator's edge information. */
   io::TSensorDescription::TDepthNoise depth_noise;
+  /** The sensor's per-image keypoint shift, px (not an ini key: a camera
+   *  fact, TSensorDescription::common_pixel_sigma_px). Widens the
+   *  estimator's edge information along what such a shift moves. */
+  double common_pixel_sigma_px = 0;
 
   roi::CRoiDetector::TOptions roi;
   features::CFeatureExtractor::TOptions extractor;

@@ -37,6 +37,12 @@
  *         colour readout from first to last row, ms; 0 = global shutter
  *     rolling_shutter_direction  top_to_bottom | bottom_to_top  top_to_bottom
  *     frame_rate                 double > 0                   30 (Hz)
+ *     common_pixel_sigma_px      double >= 0                  0 (px)
+ *         1-sigma, per image axis, of an error that moves all keypoints of
+ *         one colour image alike (what a frame keeps of its timing,
+ *         rolling-shutter and calibration errors); it does not average
+ *         down with the keypoint count, so the edge information carries it
+ *         as its own term (0 = none: a rendered camera)
  *     depth_noise_model          kinect | disparity | none    kinect
  *     depth_noise_a              double >= 0                  0.0012 (m)
  *     depth_noise_b              double >= 0                  0.0019 (1/m)
@@ -87,7 +93,8 @@ struct TSensorDescription : public mrpt::config::CLoadableOptions
   double depth_scale = 5000;                  //!< raw units per metre
   double rolling_shutter_ms = 0;              //!< readout of all rows, >= 0
   bool rolling_shutter_bottom_to_top = false;
-  double frame_rate = 30;  //!< Hz
+  double frame_rate = 30;            //!< Hz
+  double common_pixel_sigma_px = 0;  //!< per-image keypoint shift, 1 sigma per axis
   TDepthNoise depth_noise;
 
   /** The readout as declared: positive top to bottom, negative bottom to
