@@ -197,6 +197,24 @@ TEST(EdgeChi2, TheGroundTruthsOwnNoiseIsMeasuredAndAccountedFor)
   const auto j = evaluation::toJson(*s);
   EXPECT_NEAR(j.at("ground_truth_noise").at("sigma_deg").get<double>(), 0.1, 0.005);
   EXPECT_TRUE(j.at("with_ground_truth_noise").is_object());
+  // Per kind as well: each half of the edges reads chi²(6) with the noise.
+  const auto byHalf = evaluation::edgeChi2(
+      graph, [](mrpt::graphs::TNodeID id) { return 0.1 * static_cast<double>(id); }, gt, 0.02,
+      [](mrpt::graphs::TNodeID from, mrpt::graphs::TNodeID) -> std::string
+      { return from < 150 ? "first" : "second"; });
+  ASSERT_TRUE(byHalf);
+  ASSERT_EQ(byHalf->byKindWithGroundTruthNoise.size(), 2u);
+  for (const auto& [k, st] : byHalf->byKindWithGroundTruthNoise)
+  {
+    EXPECT_EQ(st.edges, byHalf->byKind.at(k).edges) << k;
+    EXPECT_GT(byHalf->byKind.at(k).mean, 60.0) << k;
+    EXPECT_NEAR(st.mean, 6.0, 0.9) << k;
+  }
+  EXPECT_TRUE(evaluation::toJson(*byHalf)
+                  .at("by_kind")
+                  .at("first")
+                  .at("with_ground_truth_noise")
+                  .is_object());
 
   // A ground truth too sparse to measure: no second set.
   EXPECT_FALSE(evaluation::groundTruthNoise({gt.begin(), gt.begin() + 5}));

@@ -128,7 +128,8 @@ std::vector<TRunRecord> CResultsCollector::orderByPlan(
 
 namespace
 {
-/** The summary's field `key` ("object.key" one level deep), or null. */
+/** The summary's field `key`, or null: a top-level key as it is, else
+ *  "object.key", any depth deep ("edge_chi2.with_ground_truth_noise.median"). */
 const nlohmann::json* summaryField(const nlohmann::json& summary, const std::string& key)
 {
   if (!summary.is_object())
@@ -139,10 +140,7 @@ const nlohmann::json* summaryField(const nlohmann::json& summary, const std::str
   if (dot == std::string::npos)
     return nullptr;
   const auto parent = summary.find(key.substr(0, dot));
-  if (parent == summary.end() || !parent->is_object())
-    return nullptr;
-  const auto it = parent->find(key.substr(dot + 1));
-  return it == parent->end() ? nullptr : &*it;
+  return parent == summary.end() ? nullptr : summaryField(*parent, key.substr(dot + 1));
 }
 
 // ------------------------------------------------------------- toCsv stages
@@ -178,22 +176,30 @@ std::vector<std::string> knownSummaryKeys()
       "failed"};
 }
 
+/** Adds the scalar leaves under `v` as "prefix.key..." columns (arrays are
+ *  left out: a column holds one value). */
+void addLeaves(const std::string& prefix, const nlohmann::json& v, std::set<std::string>& out)
+{
+  for (const auto& [k, child] : v.items())
+    if (child.is_object())
+      addLeaves(prefix + k + ".", child, out);
+    else if (!child.is_array())
+      out.insert(prefix + k);
+}
+
 /** Summary fields seen in the records beyond the known ones, sorted. */
 std::set<std::string> extraSummaryKeys(
     const std::vector<TRunRecord>& records, const std::set<std::string>& known)
 {
   std::set<std::string> extra;
-  // Objects one level deep (e.g. roi-landmarks' "kf_slam") become "object.key" columns.
+  // Objects at any depth (roi-landmarks' "kf_slam", roi-graphslam's
+  // "edge_chi2.with_ground_truth_noise") become "object.key" columns.
   for (const auto& r : records)
     if (r.summary.is_object())
       for (const auto& [k, v] : r.summary.items())
       {
         if (v.is_object())
-        {
-          for (const auto& [k2, v2] : v.items())
-            if (!v2.is_object() && !v2.is_array())
-              extra.insert(k + "." + k2);
-        }
+          addLeaves(k + ".", v, extra);
         else if (!known.count(k) && !v.is_array())
           extra.insert(k);
       }

@@ -232,7 +232,7 @@ std::optional<TEdgeChi2> edgeChi2(
     s.groundTruthNoise->stampTriplets = jitter->triplets;
   }
   std::vector<TEdgeError> all, withNoise;
-  std::map<std::string, std::vector<TEdgeError>> kinds;
+  std::map<std::string, std::vector<TEdgeError>> kinds, kindsWithNoise;
   for (const auto& [ids, edge] : graph.edges)
   {
     const auto a = io::poseAt(groundTruth, stamp(ids.first), maxDifference);
@@ -261,7 +261,12 @@ std::optional<TEdgeChi2> edgeChi2(
     }
     s.chi2.push_back(all.back().chi2);
     if (kind)
-      kinds[kind(ids.first, ids.second)].push_back(all.back());
+    {
+      const std::string k = kind(ids.first, ids.second);
+      kinds[k].push_back(all.back());
+      if (s.groundTruthNoise)
+        kindsWithNoise[k].push_back(withNoise.back());
+    }
   }
   if (all.empty())
     return std::nullopt;
@@ -270,6 +275,8 @@ std::optional<TEdgeChi2> edgeChi2(
     s.byKind[k] = statsOf(errors);
   if (s.groundTruthNoise)
     s.withGroundTruthNoise = statsOf(withNoise);
+  for (const auto& [k, errors] : kindsWithNoise)
+    s.byKindWithGroundTruthNoise[k] = statsOf(errors);
   return s;
 }
 
@@ -280,7 +287,12 @@ nlohmann::json toJson(const TEdgeChi2& s)
   j["expected"] = s.expected;
   nlohmann::json kinds = nlohmann::json::object();
   for (const auto& [k, st] : s.byKind)
+  {
     kinds[k] = statsJson(st);
+    const auto it = s.byKindWithGroundTruthNoise.find(k);
+    kinds[k]["with_ground_truth_noise"] =
+        it == s.byKindWithGroundTruthNoise.end() ? nlohmann::json(nullptr) : statsJson(it->second);
+  }
   j["by_kind"] = kinds;
   j["ground_truth_noise"] = nullptr;
   if (s.groundTruthNoise)

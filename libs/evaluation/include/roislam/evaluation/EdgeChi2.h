@@ -85,6 +85,8 @@ struct TEdgeChi2 : TEdgeChi2Stats
    *  each edge's covariance (nullopt: too few evenly spaced samples). */
   std::optional<TGroundTruthNoise> groundTruthNoise;
   std::optional<TEdgeChi2Stats> withGroundTruthNoise;
+  /** withGroundTruthNoise per edge kind (empty without the noise). */
+  std::map<std::string, TEdgeChi2Stats> byKindWithGroundTruthNoise;
 };
 
 /** One edge's error against the truth. */
@@ -161,11 +163,12 @@ double edgeChi2(
     const mrpt::poses::CPose3D& edge, const mrpt::math::CMatrixDouble66& information,
     const mrpt::poses::CPose3D& truth);
 
-/** {"edges", "skipped", "median", "mean", "expected", "direction" [6],
- *  "by_kind": {kind: {"edges", "median", "mean", "direction"}},
+/** {"edges", "skipped", "median", "mean", "nll", "expected", "direction" [6],
+ *  "by_kind": {kind: {"edges", "median", "mean", "nll", "direction",
+ *  "with_ground_truth_noise": {the same} or null}},
  *  "ground_truth_noise": {"sigma_m", "sigma_deg", "triplets",
  *  "stamp_jitter_ms", "stamp_triplets"} or null,
- *  "with_ground_truth_noise": {"edges", "median", "mean", "direction"} or
- *  null}. */
+ *  "with_ground_truth_noise": {"edges", "median", "mean", "nll",
+ *  "direction"} or null}. */
 nlohmann::json toJson(const TEdgeChi2& s);
 }  // namespace roislam::evaluation
