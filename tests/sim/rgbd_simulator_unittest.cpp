@@ -155,6 +155,31 @@ TEST(RgbdSimulator, RollingShutterRowsSeeTheScenesFromTheirOwnTime)
   EXPECT_LT(one.surfaceOk, own.surfaceOk * 0.8);
 }
 
+TEST(RgbdSimulator, CommonShiftMovesTheColourImageOnly)
+{
+  auto o = opts("textured", false);
+  o.rollingShutterMs = 0;
+  const auto plain = CRgbdSimulator(o).renderFrame(5);
+  o.commonShiftPx = 1.5;
+  CRgbdSimulator sim(o);
+  const auto f = sim.renderFrame(5);
+  EXPECT_GT(cv::norm(f.colourShiftPx), 0.05);
+  EXPECT_EQ(sim.renderFrame(5).colourShiftPx, f.colourShiftPx);  // one draw per (seed, frame)
+  EXPECT_NE(sim.renderFrame(6).colourShiftPx, f.colourShiftPx);
+  // The colour content moved by the drawn shift (phase correlation of the
+  // two renders), the depth did not move at all.
+  cv::Mat a, b;
+  cv::cvtColor(plain.rgb, a, cv::COLOR_BGR2GRAY);
+  cv::cvtColor(f.rgb, b, cv::COLOR_BGR2GRAY);
+  a.convertTo(a, CV_64F);
+  b.convertTo(b, CV_64F);
+  const cv::Point2d moved = cv::phaseCorrelate(a, b);
+  EXPECT_NEAR(moved.x, f.colourShiftPx.x, 0.25);
+  EXPECT_NEAR(moved.y, f.colourShiftPx.y, 0.25);
+  EXPECT_EQ(cv::norm(plain.depth, f.depth, cv::NORM_INF), 0.0);
+  EXPECT_EQ(plain.colourShiftPx, cv::Point2d());
+}
+
 TEST(RgbdSimulator, UnregisteredDepthIsTheDepthCamerasView)
 {
   auto o = opts("textured", false);
@@ -344,6 +369,7 @@ TEST(RgbdSimulator, OptionsLoadValidateAndRoundTrip)
   cfg.write("RgbdSimulator", "frames", "12");
   cfg.write("RgbdSimulator", "noise", "false");
   cfg.write("RgbdSimulator", "max_depth", "3.5");
+  cfg.write("RgbdSimulator", "common_shift_px", "0.4");
   CRgbdSimulator::TOptions o;
   o.loadFromConfigFile(cfg, "RgbdSimulator");
   EXPECT_EQ(o.scene, "featureless");
@@ -360,6 +386,9 @@ TEST(RgbdSimulator, OptionsLoadValidateAndRoundTrip)
   EXPECT_EQ(back.frames, o.frames);
   EXPECT_DOUBLE_EQ(back.baseTimestamp, o.baseTimestamp);
   EXPECT_DOUBLE_EQ(back.cx, o.cx);
+  EXPECT_DOUBLE_EQ(back.commonShiftPx, 0.4);
+  // The camera it simulates describes the shift.
+  EXPECT_DOUBLE_EQ(CRgbdSimulator(o).sensorDescription().common_pixel_sigma_px, 0.4);
 
   auto expectError = [](const std::string& key, const std::string& value)
   {
@@ -391,6 +420,8 @@ TEST(RgbdSimulator, OptionsLoadValidateAndRoundTrip)
   expectError("noise_model", "gauss");
   expectError("disparity_bf", "0");
   expectError("lateral_sigma_px", "-1");
+  expectError("common_shift_px", "-0.5");
+  expectError("common_shift_px", "11");
   expectError("depth_registered", "perhaps");
   expectError("depth_fx", "-500");
   expectError("depth_cx", "900");

@@ -232,6 +232,7 @@ io::TSensorDescription CRgbdSimulator::sensorDescription() const
   }
   d.depth_scale = kDepthScale;
   d.rolling_shutter_ms = m_opts.rollingShutterMs;
+  d.common_pixel_sigma_px = m_opts.commonShiftPx;
   d.frame_rate = m_opts.fps;
   auto& n = d.depth_noise;
   n.model = m_opts.noise ? m_opts.noiseModel : "none";
@@ -396,21 +397,34 @@ CRgbdSimulator::TFrame CRgbdSimulator::renderFrame(std::size_t i)
   f.timestamp = timestamp(i);
   f.depthTimestamp = f.timestamp + m_opts.depthTimeOffset;
   f.pose = groundTruthPose(i);
-  TBands colour =
-      renderBands(i, mrpt::poses::CPose3D(), m_opts.fx, m_opts.fy, m_opts.cx, m_opts.cy);
+  // A shift of the whole colour image: its principal point moved for this
+  // frame only (one stream per (seed, frame), apart from the noise's).
+  double shiftX = 0, shiftY = 0;
+  if (m_opts.commonShiftPx > 0)
+  {
+    mrpt::random::CRandomGenerator rng(
+        m_opts.seed * 2246822519u ^ (static_cast<uint32_t>(i) * 3266489917u + 0x165667b1u));
+    shiftX = rng.drawGaussian1D(0, m_opts.commonShiftPx);
+    shiftY = rng.drawGaussian1D(0, m_opts.commonShiftPx);
+  }
+  const bool shifted = shiftX != 0 || shiftY != 0;
+  f.colourShiftPx = {shiftX, shiftY};
+  TBands colour = renderBands(
+      i, mrpt::poses::CPose3D(), m_opts.fx, m_opts.fy, m_opts.cx + shiftX, m_opts.cy + shiftY);
   if (ss == 1)
     f.rgb = colour.rgbSS;
   else
     cv::resize(colour.rgbSS, f.rgb, cv::Size(W, H), 0, 0, cv::INTER_AREA);
   // Unregistered depth: its own camera, rendered from where it sits on the
   // sensor, at the same row times (its rows read out with the colour's).
-  // Depth stamped apart from colour: rendered at its own stamp.
+  // Depth stamped apart from colour, or the colour shifted: rendered on its
+  // own.
   const double dt = m_opts.depthTimeOffset;
   const TBands depth = m_opts.depthRegistered
-                           ? (dt == 0 ? std::move(colour)
-                                      : renderBands(
-                                            i, mrpt::poses::CPose3D(), m_opts.fx, m_opts.fy,
-                                            m_opts.cx, m_opts.cy, dt))
+                           ? (dt == 0 && !shifted ? std::move(colour)
+                                                  : renderBands(
+                                                        i, mrpt::poses::CPose3D(), m_opts.fx,
+                                                        m_opts.fy, m_opts.cx, m_opts.cy, dt))
                            : renderBands(
                                  i, depthPoseInColour(), m_opts.depthFx, m_opts.depthFy,
                                  m_opts.depthCx, m_opts.depthCy, dt);

@@ -116,6 +116,8 @@ void validateSequence(const TOptions& o, const TKeyError& fail)
     fail("depth_time_offset", "must be within +-0.02 s");
   if (!(o.rollingShutterMs >= 0 && o.rollingShutterMs * 1e-3 <= 1.0 / o.fps))
     fail("rolling_shutter_ms", "must be in [0, frame period]");
+  if (!(o.commonShiftPx >= 0 && o.commonShiftPx <= 10))
+    fail("common_shift_px", "must be in [0, 10]");
 }
 
 /** A pinhole of the image's size: its keys are prefix + fx, fy, cx, cy. */
@@ -222,6 +224,7 @@ void CRgbdSimulator::TOptions::loadFromConfigFile(
   r.get("base_timestamp", baseTimestamp);
   r.get("depth_time_offset", depthTimeOffset);
   r.get("rolling_shutter_ms", rollingShutterMs);
+  r.get("common_shift_px", commonShiftPx);
   r.get("width", width);
   r.get("height", height);
   r.get("fx", fx);
@@ -273,6 +276,7 @@ void CRgbdSimulator::TOptions::saveToConfigFile(
   wd("base_timestamp", baseTimestamp);
   wd("depth_time_offset", depthTimeOffset);
   wd("rolling_shutter_ms", rollingShutterMs);
+  wd("common_shift_px", commonShiftPx);
   w("width", std::to_string(width));
   w("height", std::to_string(height));
   wd("fx", fx);

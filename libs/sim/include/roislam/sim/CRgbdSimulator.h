@@ -40,6 +40,11 @@
  *                      8, each from the pose at its time; the middle row is
  *                      at the frame's stamp and ground truth. 25 is what the
  *                      shipped configs assume for the TUM Kinect.
+ *   common_shift_px    1-sigma, px per axis, of a shift of each frame's   [0]
+ *                      colour image as a whole (drawn per frame; the depth
+ *                      stays on its true grid): an error common to all of a
+ *                      frame's keypoints, which camera.ini records as
+ *                      common_pixel_sigma_px
  *   width, height      image size, px                                 [640, 480]
  *   fx, fy, cx, cy     pinhole intrinsics, px (no distortion)         [517.3 516.5 318.6 255.3]
  *   min_depth          no reading below, m                            [0.4]
@@ -115,6 +120,7 @@ class CRgbdSimulator : public mrpt::system::COutputLogger
     double baseTimestamp = 1000000000.0;
     double depthTimeOffset = 0.0;
     double rollingShutterMs = 25.0;
+    double commonShiftPx = 0.0;
     unsigned width = 640, height = 480;
     double fx = 517.3, fy = 516.5, cx = 318.6, cy = 255.3;
     double minDepth = 0.4, maxDepth = 4.0;
@@ -151,6 +157,9 @@ class CRgbdSimulator : public mrpt::system::COutputLogger
     /** CV_32FC1 metres, 0 = no reading (not yet quantised), on the depth
      *  camera's grid (depthCamera(); the colour grid when registered). */
     cv::Mat depth;
+    /** The colour image's common shift (common_shift_px), px: its content
+     *  sits this far right / down of where the camera's intrinsics put it. */
+    cv::Point2d colourShiftPx;
   };
 
   struct TWriteStats
