@@ -147,7 +147,9 @@ Matrix6d estimatorInformation(
 {
   Matrix6d H = Matrix6d::Zero();
   // How the weighted normal equations' right-hand side moves with a shift
-  // common to all keypoints of image a (Ka) and of image b (Kb).
+  // common to all keypoints of image a (Ka) and of image b (Kb); only for a
+  // camera that has one.
+  const bool common = p.commonPixelSigma > 0;
   Eigen::Matrix<double, 6, 2> Ka = Eigen::Matrix<double, 6, 2>::Zero();
   Eigen::Matrix<double, 6, 2> Kb = Eigen::Matrix<double, 6, 2>::Zero();
   double chi2 = 0;
@@ -167,8 +169,11 @@ Matrix6d estimatorInformation(
       const Eigen::Matrix<double, 2, 6> J = Jp * leftJacobian(X);
       const Eigen::Vector2d r = u - c.ua[i];
       H.noalias() += J.transpose() * W * J;
-      Ka.noalias() -= J.transpose() * W;
-      Kb.noalias() += J.transpose() * W * liftedPixelJacobian(cam, Jp, T.R, c.b[i]);
+      if (common)
+      {
+        Ka.noalias() -= J.transpose() * W;
+        Kb.noalias() += J.transpose() * W * liftedPixelJacobian(cam, Jp, T.R, c.b[i]);
+      }
       chi2 += r.dot(W * r);
       n += 2;
     }
@@ -179,8 +184,11 @@ Matrix6d estimatorInformation(
       const Eigen::Matrix<double, 2, 6> J = -Jp * Tinv.R * leftJacobian(c.a[i]);
       const Eigen::Vector2d r = u - c.ub[i];
       H.noalias() += J.transpose() * W * J;
-      Kb.noalias() -= J.transpose() * W;
-      Ka.noalias() += J.transpose() * W * liftedPixelJacobian(cam, Jp, Tinv.R, c.a[i]);
+      if (common)
+      {
+        Kb.noalias() -= J.transpose() * W;
+        Ka.noalias() += J.transpose() * W * liftedPixelJacobian(cam, Jp, Tinv.R, c.a[i]);
+      }
       chi2 += r.dot(W * r);
       n += 2;
     }
@@ -193,7 +201,7 @@ Matrix6d estimatorInformation(
   // reads low (unclamped, the edges of the global-shutter test loop read
   // chi2 median 12.7 instead of 2.9).
   const double factor = dof > 0 ? std::max(1.0, chi2 / dof) : 1.0;
-  if (p.commonPixelSigma <= 0)
+  if (!common)
     return H / factor;
   // A shift common to all of an image's keypoints moves the estimate by
   // -H^-1 K delta whatever the keypoint count: its covariance adds to the
