@@ -127,13 +127,12 @@ Eigen::Matrix2d liftedPixelJacobian(
 
 /** One direction's residual covariance (px^2): the pixel noise of the
  *  keypoint it is compared with and of the one it was lifted from (carried
- *  through the reprojection), and the lifted point's axial depth noise. */
+ *  through the reprojection by A, liftedPixelJacobian), and the lifted
+ *  point's axial depth noise (carried by d, the reprojection's change per
+ *  unit of depth along the ray). */
 Eigen::Matrix2d residualCovariance(
-    const TPinhole& cam, const Eigen::Matrix<double, 2, 3>& Jp, const Eigen::Matrix3d& R,
-    const Eigen::Vector3d& X, double sigmaPx, double sigmaZ)
+    const Eigen::Matrix2d& A, const Eigen::Vector2d& d, double sigmaPx, double sigmaZ)
 {
-  const Eigen::Matrix2d A = liftedPixelJacobian(cam, Jp, R, X);
-  const Eigen::Vector2d d = Jp * R * (X / X.z());
   // Both directions see the same keypoints: their pixel noise counts twice
   // over the pair's two residuals, so each carries it doubled; the depth
   // noise of a and of b are separate readings.
@@ -154,44 +153,42 @@ Matrix6d estimatorInformation(
   Eigen::Matrix<double, 6, 2> Kb = Eigen::Matrix<double, 6, 2>::Zero();
   double chi2 = 0;
   std::size_t n = 0;
-  const TRigid Tinv = T.inverse();
   const auto sz = [&p](double z) { return p.depthSigma ? p.depthSigma(z) : 0.0; };
+  // One direction: residual r (Jacobian J) of the point `lifted` from one
+  // image, rotated by R and reprojected (Jp) into the other, against that
+  // image's keypoint. A shift of the compared image moves r by -delta, one
+  // of the lifting image by A delta.
+  const auto addDirection = [&](const Eigen::Matrix<double, 2, 3>& Jp, const Eigen::Matrix3d& R,
+                                const Eigen::Vector3d& lifted, const Eigen::Matrix<double, 2, 6>& J,
+                                const Eigen::Vector2d& r, double sigmaPx,
+                                Eigen::Matrix<double, 6, 2>& kCompared,
+                                Eigen::Matrix<double, 6, 2>& kLifting)
+  {
+    const Eigen::Matrix2d A = liftedPixelJacobian(cam, Jp, R, lifted);
+    const Eigen::Matrix2d W =
+        residualCovariance(A, Jp * R * (lifted / lifted.z()), sigmaPx, sz(lifted.z())).inverse();
+    H.noalias() += J.transpose() * W * J;
+    if (common)
+    {
+      kCompared.noalias() -= J.transpose() * W;
+      kLifting.noalias() += J.transpose() * W * A;
+    }
+    chi2 += r.dot(W * r);
+    n += 2;
+  };
+  const TRigid Tinv = T.inverse();
   for (auto i : idx)
   {
     const double s = c.sigma.empty() ? p.pixelSigma : c.sigma[i];
     Eigen::Vector2d u;
     Eigen::Matrix<double, 2, 3> Jp;
+    // Forward: b lifted, compared in a.
     const Eigen::Vector3d X = T * c.b[i];
     if (project(cam, X, u, &Jp))
-    {
-      const Eigen::Matrix2d W =
-          residualCovariance(cam, Jp, T.R, c.b[i], s, sz(c.b[i].z())).inverse();
-      const Eigen::Matrix<double, 2, 6> J = Jp * leftJacobian(X);
-      const Eigen::Vector2d r = u - c.ua[i];
-      H.noalias() += J.transpose() * W * J;
-      if (common)
-      {
-        Ka.noalias() -= J.transpose() * W;
-        Kb.noalias() += J.transpose() * W * liftedPixelJacobian(cam, Jp, T.R, c.b[i]);
-      }
-      chi2 += r.dot(W * r);
-      n += 2;
-    }
+      addDirection(Jp, T.R, c.b[i], Jp * leftJacobian(X), u - c.ua[i], s, Ka, Kb);
+    // Backward: a lifted, compared in b.
     if (project(cam, Tinv * c.a[i], u, &Jp))
-    {
-      const Eigen::Matrix2d W =
-          residualCovariance(cam, Jp, Tinv.R, c.a[i], s, sz(c.a[i].z())).inverse();
-      const Eigen::Matrix<double, 2, 6> J = -Jp * Tinv.R * leftJacobian(c.a[i]);
-      const Eigen::Vector2d r = u - c.ub[i];
-      H.noalias() += J.transpose() * W * J;
-      if (common)
-      {
-        Kb.noalias() -= J.transpose() * W;
-        Ka.noalias() += J.transpose() * W * liftedPixelJacobian(cam, Jp, Tinv.R, c.a[i]);
-      }
-      chi2 += r.dot(W * r);
-      n += 2;
-    }
+      addDirection(Jp, Tinv.R, c.a[i], -Jp * Tinv.R * leftJacobian(c.a[i]), u - c.ub[i], s, Kb, Ka);
   }
   // The variance factor (chi2 per degree of freedom; each pair's two
   // directions count once, their chi2 is already halved by the doubled pixel
