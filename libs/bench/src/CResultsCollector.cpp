@@ -128,21 +128,6 @@ std::vector<TRunRecord> CResultsCollector::orderByPlan(
 
 namespace
 {
-/** The summary's field `key`, or null: a top-level key as it is, else
- *  "object.key", any depth deep ("edge_chi2.with_ground_truth_noise.median"). */
-const nlohmann::json* summaryField(const nlohmann::json& summary, const std::string& key)
-{
-  if (!summary.is_object())
-    return nullptr;
-  if (const auto it = summary.find(key); it != summary.end())
-    return &*it;
-  const auto dot = key.find('.');
-  if (dot == std::string::npos)
-    return nullptr;
-  const auto parent = summary.find(key.substr(0, dot));
-  return parent == summary.end() ? nullptr : summaryField(*parent, key.substr(dot + 1));
-}
-
 // ------------------------------------------------------------- toCsv stages
 
 /** Known summary fields (both apps' contracts), in column order. */
@@ -226,7 +211,7 @@ void writeCsvRow(std::ostream& out, const TRunRecord& r, const std::vector<std::
   for (const auto& k : keys)
   {
     out << ",";
-    if (const auto* v = summaryField(r.summary, k))
+    if (const auto* v = r.field(k))
       out << csvField(jsonScalar(*v));
   }
   out << "," << csvField(shellJoin(r.run.argv)) << "\n";

@@ -4,25 +4,32 @@
 
 namespace roislam::bench
 {
+namespace
+{
+const nlohmann::json* fieldOf(const nlohmann::json& object, const std::string& key)
+{
+  if (!object.is_object())
+    return nullptr;
+  if (const auto it = object.find(key); it != object.end())
+    return &*it;
+  // "a.b...": field b... of the object a.
+  const auto dot = key.find('.');
+  if (dot == std::string::npos)
+    return nullptr;
+  const auto parent = object.find(key.substr(0, dot));
+  return parent == object.end() ? nullptr : fieldOf(*parent, key.substr(dot + 1));
+}
+}  // namespace
+
+const nlohmann::json* TRunRecord::field(const std::string& key) const
+{
+  return fieldOf(summary, key);
+}
+
 std::optional<double> TRunRecord::number(const std::string& key) const
 {
-  // "a.b": field b of the object a.
-  const nlohmann::json* node = &summary;
-  std::size_t start = 0;
-  for (;;)
-  {
-    if (!node->is_object())
-      return std::nullopt;
-    const auto dot = key.find('.', start);
-    const auto it = node->find(key.substr(start, dot == std::string::npos ? dot : dot - start));
-    if (it == node->end())
-      return std::nullopt;
-    node = &*it;
-    if (dot == std::string::npos)
-      break;
-    start = dot + 1;
-  }
-  if (!node->is_number())
+  const nlohmann::json* node = field(key);
+  if (!node || !node->is_number())
     return std::nullopt;
   return node->get<double>();
 }

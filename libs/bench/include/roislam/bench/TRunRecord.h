@@ -29,8 +29,11 @@ struct TRunRecord
   std::string stderrTail;
   nlohmann::json summary;  //!< the app's summary.json, null when absent
 
-  /** A numeric summary field ("a.b": field b of object a), nullopt when
-   *  missing, null or not a number. */
+  /** A summary field, or nullptr: a key as it is, else "a.b..." for field
+   *  b of object a, any depth deep. */
+  const nlohmann::json* field(const std::string& key) const;
+  /** A numeric summary field (field()), nullopt when missing, null or not a
+   *  number. */
   std::optional<double> number(const std::string& key) const;
 
   nlohmann::json toJson() const;
