@@ -10,6 +10,7 @@
 #include <roislam/evaluation/CTrajectoryEvaluator.h>
 #include <roislam/evaluation/EdgeChi2.h>
 #include <roislam/graphslam/CSlamPipeline.h>
+#include <roislam/graphslam/SensorFacts.h>
 #include <roislam/io/TumTrajectory.h>
 #include <roislam/sim/CRgbdSimulator.h>
 #include <roislam/testing/TestData.h>
@@ -32,9 +33,8 @@ TRunFigures run(const std::string& seq, double modelCommonPx)
   cfg.frontEnd.extractor.max_features = 600;
   cfg.backEnd.edge_information = "estimator";
   auto source = roislam::io::CFrameSource::open(seq);
-  const auto& sensor = source->sensor().sensor;
-  cfg.frontEnd.rolling_shutter_ms = sensor.frameReadoutMs();
-  cfg.frontEnd.depth_noise = sensor.depth_noise;
+  // The camera's facts as the apps apply them, then the shift under test.
+  graphslam::applySensorFacts(cfg.frontEnd, source->sensor(), false, "test", "", {});
   cfg.frontEnd.common_pixel_sigma_px = modelCommonPx;
   const auto gt = roislam::io::loadTumTrajectory(*source->groundTruthFile());
   graphslam::CSlamPipeline p(cfg, std::move(source));

@@ -1,5 +1,5 @@
 /* SensorFacts.h: the camera facts both SLAM apps take from the sensor
- * description (readout, depth-noise model); a readout the ini still sets
+ * description (readout, depth-noise model, common keypoint shift); a readout the ini still sets
  * wins, with a note when it differs; iniSetsReadout() finds the key in
  * either ini layout. */
 #include <gtest/gtest.h>
@@ -18,6 +18,7 @@ roislam::io::TSensorChoice globalShutterDisparity()
   roislam::io::TSensorChoice c;
   c.sensor.rolling_shutter_ms = 0;
   c.sensor.depth_noise.model = "disparity";
+  c.sensor.common_pixel_sigma_px = 0.7;
   c.source = "file camera.ini";
   c.reason = "camera.ini in the folder";
   return c;
@@ -33,6 +34,7 @@ TEST(SensorFacts, TheSensorsReadoutAndDepthNoiseUnlessTheIniSetsTheReadout)
   graphslam::applySensorFacts(fe, globalShutterDisparity(), false, "app", "m.ini", progress);
   EXPECT_EQ(fe.rolling_shutter_ms, 0.0);
   EXPECT_EQ(fe.depth_noise.model, "disparity");
+  EXPECT_EQ(fe.common_pixel_sigma_px, 0.7);
   ASSERT_EQ(lines.size(), 1u);
   EXPECT_EQ(lines[0].rfind("app: ", 0), 0u);
 
