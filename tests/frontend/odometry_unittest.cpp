@@ -152,6 +152,7 @@ TEST(RgbdOdometry, MeasuredIcpFusionFollowsHowWellDepthAgreesWithColour)
     double err[2] = {0, 0};
     std::size_t ran = 0, fused = 0;
     std::vector<double> shares;  // of the ICP runs' pairs
+    std::vector<double> scales;  // measured fusion's k after each comparison
     for (const std::string fusion : {"weak", "measured"})
     {
       auto o = baseOptions();
@@ -171,6 +172,10 @@ TEST(RgbdOdometry, MeasuredIcpFusionFollowsHowWellDepthAgreesWithColour)
         fused += r.icpRefined ? 1 : 0;
         if (r.icpPairShare > 0)
           shares.push_back(r.icpPairShare);
+        if (r.icpScale > 0)
+          scales.push_back(r.icpScale);
+        else
+          EXPECT_EQ(r.times.icp_ms, 0.0) << "frame " << k << ": ICP ran, no scale reported";
       }
     }
     const std::size_t frames = n - warmUp;
@@ -192,6 +197,14 @@ TEST(RgbdOdometry, MeasuredIcpFusionFollowsHowWellDepthAgreesWithColour)
     ASSERT_FALSE(shares.empty());
     for (const double q : shares)
       EXPECT_DOUBLE_EQ(q, consistent ? 1.0 : 0.25);
+    // The scale each frame reports (frames.csv icp_scale) says the same:
+    // about 1 where depth agrees, at least 12 where it is biased.
+    ASSERT_FALSE(scales.empty());
+    for (const double k : scales)
+      if (consistent)
+        EXPECT_LT(k, 12.0);
+      else
+        EXPECT_GE(k, 12.0);
     std::printf(
         "%s depth: mean error weak %.4f m, measured %.4f m; ICP ran on %zu, fused into %zu of %zu "
         "ordinary frames\n",

@@ -131,6 +131,7 @@ void CRgbdOdometry::refineWithDepth(TFrameWork& w) const
     if (featureCov && icpCov)
       I.icpConsistency.add(d, *featureCov, *icpCov, pairShare);
     const auto k = I.icpConsistency.scaleFor(pairShare);
+    w.res.icpScale = I.icpConsistency.scale().value_or(0.0);
     // A run that finds ICP still not worth running doubles the interval to
     // the next probe (up to 8x icp_probe_interval); one that finds it worth
     // it resets the interval.

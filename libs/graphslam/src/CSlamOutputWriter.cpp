@@ -65,7 +65,7 @@ const char* kFramesCsvHeader =
     "extract_ms,lift_ms,match_ms,ransac_ms,icp_ms,keyframe_ms,frontend_ms,backend_ms,"
     "sigma_t_mm,sigma_r_deg,icp_refined,region_x,region_y,region_w,region_h,region_pixels,"
     "region_features,extension_pixels,extension_features,extension,flow_tracks,flow_ms,"
-    "icp_pair_share\n";
+    "icp_pair_share,icp_scale\n";
 
 void writeFramesCsvRow(std::ostream& csv, const CSlamPipeline::TFrameRecord& r)
 {
@@ -98,7 +98,10 @@ void writeFramesCsvRow(std::ostream& csv, const CSlamPipeline::TFrameRecord& r)
     csv << ",,,";
   csv << "," << w.regionPixels << "," << w.regionFeatures << "," << w.extensionPixels << ","
       << w.extensionFeatures << "," << frontend::toString(w.extension) << "," << f.flowTracks << ","
-      << t.flow_ms << "," << f.icpPairShare << "\n";
+      << t.flow_ms << "," << f.icpPairShare << ",";
+  if (f.icpScale > 0)
+    csv << f.icpScale;
+  csv << "\n";
 }
 }  // namespace
 

@@ -194,6 +194,11 @@ struct TFrameResult
    *  where measured fusion found ICP's error mostly bias: StageRefine.cpp);
    *  0 when none ran. */
   double icpPairShare = 0;
+  /** Measured fusion's scale k of ICP's covariance after this frame's
+   *  comparison (IcpConsistency.h: 1 = as ICP's model claims, above 1
+   *  trusted less; infinity: of no use beside the features); 0 while none
+   *  is known, when no ICP ran or outside measured fusion. */
+  double icpScale = 0;
   std::size_t newKeyframeId = 0;
   /** For a new keyframe (except the first): constraints from the recent
    *  keyframes to it. The first entry is always from referenceKeyframe (the
