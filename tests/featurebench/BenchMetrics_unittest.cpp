@@ -143,3 +143,42 @@ TEST(BenchMetrics, EmptyAndInconsistentInputs)
           cv::NORM_L2),
       std::invalid_argument);
 }
+
+TEST(BenchMetrics, LocalisationSigmaIsOneKeypointsNoise)
+{
+  EXPECT_DOUBLE_EQ(localisationSigma({}), 0.0);
+  // Pairs of keypoints each displaced by N(0, 0.3^2) per axis: their
+  // difference has sigma 0.3 sqrt 2; the estimate gives back 0.3.
+  std::mt19937 rng(11);
+  std::normal_distribution<double> n(0, 0.3);
+  std::vector<double> e;
+  for (int i = 0; i < 20000; ++i)
+    e.push_back(n(rng) - n(rng));
+  EXPECT_NEAR(localisationSigma(e), 0.3, 0.01);
+  // Robust: a tenth of gross errors barely moves it.
+  for (int i = 0; i < 2000; ++i)
+    e.push_back(i % 2 ? 2.0 : -2.0);
+  EXPECT_NEAR(localisationSigma(e), 0.3, 0.04);
+}
+
+TEST(BenchMetrics, FinestScaleErrorsAreTheCorrectMatchesOffsets)
+{
+  // B is A shifted by (0.25, -0.5) px with H the identity: every correct
+  // match of the finest scale reads that offset; keypoints twice the
+  // finest size are left out.
+  TSet a = randomSet(100, 12);
+  for (std::size_t i = 0; i < a.kps.size(); i += 2)
+    a.kps[i].size = 20.0f;
+  TSet b = a;
+  for (auto& k : b.kps)
+    k.pt += cv::Point2f(0.25f, -0.5f);
+  const auto m = evaluatePair(
+      a.kps, a.desc, b.kps, b.desc, cv::Matx33d::eye(), {640, 480}, {640, 480}, cv::NORM_L2);
+  EXPECT_EQ(m.correctMatches, 100u);
+  ASSERT_EQ(m.finestScaleErrors.size(), 2u * 50u);
+  for (std::size_t i = 0; i < m.finestScaleErrors.size(); i += 2)
+  {
+    EXPECT_NEAR(m.finestScaleErrors[i], 0.25, 1e-4);
+    EXPECT_NEAR(m.finestScaleErrors[i + 1], -0.5, 1e-4);
+  }
+}

@@ -167,7 +167,20 @@ TEST(CFeatureBench, RunsOnGeneratedFramesWithSaneResults)
     EXPECT_LT(res.find(ex, "rot30")->repeatability, 1.0);
     EXPECT_GT(res.find(ex, "scale1.5")->repeatability, 0.2);
   }
+  // Keypoint noise at the finest scale: none against itself; under a turn
+  // a fraction of a pixel, ORB's integer-pixel corners the noisier.
+  for (const std::string ex : {"surf", "orb"})
+  {
+    EXPECT_DOUBLE_EQ(res.find(ex, "none")->localisationSigmaPx, 0.0);
+    EXPECT_GT(res.find(ex, "rot30")->localisationMatches, 20u) << ex;
+    EXPECT_GT(res.find(ex, "rot30")->localisationSigmaPx, 0.01) << ex;
+    EXPECT_LT(res.find(ex, "rot30")->localisationSigmaPx, 1.0) << ex;
+  }
+  EXPECT_GT(
+      res.find("orb", "rot30")->localisationSigmaPx,
+      res.find("surf", "rot30")->localisationSigmaPx);
   const auto j = nlohmann::json::parse(CFeatureBench::toJson(res));
+  EXPECT_TRUE(j["results"][1].contains("localisation_sigma_px"));
   EXPECT_EQ(j["results"].size(), 8u);
   EXPECT_EQ(j["results"][0]["extractor"], "surf");
   EXPECT_TRUE(j["results"][0].contains("repeatability"));

@@ -45,14 +45,16 @@ Vector6d draw(std::mt19937& rng, const Matrix6d& C)
 
 /** The scale after `samples` disagreements drawn with ICP's covariance
  *  truly `trueScale` times the claimed one. */
-std::optional<double> scaleFor(double trueScale, int samples, std::size_t window, unsigned seed)
+std::optional<double> scaleFor(
+    double trueScale, int samples, std::size_t window, unsigned seed, double minScale = 1.0,
+    double icpLevel = 1e-7)
 {
   std::mt19937 rng(seed);
-  CIcpConsistency c(window, 10);
+  CIcpConsistency c(window, 10, minScale);
   for (int i = 0; i < samples; ++i)
   {
     const Matrix6d Sf = randomCovariance(rng, 1e-6);
-    const Matrix6d Si = randomCovariance(rng, 1e-7);
+    const Matrix6d Si = randomCovariance(rng, icpLevel);
     c.add(draw(rng, Sf + trueScale * Si), Sf, Si);
   }
   return c.scale();
@@ -197,4 +199,55 @@ TEST(IcpConsistency, AQuarterOfThePairsKeepsTheInformationABiasLeaves)
     EXPECT_DOUBLE_EQ(c.informationKept(1.0), 1.0);
   }
   EXPECT_NEAR(withScale(12.0).informationKept(0.25), 0.8, 0.01);
+}
+
+TEST(IcpConsistency, BelowItsModelDownToTheLeastScale)
+{
+  // ICP better than it claims (rendered depth: every pair nearly
+  // independent): with a least scale below 1 the scale follows it down,
+  // where ICP claims as much as the features (below, the features' own
+  // error hides ICP's and the scale is poorly determined)...
+  for (const double truth : {0.5, 0.2, 0.08})
+  {
+    SCOPED_TRACE(truth);
+    const auto k = scaleFor(truth, 400, 400, 7, 0.04, 1e-6 / truth);
+    ASSERT_TRUE(k.has_value());
+    EXPECT_GT(*k, truth / 1.5);
+    EXPECT_LT(*k, truth * 1.5);
+  }
+  // ... to the least scale and no further, and not at all with the default.
+  const auto floor = scaleFor(0.001, 400, 400, 8, 0.04, 1e-5);
+  ASSERT_TRUE(floor.has_value());
+  EXPECT_DOUBLE_EQ(*floor, 0.04);
+  const auto model = scaleFor(0.2, 400, 400, 7, 1.0, 5e-6);
+  ASSERT_TRUE(model.has_value());
+  EXPECT_DOUBLE_EQ(*model, 1.0);
+  // An overconfident ICP reads the same whatever the least scale.
+  EXPECT_NEAR(*scaleFor(50.0, 400, 400, 9, 0.04), *scaleFor(50.0, 400, 400, 9), 0.01 * 50);
+  EXPECT_THROW(CIcpConsistency(30, 10, 0.0), std::invalid_argument);
+  EXPECT_THROW(CIcpConsistency(30, 10, 1.5), std::invalid_argument);
+}
+
+TEST(IcpConsistency, BelowOneAShareOfThePairsIsNoiseAlone)
+{
+  // Below 1 the error is noise alone: a run on share q, claiming Si / q,
+  // has covariance k Si / q, its claim scaled by k, and it keeps q of the
+  // information. Runs on all the pairs and on a quarter, interleaved, give
+  // back the k of all the pairs.
+  std::mt19937 rng(10);
+  const double truth = 0.25;
+  CIcpConsistency c(400, 10, 0.04);
+  for (int i = 0; i < 400; ++i)
+  {
+    const Matrix6d Sf = randomCovariance(rng, 1e-6);
+    const Matrix6d Si = randomCovariance(rng, 1e-6);
+    const double q = i % 2 ? 0.25 : 1.0;
+    c.add(draw(rng, Sf + truth * Si / q), Sf, Si / q, q);
+  }
+  ASSERT_TRUE(c.scale().has_value());
+  EXPECT_GT(*c.scale(), truth / 1.5);
+  EXPECT_LT(*c.scale(), truth * 1.5);
+  EXPECT_DOUBLE_EQ(*c.scaleFor(0.25), *c.scale());
+  EXPECT_DOUBLE_EQ(c.informationKept(0.25), 0.25);
+  EXPECT_DOUBLE_EQ(c.informationKept(1.0), 1.0);
 }

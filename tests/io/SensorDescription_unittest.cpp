@@ -34,6 +34,7 @@ TSensorDescription unusual()
   d.rolling_shutter_bottom_to_top = true;
   d.frame_rate = 60;
   d.common_pixel_sigma_px = 0.35;
+  d.keypoint_sigma_px = 0.85;
   auto& n = d.depth_noise;
   n.model = "disparity";
   n.a = 0.002;
@@ -80,6 +81,7 @@ void expectSame(const TSensorDescription& a, const TSensorDescription& b)
   EXPECT_EQ(a.rolling_shutter_bottom_to_top, b.rolling_shutter_bottom_to_top);
   EXPECT_DOUBLE_EQ(a.frame_rate, b.frame_rate);
   EXPECT_DOUBLE_EQ(a.common_pixel_sigma_px, b.common_pixel_sigma_px);
+  EXPECT_DOUBLE_EQ(a.keypoint_sigma_px, b.keypoint_sigma_px);
   const auto &n = a.depth_noise, &m = b.depth_noise;
   EXPECT_EQ(n.model, m.model);
   EXPECT_DOUBLE_EQ(n.a, m.a);
@@ -105,8 +107,8 @@ TEST(SensorDescription, EveryKeyRoundTrips)
   // Every documented key is written.
   for (const char* key :
        {"name", "depth_registered", "depth_pose_in_colour", "depth_scale", "rolling_shutter_ms",
-        "rolling_shutter_direction", "frame_rate", "common_pixel_sigma_px", "depth_noise_model",
-        "depth_noise_a", "depth_noise_b", "depth_noise_z0", "disparity_bf",
+        "rolling_shutter_direction", "frame_rate", "common_pixel_sigma_px", "keypoint_sigma_px",
+        "depth_noise_model", "depth_noise_a", "depth_noise_b", "depth_noise_z0", "disparity_bf",
         "disparity_steps_per_px", "disparity_noise_steps", "lateral_sigma_px"})
     EXPECT_NE(ini.find(std::string(key) + " "), std::string::npos) << key;
   EXPECT_NE(ini.find("[DEPTH_CAMERA_PARAMS]"), std::string::npos);
@@ -131,7 +133,12 @@ TEST(SensorDescription, PresetsRoundTripAndCarryTheReadout)
     EXPECT_FALSE(p.rolling_shutter_bottom_to_top);
     // Measured on fr1 only (CameraPresets.cpp).
     EXPECT_DOUBLE_EQ(p.common_pixel_sigma_px, std::string(name) == "fr1" ? 0.3 : 0) << name;
+    // Real cameras: the camera's share of each keypoint's noise.
+    EXPECT_GT(p.keypoint_sigma_px, 0) << name;
+    EXPECT_DOUBLE_EQ(p.keypoint_sigma_px, roislam::io::sensorPreset("fr1").keypoint_sigma_px);
   }
+  // A rendered camera adds none.
+  EXPECT_DOUBLE_EQ(roislam::io::sensorPreset("icl").keypoint_sigma_px, 0);
   EXPECT_THROW(roislam::io::sensorPreset("fr4"), std::invalid_argument);
 }
 
@@ -151,6 +158,8 @@ TEST(SensorDescription, BadValuesNameSectionAndKey)
       {"frame_rate", "0"},
       {"common_pixel_sigma_px", "-0.1"},
       {"common_pixel_sigma_px", "nan"},
+      {"keypoint_sigma_px", "-0.5"},
+      {"keypoint_sigma_px", "inf"},
       {"depth_noise_model", "gaussian"},
       {"depth_noise_a", "-0.1"},
       {"depth_noise_b", "-1"},

@@ -150,12 +150,31 @@ std::size_t countCorrespondences(
   return correspondences;
 }
 
+/** The smallest positive keypoint.size, or 0 when none has one. */
+double finestSize(const std::vector<cv::KeyPoint>& kps)
+{
+  double s0 = 0;
+  for (const auto& k : kps)
+    if (k.size > 0 && (s0 == 0 || k.size < s0))
+      s0 = k.size;
+  return s0;
+}
+
+/** Whether a keypoint was detected at its image's finest scale s0. */
+bool atFinestScale(const cv::KeyPoint& k, double s0)
+{
+  return !(k.size > 0) || !(s0 > 0) || k.size <= kFinestScaleRatio * s0;
+}
+
 /** Common keypoints of A whose descriptor nearest neighbour among B's common
- *  keypoints is a geometric correspondence. */
+ *  keypoints is a geometric correspondence; the finest-scale ones' errors
+ *  against H go to *finestErrors. */
 std::size_t countCorrectMatches(
     const cv::Mat& descA, const cv::Mat& descB, int normType, const TCommonKeypoints& common,
-    const CCorrespondenceTest& consistent)
+    const CCorrespondenceTest& consistent, const std::vector<cv::KeyPoint>& kpsA,
+    const std::vector<cv::KeyPoint>& kpsB, const cv::Matx33d& H, std::vector<double>* finestErrors)
 {
+  const double s0a = finestSize(kpsA), s0b = finestSize(kpsB);
   const auto& inA = common.inA;
   const auto& inB = common.inB;
   cv::Mat qa(static_cast<int>(inA.size()), descA.cols, descA.type());
@@ -170,8 +189,17 @@ std::size_t countCorrectMatches(
   for (const auto& mt : matches)
   {
     double d2;
-    if (consistent(static_cast<size_t>(mt.queryIdx), inB[mt.trainIdx], d2))
-      ++correct;
+    if (!consistent(static_cast<size_t>(mt.queryIdx), inB[mt.trainIdx], d2))
+      continue;
+    ++correct;
+    const cv::KeyPoint& a = kpsA[static_cast<std::size_t>(inA[mt.queryIdx])];
+    const cv::KeyPoint& b = kpsB[static_cast<std::size_t>(inB[mt.trainIdx])];
+    if (finestErrors && atFinestScale(a, s0a) && atFinestScale(b, s0b))
+    {
+      const cv::Vec3d p = H * cv::Vec3d(a.pt.x, a.pt.y, 1.0);
+      finestErrors->push_back(b.pt.x - p[0] / p[2]);
+      finestErrors->push_back(b.pt.y - p[1] / p[2]);
+    }
   }
   return correct;
 }
@@ -199,6 +227,17 @@ double circleOverlapError(double r1, double r2, double d)
   return 1.0 - inter / (a1 + a2 - inter);
 }
 
+double localisationSigma(std::vector<double> errors)
+{
+  if (errors.empty())
+    return 0;
+  for (double& e : errors)
+    e = std::abs(e);
+  const auto mid = errors.begin() + static_cast<std::ptrdiff_t>(errors.size() / 2);
+  std::nth_element(errors.begin(), mid, errors.end());
+  return 1.482602218505602 * *mid / std::sqrt(2.0);
+}
+
 TPairMetrics evaluatePair(
     const std::vector<cv::KeyPoint>& kpsA, const cv::Mat& descA,
     const std::vector<cv::KeyPoint>& kpsB, const cv::Mat& descB, const cv::Matx33d& H,
@@ -224,7 +263,8 @@ TPairMetrics evaluatePair(
   m.repeatability = static_cast<double>(m.correspondences) / static_cast<double>(denom);
   if (withDesc)
   {
-    m.correctMatches = countCorrectMatches(descA, descB, normType, common, consistent);
+    m.correctMatches = countCorrectMatches(
+        descA, descB, normType, common, consistent, kpsA, kpsB, H, &m.finestScaleErrors);
     m.matchingScore = static_cast<double>(m.correctMatches) / static_cast<double>(denom);
   }
   return m;

@@ -10,11 +10,18 @@
 
 namespace roislam::frontend::detail
 {
-CIcpConsistency::CIcpConsistency(std::size_t window, std::size_t minSamples)
-    : m_window(window), m_minSamples(minSamples)
+CIcpConsistency::CIcpConsistency(std::size_t window, std::size_t minSamples, double minScale)
+    : m_window(window), m_minSamples(minSamples), m_minScale(minScale)
 {
   if (window == 0 || minSamples == 0 || minSamples > window)
     throw std::invalid_argument("CIcpConsistency: need 0 < minSamples <= window");
+  if (!(minScale > 0 && minScale <= 1))
+    throw std::invalid_argument("CIcpConsistency: need 0 < minScale <= 1");
+}
+
+double CIcpConsistency::shareScale(double k, double pairShare)
+{
+  return k < 1 ? k : pairShare * (k - 1) + 1;
 }
 
 void CIcpConsistency::add(
@@ -43,12 +50,12 @@ std::optional<double> CIcpConsistency::scaleFor(double pairShare) const
 {
   if (!m_scale)
     return std::nullopt;
-  return pairShare * (*m_scale - 1) + 1;
+  return shareScale(*m_scale, pairShare);
 }
 
 double CIcpConsistency::informationKept(double pairShare) const
 {
-  if (!m_scale || !std::isfinite(*m_scale))
+  if (!m_scale || !std::isfinite(*m_scale) || *m_scale <= 1)
     return pairShare;
   return *m_scale / (*m_scale - 1 + 1 / pairShare);
 }
@@ -68,7 +75,7 @@ double CIcpConsistency::medianChi2(double k) const
   std::vector<double> c;
   c.reserve(m_samples.size());
   for (const auto& s : m_samples)
-    c.push_back(chi2(s.d, s.featureCov, s.icpCov, s.pairShare * (k - 1) + 1));
+    c.push_back(chi2(s.d, s.featureCov, s.icpCov, shareScale(k, s.pairShare)));
   return upperMedian(std::move(c));
 }
 
@@ -84,9 +91,9 @@ void CIcpConsistency::update()
     return;
   // Every sample's chi-square falls as k grows, so their median does too:
   // bisection on log k (to 1e-3 relative).
-  if (medianChi2(1.0) <= kChi2Median6)
+  if (medianChi2(m_minScale) <= kChi2Median6)
   {
-    m_scale = 1.0;
+    m_scale = m_minScale;
     return;
   }
   if (medianChi2(kMaxScale) > kChi2Median6)
@@ -94,7 +101,7 @@ void CIcpConsistency::update()
     m_scale = std::numeric_limits<double>::infinity();
     return;
   }
-  double lo = 0.0, hi = std::log(kMaxScale);
+  double lo = std::log(m_minScale), hi = std::log(kMaxScale);
   while (hi - lo > 1e-3)
   {
     const double mid = 0.5 * (lo + hi);

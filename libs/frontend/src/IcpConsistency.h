@@ -11,12 +11,14 @@
  * features' own uncertainty is 0.05 deg. Each frame that has both gives the
  * difference d of the two estimates and their covariances; if both were
  * honest, d' (Sf + Si)^-1 d would follow chi-square with 6 degrees of
- * freedom. The scale is the smallest k >= 1 for which the median of
+ * freedom. The scale is the smallest k >= minScale for which the median of
  * d' (Sf + k Si)^-1 d over the recent frames is at most chi-square's median:
- * ICP's covariance inflated by k is what the data allow. The features'
+ * ICP's covariance scaled by k is what the data allow. The features'
  * covariance is taken as honest (their edges' chi-square against ground
- * truth, README "Honest edge information"); the model is never trusted more
- * than as built (k >= 1).
+ * truth, README "Honest edge information"). The front end's minScale is
+ * CDepthIcp::kIndependentPairShare: ICP is trusted at most as if every pair
+ * it used were independent, which on rendered depth it nearly is (k 0.04-0.3
+ * on global-shutter synthetic loops, README "ICP below its model").
  *
  * ICP may also run on a share q of its pairs (every other cell of every
  * other row: q = 1/4), claiming Si / q. Its error is then modelled as a
@@ -24,7 +26,10 @@
  * its noise, which grows as 1/q (Si / q, as claimed): the covariance of a
  * run on share q is (k - 1 + 1/q) Si, i.e. its own claim scaled by
  * kq = q (k - 1) + 1 (scaleFor). k is always that of all the pairs, so runs
- * on either share measure the same k.
+ * on either share measure the same k. Below 1 there is no bias to speak of:
+ * the error is noise alone, k Si for all the pairs and k Si / q for a share
+ * q, whose claim Si / q is then scaled by k itself (kq = k). Both branches
+ * meet at k = 1.
  */
 #pragma once
 
@@ -40,8 +45,11 @@ namespace roislam::frontend::detail
 class CIcpConsistency
 {
  public:
-  /** window: the recent comparisons kept; minSamples: fewer -> no scale. */
-  explicit CIcpConsistency(std::size_t window = 30, std::size_t minSamples = 10);
+  /** window: the recent comparisons kept; minSamples: fewer -> no scale;
+   *  minScale in (0, 1]: the least scale ICP's covariance may take (1: never
+   *  trusted beyond its model). Throws std::invalid_argument. */
+  explicit CIcpConsistency(
+      std::size_t window = 30, std::size_t minSamples = 10, double minScale = 1.0);
 
   /** One frame's comparison: d = log(T_icp T_features^-1) in the left
    *  perturbation (fuseLeft's), with each estimate's covariance there, ICP
@@ -49,16 +57,18 @@ class CIcpConsistency
   void add(
       const Vector6d& d, const Matrix6d& featureCov, const Matrix6d& icpCov, double pairShare = 1);
 
-  /** The scale k >= 1 of ICP's covariance, or nullopt before minSamples
+  /** The scale k >= minScale of ICP's covariance, or nullopt before minSamples
    *  comparisons. +infinity when no scale up to kMaxScale explains the
    *  disagreement (ICP is then of no use beside the features). */
   std::optional<double> scale() const { return m_scale; }
   /** The scale of the claimed covariance of an ICP run on pairShare of its
-   *  pairs: pairShare (k - 1) + 1 (k = scale(); nullopt as scale()). */
+   *  pairs: pairShare (k - 1) + 1 for k >= 1, k below (k = scale(); nullopt
+   *  as scale()). */
   std::optional<double> scaleFor(double pairShare) const;
   /** The share of a full run's information that an ICP run on pairShare of
-   *  its pairs keeps, under the model above: k / (k - 1 + 1 / pairShare);
-   *  pairShare itself (noise alone) while no finite scale is known. */
+   *  its pairs keeps, under the model above: k / (k - 1 + 1 / pairShare) for
+   *  k >= 1; pairShare itself (noise alone) below 1 and while no finite
+   *  scale is known. */
   double informationKept(double pairShare) const;
 
   /** The median over the recent comparisons of ICP's information relative
@@ -88,10 +98,13 @@ class CIcpConsistency
     double pairShare = 1;
   };
   double medianChi2(double k) const;
+  /** scaleFor()'s formula for a given k. */
+  static double shareScale(double k, double pairShare);
   /** The scale and the median share of the samples held (after add()). */
   void update();
 
   std::size_t m_window, m_minSamples;
+  double m_minScale;
   std::deque<TSample> m_samples;
   std::optional<double> m_scale;
   double m_share = 0;

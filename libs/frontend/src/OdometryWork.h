@@ -64,8 +64,9 @@ struct CRgbdOdometry::TImpl
   std::optional<detail::TUncorrectedKeyframe> uncorrected;
   /** depth_time_correction: the depth images' offset from the colour ones. */
   detail::CDepthTimeOffset depthTime;
-  /** icp_fusion = measured: how far ICP agrees with the features. */
-  detail::CIcpConsistency icpConsistency;
+  /** icp_fusion = measured: how far ICP agrees with the features. Trusted
+   *  down to every pair independent (IcpConsistency.h). */
+  detail::CIcpConsistency icpConsistency{30, 10, detail::CDepthIcp::kIndependentPairShare};
   /** Registrations since depth ICP last ran (icp_probe_interval). */
   std::size_t framesSinceIcp = 0;
   /** The current interval between ICP probes (icp_probe_interval, doubled

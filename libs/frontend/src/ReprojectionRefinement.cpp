@@ -140,6 +140,32 @@ Eigen::Matrix2d residualCovariance(
          sigmaZ * sigmaZ * d * d.transpose();
 }
 
+/** The RMS reprojection error in pixels over both directions of the pairs
+ *  (unweighted, whatever each pair's sigma). */
+double pixelRms(
+    const TPinhole& cam, const TCorrespondences& c, const TRigid& T,
+    const std::vector<std::size_t>& idx)
+{
+  const TRigid Tinv = T.inverse();
+  double sum = 0;
+  std::size_t n = 0;
+  Eigen::Vector2d u;
+  for (auto i : idx)
+  {
+    if (project(cam, T * c.b[i], u, nullptr))
+    {
+      sum += (u - c.ua[i]).squaredNorm();
+      ++n;
+    }
+    if (project(cam, Tinv * c.a[i], u, nullptr))
+    {
+      sum += (u - c.ub[i]).squaredNorm();
+      ++n;
+    }
+  }
+  return n ? std::sqrt(sum / (2.0 * static_cast<double>(n))) : 0.0;
+}
+
 Matrix6d estimatorInformation(
     const TPinhole& cam, const TCorrespondences& c, const TRigid& T,
     const std::vector<std::size_t>& idx, const TRefineParams& p)
@@ -242,12 +268,10 @@ TRefineResult refineReprojection(
     return res;
   Matrix6d H;
   Vector6d g;
-  double sumSq = 0;
-  buildSystem(cam, c, res.T, inl, params, H, g, &sumSq);
+  buildSystem(cam, c, res.T, inl, params, H, g, nullptr);
   res.information = H;
   res.edgeInformation = estimatorInformation(cam, c, res.T, inl, params);
-  // sumSq is in sigma units; report pixels at the base sigma.
-  res.rmsePx = params.pixelSigma * std::sqrt(sumSq / (2.0 * static_cast<double>(inl.size())));
+  res.rmsePx = pixelRms(cam, c, res.T, inl);
   double s3 = 0;
   for (auto i : inl)
     s3 += (res.T * c.b[i] - c.a[i]).squaredNorm();

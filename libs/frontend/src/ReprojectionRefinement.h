@@ -33,6 +33,8 @@ struct TCorrespondences
 struct TRefineParams
 {
   int iterations = 10;
+  /** Inlier gate for a pair whose sigma is pixelSigma; each pair's gate is
+   *  this times its own sigma / pixelSigma. */
   double inlierThresholdPx = 3.0;
   /** 3-D distance gate of the final inliers, metres. */
   double inlierThreshold3d = 0.06;
@@ -61,6 +63,7 @@ struct TRefineResult
    *  a-posteriori variance factor of the fit (the residuals' own spread). */
   Matrix6d edgeInformation = Matrix6d::Zero();
   std::vector<std::size_t> inliers;
+  /** RMS reprojection error of the inliers, pixels, per axis (unweighted). */
   double rmsePx = 0;
   double rmse3d = 0;
 };

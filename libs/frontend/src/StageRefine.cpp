@@ -22,7 +22,7 @@ namespace
  *  (IcpConsistency.h: a bias fewer pairs do not change plus noise that
  *  grows as they fall), that keeps at least this share of its information:
  *  k >= 12. The fr1 Kinect reads k = 10-140 (its ICP error is bias), the
- *  synthetic loops about 1 (noise: every pair counts). */
+ *  synthetic loops 1 or below (noise: every pair counts). */
 constexpr double kCoarseIcpMinInformationKept = 0.8;
 constexpr int kCoarseIcpStride = 2;
 }  // namespace

@@ -305,8 +305,8 @@ void validateRegistration(const TOptions& o, const std::string& s)
     throwBadIniKey(s, "refine_iterations", "must be >= 0");
   if (!(o.reprojection_threshold_px > 0))
     throwBadIniKey(s, "reprojection_threshold_px", "must be > 0");
-  if (!(o.pixel_sigma_px > 0))
-    throwBadIniKey(s, "pixel_sigma_px", "must be > 0");
+  if (!(o.pixel_sigma_px >= 0) || !std::isfinite(o.pixel_sigma_px))
+    throwBadIniKey(s, "pixel_sigma_px", "must be >= 0 (0 = the detector's own)");
   if (!(o.min_depth_m >= 0))
     throwBadIniKey(s, "min_depth_m", "must be >= 0");
   if (!(o.max_depth_m > o.min_depth_m))

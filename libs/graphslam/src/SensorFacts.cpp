@@ -21,6 +21,7 @@ void applySensorFacts(
     progress(app + ": " + choice.summary());
   fe.depth_noise = choice.sensor.depth_noise;
   fe.common_pixel_sigma_px = choice.sensor.common_pixel_sigma_px;
+  fe.keypoint_sigma_px = choice.sensor.keypoint_sigma_px;
   const double sensorMs = choice.sensor.frameReadoutMs();
   if (!iniReadout)
     fe.rolling_shutter_ms = sensorMs;

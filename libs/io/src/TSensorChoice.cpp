@@ -13,16 +13,17 @@ std::string TSensorChoice::summary() const
       intrinsics, sizeof(intrinsics), "%dx%d fx %.1f fy %.1f cx %.1f cy %.1f%s",
       static_cast<int>(c.ncols), static_cast<int>(c.nrows), c.fx(), c.fy(), c.cx(), c.cy(),
       c.distortion == mrpt::img::DistortionModel::none ? ", no distortion" : ", distorted");
-  char rest[260];
+  char rest[320];
   std::snprintf(
       rest, sizeof(rest),
       ", rolling shutter %g ms%s, %g Hz, depth scale %g, depth noise %s, common keypoint shift "
-      "%g px",
+      "%g px, keypoint noise %g px",
       s.rolling_shutter_ms,
       s.rolling_shutter_ms == 0
           ? " (global)"
           : (s.rolling_shutter_bottom_to_top ? " bottom to top" : " top to bottom"),
-      s.frame_rate, s.depth_scale, s.depth_noise.model.c_str(), s.common_pixel_sigma_px);
+      s.frame_rate, s.depth_scale, s.depth_noise.model.c_str(), s.common_pixel_sigma_px,
+      s.keypoint_sigma_px);
   const std::string registration =
       s.depth_registered ? ", depth registered"
                          : ", depth not registered (re-projected into the colour camera)";
@@ -40,6 +41,7 @@ nlohmann::json TSensorChoice::toJson() const
       {"rolling_shutter_ms", sensor.signedReadoutMs()},
       {"frame_rate", sensor.frame_rate},
       {"common_pixel_sigma_px", sensor.common_pixel_sigma_px},
+      {"keypoint_sigma_px", sensor.keypoint_sigma_px},
       {"description", sensor.toIniText()}};
 }
 }  // namespace roislam::io

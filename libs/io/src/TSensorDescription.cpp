@@ -104,6 +104,7 @@ void readScalars(
   d.frame_rate = common::readDouble(cfg, s, "frame_rate", d.frame_rate);
   d.common_pixel_sigma_px =
       common::readDouble(cfg, s, "common_pixel_sigma_px", d.common_pixel_sigma_px);
+  d.keypoint_sigma_px = common::readDouble(cfg, s, "keypoint_sigma_px", d.keypoint_sigma_px);
   n.model = common::readString(cfg, s, "depth_noise_model", n.model);
   n.a = common::readDouble(cfg, s, "depth_noise_a", n.a);
   n.b = common::readDouble(cfg, s, "depth_noise_b", n.b);
@@ -180,6 +181,9 @@ void TSensorDescription::validate(const std::string& s) const
   common::require(
       common_pixel_sigma_px >= 0 && std::isfinite(common_pixel_sigma_px), s,
       "common_pixel_sigma_px", common_pixel_sigma_px, ">= 0 px");
+  common::require(
+      keypoint_sigma_px >= 0 && std::isfinite(keypoint_sigma_px), s, "keypoint_sigma_px",
+      keypoint_sigma_px, ">= 0 px");
   const auto& n = depth_noise;
   if (n.model != "kinect" && n.model != "disparity" && n.model != "none")
     common::throwBadIniKey(
@@ -230,6 +234,7 @@ void TSensorDescription::saveToConfigFile(
       std::string(rolling_shutter_bottom_to_top ? "bottom_to_top" : "top_to_bottom"));
   w("frame_rate", frame_rate);
   w("common_pixel_sigma_px", common_pixel_sigma_px);
+  w("keypoint_sigma_px", keypoint_sigma_px);
   cfg.write(s, "depth_noise_model", n.model);
   w("depth_noise_a", n.a);
   w("depth_noise_b", n.b);

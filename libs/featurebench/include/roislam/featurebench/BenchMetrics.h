@@ -72,7 +72,23 @@ struct TPairMetrics
   double repeatability = 0;
   /** correctMatches / min(commonA, commonB); 0 when a set is empty. */
   double matchingScore = 0;
+  /** Where the correct matches of the finest detection scale lie against
+   *  the homography: both components of b - H(a) (px in B) of each correct
+   *  match whose two keypoints are within kFinestScaleRatio of the smallest
+   *  keypoint.size of their image (keypoints without a size count as the
+   *  finest). localisationSigma() makes them a keypoint noise. */
+  std::vector<double> finestScaleErrors;
 };
+
+/** Keypoints up to this ratio above their image's smallest size count as
+ *  detected at the finest scale (ORB's level 0 and 1 at factor 1.2; SIFT's
+ *  and SURF's first octave's lower half). */
+constexpr double kFinestScaleRatio = 1.5;
+
+/** One keypoint's noise per image axis (px, 1 sigma) from errors of pairs of
+ *  keypoints (each pair's difference carries two keypoints' noise): the
+ *  robust standard deviation 1.4826 median|e| / sqrt(2); 0 when empty. */
+double localisationSigma(std::vector<double> errors);
 
 /** H maps pixel coordinates of A (size sizeA) to B (size sizeB); 3x3 CV_64F.
  *  Descriptors (one row per keypoint) may be empty: the matching score is then

@@ -85,6 +85,12 @@ class CFeatureBench
     /** The same under the overlap-error criterion. */
     double repeatabilityOverlap = 0, matchingScoreOverlap = 0;
     double correspondencesOverlapPerFrame = 0;
+    /** Keypoint noise per image axis at the finest detection scale (px, 1
+     *  sigma; BenchMetrics.h localisationSigma) over all the frames' correct
+     *  matches (pixel criterion); 0 without any, and for "none". */
+    double localisationSigmaPx = 0;
+    /** The finest-scale correct matches it was measured on. */
+    std::size_t localisationMatches = 0;
   };
 
   struct TResult

@@ -196,8 +196,10 @@ struct TFrameResult
   double icpPairShare = 0;
   /** Measured fusion's scale k of ICP's covariance after this frame's
    *  comparison (IcpConsistency.h: 1 = as ICP's model claims, above 1
-   *  trusted less; infinity: of no use beside the features); 0 while none
-   *  is known, when no ICP ran or outside measured fusion. */
+   *  trusted less, below 1 trusted more, down to 0.04 = every pair
+   *  independent; infinity: of no use beside the features); 0 while none
+   *  is known, when no ICP ran or it found no alignment, or outside
+   *  measured fusion. */
   double icpScale = 0;
   std::size_t newKeyframeId = 0;
   /** For a new keyframe (except the first): constraints from the recent

@@ -191,11 +191,25 @@
  *  - ransac_threshold_m       [m] > 0 (0.03): 3-D inlier distance of RANSAC
  *  - ransac_max_iterations    int >= 1 (200), adaptive (confidence 0.995)
  *  - refine_iterations        int >= 0 (10): Gauss-Newton iterations on inliers
- *  - reprojection_threshold_px [px] > 0 (2.0): inlier gate after refinement
- *  - pixel_sigma_px           [px] > 0 (1.0): keypoint noise for the information
- *  - scale_aware_weights     bool (false): keypoint noise grows with the
- *                             detection size (ORB: size/31 x pixel_sigma_px);
- *                             measured slightly worse on fr1/rpy, so off
+ *  - reprojection_threshold_px [px] > 0 (3.0): inlier gate after refinement
+ *                             for a keypoint of 1 px noise: each pair's gate
+ *                             is this times its own sigma (pixel_sigma_px
+ *                             below), i.e. 3 sigmas (chi-square with 2
+ *                             degrees of freedom: 0.99 within 3.03)
+ *  - pixel_sigma_px           [px] >= 0 (0): keypoint noise at the finest
+ *                             detection scale, per image axis; 0 = the
+ *                             detector's own (features::finestScaleSigmaPx:
+ *                             ORB 0.72, SURF 0.46, SIFT 0.31). The camera's
+ *                             share (keypoint_sigma_px below) adds to it in
+ *                             quadrature. The inlier gate
+ *                             reprojection_threshold_px holds at the finest
+ *                             scale and widens with each pair's sigma
+ *  - scale_aware_weights     bool (true): the detector's share grows with the
+ *                             detection size (ORB: size/31; SIFT/SURF: size /
+ *                             the smallest size among the pairs); false: one
+ *                             sigma for every pyramid level (README "Keypoint
+ *                             noise per detector": with per-detector floors it
+ *                             made ORB worse, 16.24 -> 20.73 mm over 8 runs)
  *  - min_depth_m, max_depth_m [m] (0.3, 4.0): depth range used for features
  *  - depth_discontinuity_m    [m] >= 0 (0.05): skip keypoints whose 3x3 depth
  *                             neighbourhood spans more than this * depth (0 = off)
@@ -239,7 +253,9 @@
  *                             information. measured: the well-determined
  *                             ones too, with that information divided by the
  *                             scale the last 30 frames' disagreement of ICP
- *                             and features asks for (IcpConsistency.h; as
+ *                             and features asks for (IcpConsistency.h: down
+ *                             to 1/25, every pair independent, where ICP is
+ *                             better than its model, rendered depth; as
  *                             weak until 10 frames were compared; no fusion
  *                             where no scale explains it). A well-determined
  *                             registration is not fused when its own
@@ -379,9 +395,9 @@ struct TRgbdOdometryOptions : public mrpt::config::CLoadableOptions
   double ransac_threshold_m = 0.03;
   int ransac_max_iterations = 200;
   int refine_iterations = 10;
-  double reprojection_threshold_px = 2.0;
-  double pixel_sigma_px = 1.0;
-  bool scale_aware_weights = false;
+  double reprojection_threshold_px = 3.0;
+  double pixel_sigma_px = 0;
+  bool scale_aware_weights = true;
   double min_depth_m = 0.3;
   double max_depth_m = 4.0;
   double depth_discontinuity_m = 0.05;
@@ -410,6 +426,11 @@ struct TRgbdOdometryOptions : public mrpt::config::CLoadableOptions
    *  fact, TSensorDescription::common_pixel_sigma_px). Widens the
    *  estimator's edge information along what such a shift moves. */
   double common_pixel_sigma_px = 0;
+  /** The camera's own noise of each keypoint, px per axis (not an ini key: a
+   *  camera fact, TSensorDescription::keypoint_sigma_px): what blur,
+   *  compression and timing add to the detector's share, whatever the
+   *  detection scale; added in quadrature. */
+  double keypoint_sigma_px = 0;
 
   roi::CRoiDetector::TOptions roi;
   features::CFeatureExtractor::TOptions extractor;

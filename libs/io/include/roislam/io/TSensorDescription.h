@@ -43,6 +43,12 @@
  *         rolling-shutter and calibration errors); it does not average
  *         down with the keypoint count, so the edge information carries it
  *         as its own term (0 = none: a rendered camera)
+ *     keypoint_sigma_px          double >= 0                  0 (px)
+ *         1-sigma, per image axis, of what the camera adds to each
+ *         keypoint's own noise (motion blur, compression, sensor noise
+ *         beyond a rendered image's), whatever its detection scale; added in
+ *         quadrature to the detector's share (features::finestScaleSigmaPx;
+ *         0 = none: a rendered camera)
  *     depth_noise_model          kinect | disparity | none    kinect
  *     depth_noise_a              double >= 0                  0.0012 (m)
  *     depth_noise_b              double >= 0                  0.0019 (1/m)
@@ -95,6 +101,7 @@ struct TSensorDescription : public mrpt::config::CLoadableOptions
   bool rolling_shutter_bottom_to_top = false;
   double frame_rate = 30;            //!< Hz
   double common_pixel_sigma_px = 0;  //!< per-image keypoint shift, 1 sigma per axis
+  double keypoint_sigma_px = 0;      //!< the camera's per-keypoint noise, 1 sigma per axis
   TDepthNoise depth_noise;
 
   /** The readout as declared: positive top to bottom, negative bottom to
