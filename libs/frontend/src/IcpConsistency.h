@@ -17,8 +17,9 @@
  * covariance is taken as honest (their edges' chi-square against ground
  * truth, README "Honest edge information"). The front end's minScale is
  * CDepthIcp::kIndependentPairShare: ICP is trusted at most as if every pair
- * it used were independent, which on rendered depth it nearly is (k 0.04-0.3
- * on global-shutter synthetic loops, README "ICP below its model").
+ * it used were independent, which on rendered depth it nearly is (median k
+ * 0.04-0.08 on rendered loops, README "Keypoint noise per detector and
+ * camera").
  *
  * ICP may also run on a share q of its pairs (every other cell of every
  * other row: q = 1/4), claiming Si / q. Its error is then modelled as a

@@ -85,7 +85,7 @@ TRefineParams refineParams(const CRgbdOdometry::TOptions& o)
   // (pixelSigma 1 px is the unit it is stated in): 3 measured best of 2, 3
   // and 4 over fr1 and the rendered loops together, and a gate of 2 px at
   // the finest scale, 2.8-6.5 sigmas depending on the detector, was worse on
-  // the rendered loops (README "Keypoint noise per detector").
+  // the rendered loops (README "Keypoint noise per detector and camera").
   rp.pixelSigma = 1.0;
   rp.depthSigma = [noise = o.depth_noise](double z) { return noise.sigma(z); };
   rp.commonPixelSigma = o.common_pixel_sigma_px;

@@ -221,7 +221,7 @@ TSensorDescription sensorPreset(const std::string& name)
   // fr1/xyz, but the ATE sum on fr1/rpy is 71.5 mm at 0.5 px against 62.7
   // at 1 px (fr1/xyz 31.8 against 32.5): the noise grows with the motion
   // (blur), which one value cannot follow, and 1 px keeps the fast excerpt
-  // whole (README "Keypoint noise per detector"). fr2, fr3 and an unknown
+  // whole (README "Keypoint noise per detector and camera"). fr2, fr3 and an unknown
   // camera (ros) are real Kinect-class cameras too and take the same value,
   // unmeasured; ICL-NUIM is rendered.
   if (name != "icl")

@@ -27,13 +27,11 @@ inline bool isBinary(EFeatureType t)
 }
 
 /** A detector's keypoint noise at its finest detection scale (px per image
- *  axis, 1 sigma), as a registration between two frames sees it: what makes
- *  the chi-square of the front end's feature edges against ground truth
- *  come out as expected on rendered loops of every kind (README "Keypoint
- *  noise per detector"; ORB 0.72, SURF 0.46, SIFT 0.31). It grows with the
- *  detection size (CRgbdOdometry's scale_aware_weights). A detector fact:
- *  what a camera adds (blur, compression, timing) is the sensor's
- *  TSensorDescription::keypoint_sigma_px, added in quadrature. */
+ *  axis, 1 sigma), as a registration between two frames sees it: ORB 0.72,
+ *  SURF 0.46, SIFT 0.31 (how they were measured: TFeatureSet.cpp). It grows
+ *  with the detection size (CRgbdOdometry's scale_aware_weights). A
+ *  detector fact: what a camera adds (blur, compression, timing) is the
+ *  sensor's TSensorDescription::keypoint_sigma_px, added in quadrature. */
 double finestScaleSigmaPx(EFeatureType t);
 
 struct TFeatureSet

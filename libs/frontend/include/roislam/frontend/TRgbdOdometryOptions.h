@@ -201,15 +201,14 @@
  *                             detector's own (features::finestScaleSigmaPx:
  *                             ORB 0.72, SURF 0.46, SIFT 0.31). The camera's
  *                             share (keypoint_sigma_px below) adds to it in
- *                             quadrature. The inlier gate
- *                             reprojection_threshold_px holds at the finest
- *                             scale and widens with each pair's sigma
+ *                             quadrature; each pair's inlier gate is
+ *                             reprojection_threshold_px x its sigma
  *  - scale_aware_weights     bool (true): the detector's share grows with the
  *                             detection size (ORB: size/31; SIFT/SURF: size /
  *                             the smallest size among the pairs); false: one
- *                             sigma for every pyramid level (README "Keypoint
- *                             noise per detector": with per-detector floors it
- *                             made ORB worse, 16.24 -> 20.73 mm over 8 runs)
+ *                             sigma for every pyramid level (README "Trusting
+ *                             ICP beyond its model": with per-detector floors
+ *                             it made ORB worse, 16.24 -> 20.73 mm over 8 runs)
  *  - min_depth_m, max_depth_m [m] (0.3, 4.0): depth range used for features
  *  - depth_discontinuity_m    [m] >= 0 (0.05): skip keypoints whose 3x3 depth
  *                             neighbourhood spans more than this * depth (0 = off)
