@@ -544,7 +544,9 @@ TEST(RgbdOdometry, OptionsIniRoundTripAndErrors)
            {"icp_probe_interval", 0},
            {"icp_converged_step_sigma", -0.1},
            {"rolling_shutter_ms", -1001},
-           {"rolling_shutter_ms", 2000}})
+           {"rolling_shutter_ms", 2000},
+           {"pixel_sigma_px", -0.5},
+           {"reprojection_threshold_px", 0}})
   {
     mrpt::config::CConfigFileMemory bad3;
     bad3.write("FrontEnd", key, value);

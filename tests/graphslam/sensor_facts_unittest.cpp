@@ -1,7 +1,7 @@
 /* SensorFacts.h: the camera facts both SLAM apps take from the sensor
- * description (readout, depth-noise model, common keypoint shift); a readout the ini still sets
- * wins, with a note when it differs; iniSetsReadout() finds the key in
- * either ini layout. */
+ * description (readout, depth-noise model, common keypoint shift, keypoint noise); a readout the
+ * ini still sets wins, with a note when it differs; iniSetsReadout() finds the key in either ini
+ * layout. */
 #include <gtest/gtest.h>
 #include <mrpt/config/CConfigFileMemory.h>
 #include <roislam/graphslam/SensorFacts.h>
@@ -19,6 +19,7 @@ roislam::io::TSensorChoice globalShutterDisparity()
   c.sensor.rolling_shutter_ms = 0;
   c.sensor.depth_noise.model = "disparity";
   c.sensor.common_pixel_sigma_px = 0.7;
+  c.sensor.keypoint_sigma_px = 0.6;
   c.source = "file camera.ini";
   c.reason = "camera.ini in the folder";
   return c;
@@ -35,6 +36,7 @@ TEST(SensorFacts, TheSensorsReadoutAndDepthNoiseUnlessTheIniSetsTheReadout)
   EXPECT_EQ(fe.rolling_shutter_ms, 0.0);
   EXPECT_EQ(fe.depth_noise.model, "disparity");
   EXPECT_EQ(fe.common_pixel_sigma_px, 0.7);
+  EXPECT_EQ(fe.keypoint_sigma_px, 0.6);
   ASSERT_EQ(lines.size(), 1u);
   EXPECT_EQ(lines[0].rfind("app: ", 0), 0u);
 
