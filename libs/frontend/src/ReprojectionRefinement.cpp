@@ -34,25 +34,22 @@ Eigen::Matrix<double, 3, 6> leftJacobian(const Eigen::Vector3d& p)
 /** One Huber-weighted reprojection residual r (in sigmas) with Jacobian J. */
 void addResidual(
     const Eigen::Vector2d& r, const Eigen::Matrix<double, 2, 6>& J, double huber, Matrix6d& H,
-    Vector6d& g, double& sumSq)
+    Vector6d& g)
 {
   const double n = r.norm();
   const double w = n <= huber ? 1.0 : huber / n;
   H.noalias() += w * J.transpose() * J;
   g.noalias() += w * J.transpose() * r;
-  sumSq += r.squaredNorm();
 }
 
 // One Gauss-Newton system over the given pairs.
 void buildSystem(
     const TPinhole& cam, const TCorrespondences& c, const TRigid& T,
-    const std::vector<std::size_t>& idx, const TRefineParams& p, Matrix6d& H, Vector6d& g,
-    double* sumSq)
+    const std::vector<std::size_t>& idx, const TRefineParams& p, Matrix6d& H, Vector6d& g)
 {
   const double huber = p.huber;
   H.setZero();
   g.setZero();
-  double s = 0;
   const TRigid Tinv = T.inverse();
   for (auto i : idx)
   {
@@ -62,13 +59,11 @@ void buildSystem(
     // Forward: b -> a image, X = exp(d) T b.
     const Eigen::Vector3d X = T * c.b[i];
     if (project(cam, X, u, &Jp))
-      addResidual((u - c.ua[i]) * is, is * Jp * leftJacobian(X), huber, H, g, s);
+      addResidual((u - c.ua[i]) * is, is * Jp * leftJacobian(X), huber, H, g);
     // Backward: a -> b image. Y = T^-1 exp(-d) a => dY/dd = -R^T [I, -[a]x].
     if (project(cam, Tinv * c.a[i], u, &Jp))
-      addResidual((u - c.ub[i]) * is, -is * Jp * Tinv.R * leftJacobian(c.a[i]), huber, H, g, s);
+      addResidual((u - c.ub[i]) * is, -is * Jp * Tinv.R * leftJacobian(c.a[i]), huber, H, g);
   }
-  if (sumSq)
-    *sumSq = s;
 }
 
 TRigid gaussNewton(
@@ -79,7 +74,7 @@ TRigid gaussNewton(
   Vector6d g;
   for (int it = 0; it < p.iterations; ++it)
   {
-    buildSystem(cam, c, T, idx, p, H, g, nullptr);
+    buildSystem(cam, c, T, idx, p, H, g);
     const double lambda = 1e-9 * (H.trace() + 1.0);
     const Vector6d d = -(H + lambda * Matrix6d::Identity()).ldlt().solve(g);
     if (!d.allFinite())
@@ -268,7 +263,7 @@ TRefineResult refineReprojection(
     return res;
   Matrix6d H;
   Vector6d g;
-  buildSystem(cam, c, res.T, inl, params, H, g, nullptr);
+  buildSystem(cam, c, res.T, inl, params, H, g);
   res.information = H;
   res.edgeInformation = estimatorInformation(cam, c, res.T, inl, params);
   res.rmsePx = pixelRms(cam, c, res.T, inl);
