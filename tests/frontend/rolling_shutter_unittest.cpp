@@ -12,9 +12,11 @@
 #include <random>
 #include <utility>
 
+#include "KeyframeRegistration.h"
 #include "RollingShutter.h"
 
 using roislam::frontend::CRgbdOdometry;
+using roislam::frontend::TKeyframe;
 using namespace roislam::frontend::detail;
 
 namespace
@@ -321,4 +323,126 @@ TEST(DepthTime, NoOffsetOrNoMotionChangesNothing)
     EXPECT_EQ(l.valid, raw.valid);
     EXPECT_EQ(l.rawZ, raw.rawZ);
   }
+}
+
+// Keypoint timing noise (KeyframeRegistration.h motionSigmaPx): a keypoint
+// whose time is uncertain by tau is uncertain in the image by its image
+// speed times tau, from the velocity its frame was lifted with.
+namespace
+{
+/** Where the point X (in the camera at time 0) is seen t seconds later by a
+ *  camera turning at omega and moving at v (its own frame). */
+cv::Point2d seenAt(const TCameraRate& r, double t, const Eigen::Vector3d& X)
+{
+  const Eigen::Vector3d w = r.omega * t;
+  const Eigen::Matrix3d R = w.norm() > 0
+                                ? Eigen::AngleAxisd(w.norm(), w.normalized()).toRotationMatrix()
+                                : Eigen::Matrix3d::Identity();
+  const Eigen::Vector3d Xt = R.transpose() * (X - r.linear * t);
+  return {kCam.fx * Xt.x() / Xt.z() + kCam.cx, kCam.fy * Xt.y() / Xt.z() + kCam.cy};
+}
+
+mrpt::math::TVector3D toMrpt3(const Eigen::Vector3d& v)
+{
+  return {v.x(), v.y(), v.z()};
+}
+}  // namespace
+
+TEST(KeypointTiming, SigmaIsTheImageSpeedTimesTheTime)
+{
+  TCameraRate rate;
+  rate.omega = Eigen::Vector3d(0.3, 1.0, -0.2);   // about 60 deg/s
+  rate.linear = Eigen::Vector3d(0.2, -0.1, 0.3);  // m/s
+  const double tau = 0.0015;
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> U(-1, 1), Z(0.8, 4);
+  for (int i = 0; i < 50; ++i)
+  {
+    const double z = Z(rng);
+    const Eigen::Vector3d X(U(rng) * 0.5 * z, U(rng) * 0.4 * z, z);
+    // The image speed by central differences of the exact motion.
+    constexpr double h = 1e-5;
+    const double speed = cv::norm(seenAt(rate, h, X) - seenAt(rate, -h, X)) / (2 * h);
+    const double sigma =
+        motionSigmaPx({X.x(), X.y(), X.z()}, toMrpt3(rate.omega), toMrpt3(rate.linear), kCam, tau);
+    EXPECT_GT(sigma, 0.1) << "a fast turn moves keypoints by hundreds of px/s";
+    EXPECT_NEAR(sigma, speed * tau, 1e-3 * speed * tau) << "point " << i;
+  }
+  // No time, no motion, or a point behind the camera: nothing.
+  const mrpt::math::TPoint3D X(0.2, -0.1, 2.0);
+  EXPECT_EQ(motionSigmaPx(X, toMrpt3(rate.omega), toMrpt3(rate.linear), kCam, 0), 0);
+  EXPECT_EQ(motionSigmaPx(X, {0, 0, 0}, {0, 0, 0}, kCam, tau), 0);
+  EXPECT_EQ(
+      motionSigmaPx({0.2, -0.1, -2.0}, toMrpt3(rate.omega), toMrpt3(rate.linear), kCam, tau), 0);
+}
+
+TEST(KeypointTiming, FeatureSetsCarryTheRateTheirPointsWereCorrectedWith)
+{
+  TCameraRate rate;
+  rate.omega = Eigen::Vector3d(0.4, -1.2, 0.3);
+  rate.linear = Eigen::Vector3d(0.15, -0.05, 0.3);
+  const TScene sc = makeScene(rate, 0.02);
+  TLiftedFeatures lifted =
+      liftFeatures(sc.features, sc.depth, K(), cv::Mat::zeros(1, 5, CV_64F), options());
+  // A global shutter (readout 0) records the rate too: the term needs no
+  // readout.
+  rectifyRollingShutter(lifted, rate, 0, kCam);
+  TKeyframe k = makeFeatureSet(sc.features, lifted, lifted.valid, kCam);
+  EXPECT_NEAR(k.angularRate.y, -1.2, 1e-12);
+  EXPECT_NEAR(k.linearRate.z, 0.3, 1e-12);
+  // A new correction with another rate replaces it.
+  rectifyRollingShutter(lifted, TCameraRate{}, 0.02, kCam);
+  updateFeatureSetPoints(k, lifted, lifted.valid, kCam);
+  EXPECT_EQ(k.angularRate.norm(), 0);
+  EXPECT_EQ(k.linearRate.norm(), 0);
+}
+
+TEST(KeypointTiming, WidensTheNoiseOfAnEdgeSeenWhileTurning)
+{
+  // The same points seen twice from one place: a registration whose
+  // information falls, with the timing noise, as fast as the frame turns.
+  TKeyframe ref;
+  ref.features.type = roislam::features::EFeatureType::ORB;
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> U(-1, 1), Z(1, 3);
+  std::normal_distribution<double> N(0, 0.7);
+  TKeyframe cur = ref;
+  TRegistration r;
+  for (int i = 0; i < 120; ++i)
+  {
+    const double z = Z(rng);
+    const Eigen::Vector3d X(U(rng) * 0.5 * z, U(rng) * 0.4 * z, z);
+    const cv::Point2f u = kCam.project(X);
+    for (TKeyframe* k : {&ref, &cur})
+    {
+      k->features.keypoints.emplace_back(u, 31.f);
+      k->points.emplace_back(X.x(), X.y(), X.z());
+      k->pixels.push_back(
+          k == &ref
+              ? u
+              : cv::Point2f(u.x + static_cast<float>(N(rng)), u.y + static_cast<float>(N(rng))));
+    }
+    r.pairs.emplace_back(i, i);
+    r.inlierPairs.push_back(static_cast<std::size_t>(i));
+  }
+  ref.features.descriptors = cv::Mat::zeros(120, 32, CV_8U);
+  cur.features.descriptors = ref.features.descriptors.clone();
+  CRgbdOdometry::TOptions o = options();
+  o.reprojection_threshold_px = 50;  // every pair an inlier, whatever its sigma
+  const auto still = refineRegistration(ref, cur, r, kCam, o);
+  ASSERT_TRUE(still);
+  // With a timing noise but no motion, nothing changes.
+  o.keypoint_time_sigma_ms = 5;
+  const auto noMotion = refineRegistration(ref, cur, r, kCam, o);
+  ASSERT_TRUE(noMotion);
+  EXPECT_NEAR(
+      noMotion->edgeInformation.trace(), still->edgeInformation.trace(),
+      1e-9 * still->edgeInformation.trace());
+  // The current frame turning at 60 deg/s: its keypoints move about 540 px/s,
+  // 2.7 px in 5 ms, so the information falls several fold.
+  cur.angularRate = {0, 1.05, 0};
+  const auto turning = refineRegistration(ref, cur, r, kCam, o);
+  ASSERT_TRUE(turning);
+  EXPECT_LT(turning->edgeInformation.trace(), 0.5 * still->edgeInformation.trace());
+  EXPECT_GT(turning->edgeInformation.trace(), 0.01 * still->edgeInformation.trace());
 }

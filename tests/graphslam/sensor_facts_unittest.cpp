@@ -20,6 +20,7 @@ roislam::io::TSensorChoice globalShutterDisparity()
   c.sensor.depth_noise.model = "disparity";
   c.sensor.common_pixel_sigma_px = 0.7;
   c.sensor.keypoint_sigma_px = 0.6;
+  c.sensor.keypoint_time_sigma_ms = 2.5;
   c.source = "file camera.ini";
   c.reason = "camera.ini in the folder";
   return c;
@@ -37,6 +38,7 @@ TEST(SensorFacts, TheSensorsReadoutAndDepthNoiseUnlessTheIniSetsTheReadout)
   EXPECT_EQ(fe.depth_noise.model, "disparity");
   EXPECT_EQ(fe.common_pixel_sigma_px, 0.7);
   EXPECT_EQ(fe.keypoint_sigma_px, 0.6);
+  EXPECT_EQ(fe.keypoint_time_sigma_ms, 2.5);
   ASSERT_EQ(lines.size(), 1u);
   EXPECT_EQ(lines[0].rfind("app: ", 0), 0u);
 

@@ -35,6 +35,7 @@ TSensorDescription unusual()
   d.frame_rate = 60;
   d.common_pixel_sigma_px = 0.35;
   d.keypoint_sigma_px = 0.85;
+  d.keypoint_time_sigma_ms = 7.5;
   auto& n = d.depth_noise;
   n.model = "disparity";
   n.a = 0.002;
@@ -82,6 +83,7 @@ void expectSame(const TSensorDescription& a, const TSensorDescription& b)
   EXPECT_DOUBLE_EQ(a.frame_rate, b.frame_rate);
   EXPECT_DOUBLE_EQ(a.common_pixel_sigma_px, b.common_pixel_sigma_px);
   EXPECT_DOUBLE_EQ(a.keypoint_sigma_px, b.keypoint_sigma_px);
+  EXPECT_DOUBLE_EQ(a.keypoint_time_sigma_ms, b.keypoint_time_sigma_ms);
   const auto &n = a.depth_noise, &m = b.depth_noise;
   EXPECT_EQ(n.model, m.model);
   EXPECT_DOUBLE_EQ(n.a, m.a);
@@ -108,8 +110,9 @@ TEST(SensorDescription, EveryKeyRoundTrips)
   for (const char* key :
        {"name", "depth_registered", "depth_pose_in_colour", "depth_scale", "rolling_shutter_ms",
         "rolling_shutter_direction", "frame_rate", "common_pixel_sigma_px", "keypoint_sigma_px",
-        "depth_noise_model", "depth_noise_a", "depth_noise_b", "depth_noise_z0", "disparity_bf",
-        "disparity_steps_per_px", "disparity_noise_steps", "lateral_sigma_px"})
+        "keypoint_time_sigma_ms", "depth_noise_model", "depth_noise_a", "depth_noise_b",
+        "depth_noise_z0", "disparity_bf", "disparity_steps_per_px", "disparity_noise_steps",
+        "lateral_sigma_px"})
     EXPECT_NE(ini.find(std::string(key) + " "), std::string::npos) << key;
   EXPECT_NE(ini.find("[DEPTH_CAMERA_PARAMS]"), std::string::npos);
   const TSensorDescription back = reload(ini);
@@ -136,9 +139,13 @@ TEST(SensorDescription, PresetsRoundTripAndCarryTheReadout)
     // Real cameras: the camera's share of each keypoint's noise.
     EXPECT_GT(p.keypoint_sigma_px, 0) << name;
     EXPECT_DOUBLE_EQ(p.keypoint_sigma_px, roislam::io::sensorPreset("fr1").keypoint_sigma_px);
+    EXPECT_GT(p.keypoint_time_sigma_ms, 0) << name;
+    EXPECT_DOUBLE_EQ(
+        p.keypoint_time_sigma_ms, roislam::io::sensorPreset("fr1").keypoint_time_sigma_ms);
   }
   // A rendered camera adds none.
   EXPECT_DOUBLE_EQ(roislam::io::sensorPreset("icl").keypoint_sigma_px, 0);
+  EXPECT_DOUBLE_EQ(roislam::io::sensorPreset("icl").keypoint_time_sigma_ms, 0);
   EXPECT_THROW(roislam::io::sensorPreset("fr4"), std::invalid_argument);
 }
 
@@ -160,6 +167,9 @@ TEST(SensorDescription, BadValuesNameSectionAndKey)
       {"common_pixel_sigma_px", "nan"},
       {"keypoint_sigma_px", "-0.5"},
       {"keypoint_sigma_px", "inf"},
+      {"keypoint_time_sigma_ms", "-1"},
+      {"keypoint_time_sigma_ms", "20"},  // longer than a 60 Hz frame
+      {"keypoint_time_sigma_ms", "nan"},
       {"depth_noise_model", "gaussian"},
       {"depth_noise_a", "-0.1"},
       {"depth_noise_b", "-1"},

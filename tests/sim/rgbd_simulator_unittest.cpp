@@ -180,6 +180,32 @@ TEST(RgbdSimulator, CommonShiftMovesTheColourImageOnly)
   EXPECT_EQ(plain.colourShiftPx, cv::Point2d());
 }
 
+TEST(RgbdSimulator, ExposureBlursTheColourAlongTheMotionOnly)
+{
+  auto o = opts("textured", false);
+  const auto plain = CRgbdSimulator(o).renderFrame(5);
+  o.exposureMs = 25;
+  CRgbdSimulator sim(o);
+  const auto f = sim.renderFrame(5);
+  // The colour is smeared: less fine detail (variance of the Laplacian), the
+  // same mean brightness; the depth is the middle render's, unchanged.
+  auto detail = [](const cv::Mat& bgr)
+  {
+    cv::Mat g, l;
+    cv::cvtColor(bgr, g, cv::COLOR_BGR2GRAY);
+    cv::Laplacian(g, l, CV_64F);
+    cv::Scalar mean, sd;
+    cv::meanStdDev(l, mean, sd);
+    return sd[0] * sd[0];
+  };
+  EXPECT_LT(detail(f.rgb), 0.8 * detail(plain.rgb));
+  EXPECT_NEAR(cv::mean(f.rgb)[1], cv::mean(plain.rgb)[1], 2.0);
+  EXPECT_EQ(cv::norm(plain.depth, f.depth, cv::NORM_INF), 0.0);
+  // Blur alone adds no keypoint timing noise to the camera it describes
+  // (CRgbdSimulator.h).
+  EXPECT_DOUBLE_EQ(sim.sensorDescription().keypoint_time_sigma_ms, 0);
+}
+
 TEST(RgbdSimulator, UnregisteredDepthIsTheDepthCamerasView)
 {
   auto o = opts("textured", false);
@@ -370,6 +396,8 @@ TEST(RgbdSimulator, OptionsLoadValidateAndRoundTrip)
   cfg.write("RgbdSimulator", "noise", "false");
   cfg.write("RgbdSimulator", "max_depth", "3.5");
   cfg.write("RgbdSimulator", "common_shift_px", "0.4");
+  cfg.write("RgbdSimulator", "exposure_ms", "12.5");
+  cfg.write("RgbdSimulator", "exposure_samples", "5");
   CRgbdSimulator::TOptions o;
   o.loadFromConfigFile(cfg, "RgbdSimulator");
   EXPECT_EQ(o.scene, "featureless");
@@ -387,6 +415,8 @@ TEST(RgbdSimulator, OptionsLoadValidateAndRoundTrip)
   EXPECT_DOUBLE_EQ(back.baseTimestamp, o.baseTimestamp);
   EXPECT_DOUBLE_EQ(back.cx, o.cx);
   EXPECT_DOUBLE_EQ(back.commonShiftPx, 0.4);
+  EXPECT_DOUBLE_EQ(back.exposureMs, 12.5);
+  EXPECT_EQ(back.exposureSamples, 5u);
   // The camera it simulates describes the shift.
   EXPECT_DOUBLE_EQ(CRgbdSimulator(o).sensorDescription().common_pixel_sigma_px, 0.4);
 
@@ -422,6 +452,11 @@ TEST(RgbdSimulator, OptionsLoadValidateAndRoundTrip)
   expectError("lateral_sigma_px", "-1");
   expectError("common_shift_px", "-0.5");
   expectError("common_shift_px", "11");
+  expectError("exposure_ms", "-1");
+  expectError("exposure_ms", "40");  // longer than a 30 Hz frame
+  expectError("exposure_samples", "4");
+  expectError("exposure_samples", "1");
+  expectError("exposure_samples", "65");
   expectError("depth_registered", "perhaps");
   expectError("depth_fx", "-500");
   expectError("depth_cx", "900");

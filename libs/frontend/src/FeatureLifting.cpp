@@ -55,6 +55,8 @@ void updateFeatureSetPoints(
 {
   k.points.clear();
   k.pixels.clear();
+  k.angularRate = {lifted.rate.omega.x(), lifted.rate.omega.y(), lifted.rate.omega.z()};
+  k.linearRate = {lifted.rate.linear.x(), lifted.rate.linear.y(), lifted.rate.linear.z()};
   k.points.reserve(idx.size());
   k.pixels.reserve(idx.size());
   for (int i : idx)

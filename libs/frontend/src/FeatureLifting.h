@@ -17,6 +17,15 @@
 
 namespace roislam::frontend::detail
 {
+/** How fast the camera moves, in its own frame: angular (rad/s) and linear
+ *  (m/s) velocity. */
+struct TCameraRate
+{
+  Eigen::Vector3d omega = Eigen::Vector3d::Zero();
+  Eigen::Vector3d linear = Eigen::Vector3d::Zero();
+  bool isZero() const { return omega.isZero() && linear.isZero(); }
+};
+
 struct TLiftedFeatures
 {
   /** Indices (into the extracted set) of keypoints with valid depth: within
@@ -38,6 +47,10 @@ struct TLiftedFeatures
   /** Time of each keypoint's row relative to the middle row, as a fraction of
    *  the readout time: -0.5 (first row) .. 0.5 (last row). */
   std::vector<float> rowFraction;
+  /** The camera's velocity the corrections used (RollingShutter.h
+   *  rectifyRollingShutter records it); feature sets built from these
+   *  points carry it (TKeyframe::angularRate, linearRate). */
+  TCameraRate rate;
 };
 
 /** The front end's depth rule (geometry::liftPixels) from its options. */
@@ -60,9 +73,9 @@ TKeyframe makeFeatureSet(
     const features::TFeatureSet& all, const TLiftedFeatures& lifted, const std::vector<int>& idx,
     const TPinhole& pinhole);
 
-/** Recomputes k's points and pixels (k made by makeFeatureSet with the same
- *  idx) from lifted, after a new rolling-shutter correction; the features,
- *  and so any index built over them, stay. */
+/** Recomputes k's points, pixels and velocity (k made by makeFeatureSet
+ *  with the same idx) from lifted, after a new rolling-shutter correction;
+ *  the features, and so any index built over them, stay. */
 void updateFeatureSetPoints(
     TKeyframe& k, const TLiftedFeatures& lifted, const std::vector<int>& idx,
     const TPinhole& pinhole);

@@ -201,6 +201,8 @@ TKeyframe withAnchors(const TKeyframe& kf)
   v.index = kf.index;
   v.points = kf.points;
   v.pixels = kf.pixels;
+  v.angularRate = kf.angularRate;
+  v.linearRate = kf.linearRate;
   v.points.insert(v.points.end(), kf.anchorPoints.begin(), kf.anchorPoints.end());
   v.pixels.insert(v.pixels.end(), kf.anchorPixels.begin(), kf.anchorPixels.end());
   return v;

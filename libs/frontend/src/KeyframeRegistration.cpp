@@ -22,7 +22,7 @@ double detectorSigmaPx(features::EFeatureType type, const CRgbdOdometry::TOption
 /** The correspondences of the given (reference, current) feature pairs. */
 TCorrespondences correspondences(
     const TKeyframe& ref, const TKeyframe& cur, const std::vector<std::pair<int, int>>& pairs,
-    const CRgbdOdometry::TOptions& o)
+    const TPinhole& cam, const CRgbdOdometry::TOptions& o)
 {
   TCorrespondences c;
   c.a.reserve(pairs.size());
@@ -67,10 +67,24 @@ TCorrespondences correspondences(
       if (v > 0)
         s0 = std::min(s0, v);
   s0 = std::max(s0, 1e-3);
-  for (double& v : c.sigma)
+  // Motion: what the keypoint's image speed (from the velocity its frame
+  // was lifted with) moves it by over the camera's timing uncertainty; the
+  // pair takes the mean of its two keypoints' variances.
+  const double timeSigma = o.keypoint_time_sigma_ms * 1e-3;
+  const auto motion2 = [&](const TKeyframe& k, int i)
   {
+    const double m = timeSigma > 0 ? motionSigmaPx(
+                                         k.points[static_cast<std::size_t>(i)], k.angularRate,
+                                         k.linearRate, cam, timeSigma)
+                                   : 0.0;
+    return m * m;
+  };
+  for (std::size_t j = 0; j < pairs.size(); ++j)
+  {
+    double& v = c.sigma[j];
     const double d = detector * (o.scale_aware_weights ? std::max(1.0, v / s0) : 1.0);
-    v = std::sqrt(d * d + cam2);
+    const double m2 = 0.5 * (motion2(ref, pairs[j].first) + motion2(cur, pairs[j].second));
+    v = std::sqrt(d * d + cam2 + m2);
   }
   return c;
 }
@@ -111,6 +125,24 @@ std::optional<TRegistration> finishRegistration(
   return out;
 }
 }  // namespace
+
+double motionSigmaPx(
+    const mrpt::math::TPoint3D& X, const mrpt::math::TVector3D& angular,
+    const mrpt::math::TVector3D& linear, const TPinhole& cam, double time_s)
+{
+  if (!(X.z > 0) || !(time_s > 0))
+    return 0;
+  // A static point seen by a camera turning at w and moving at v (both in
+  // the camera's frame) moves, in that frame, at -(w x X) - v.
+  const Eigen::Vector3d P(X.x, X.y, X.z), w(angular.x, angular.y, angular.z),
+      v(linear.x, linear.y, linear.z);
+  const Eigen::Vector3d dP = -w.cross(P) - v;
+  const double z2 = P.z() * P.z();
+  const double du = cam.fx * (dP.x() * P.z() - P.x() * dP.z()) / z2;
+  const double dv = cam.fy * (dP.y() * P.z() - P.y() * dP.z()) / z2;
+  const double sigma = std::hypot(du, dv) * time_s;
+  return std::isfinite(sigma) ? sigma : 0.0;
+}
 
 std::optional<TRegistration> registerSets(
     const TKeyframe& ref, const TKeyframe& cur, const matching::CFeatureMatcher& matcher,
@@ -158,7 +190,7 @@ std::optional<TRegistration> registerSets(
     a.push_back(ref.points[static_cast<std::size_t>(ia)]);
     b.push_back(cur.points[static_cast<std::size_t>(ib)]);
   }
-  const TCorrespondences c = correspondences(ref, cur, pairs, o);
+  const TCorrespondences c = correspondences(ref, cur, pairs, cam, o);
   const auto rs = ransac.estimate(a, b);
   if (!rs)
   {
@@ -176,7 +208,7 @@ std::optional<TRegistration> refineRegistration(
     const TKeyframe& ref, const TKeyframe& cur, const TRegistration& r, const TPinhole& cam,
     const CRgbdOdometry::TOptions& o)
 {
-  const TCorrespondences c = correspondences(ref, cur, r.pairs, o);
+  const TCorrespondences c = correspondences(ref, cur, r.pairs, cam, o);
   const auto rr = refineReprojection(cam, c, r.T, r.inlierPairs, refineParams(o));
   return finishRegistration(rr, r.pairs, o);
 }

@@ -63,6 +63,15 @@ std::optional<TRegistration> refineRegistration(
     const TKeyframe& ref, const TKeyframe& cur, const TRegistration& r, const TPinhole& cam,
     const CRgbdOdometry::TOptions& o);
 
+/** 1 sigma per image axis, px, that an uncertainty of time_s seconds in
+ *  when a keypoint was seen adds to it: the image speed of its optical-frame
+ *  point X, the camera turning at `angular` (rad/s) and moving at `linear`
+ *  (m/s), both in its own frame, times time_s. 0 for a point not in front
+ *  of the camera. */
+double motionSigmaPx(
+    const mrpt::math::TPoint3D& X, const mrpt::math::TVector3D& angular,
+    const mrpt::math::TVector3D& linear, const TPinhole& cam, double time_s);
+
 /** A 6x6 Eigen matrix as MRPT's fixed-size one. */
 TInformation66 toMrpt(const Matrix6d& m);
 

@@ -37,6 +37,7 @@ void rectifyRollingShutter(
 {
   lifted.undistorted = lifted.rawUndistorted;
   lifted.z = lifted.rawZ;
+  lifted.rate = rate;
   if (readout_s == 0 || rate.isZero())
     return;
   for (int i : lifted.valid)
@@ -165,5 +166,7 @@ void correctKeyframe(
     k.points[j] = mrpt::math::TPoint3D(X.x(), X.y(), X.z());
     k.pixels[j] = pinhole.project(X);
   }
+  k.angularRate = {rate.omega.x(), rate.omega.y(), rate.omega.z()};
+  k.linearRate = {rate.linear.x(), rate.linear.y(), rate.linear.z()};
 }
 }  // namespace roislam::frontend::detail

@@ -28,15 +28,6 @@
 
 namespace roislam::frontend::detail
 {
-/** How fast the camera moves, in its own frame: angular (rad/s) and linear
- *  (m/s) velocity. */
-struct TCameraRate
-{
-  Eigen::Vector3d omega = Eigen::Vector3d::Zero();
-  Eigen::Vector3d linear = Eigen::Vector3d::Zero();
-  bool isZero() const { return omega.isZero() && linear.isZero(); }
-};
-
 /** A point seen s seconds after the middle row (its raw undistorted pixel and
  *  depth), carried into the middle row's camera: exp(omega s) X + linear s. */
 Eigen::Vector3d rectifyPoint(
@@ -47,7 +38,7 @@ Eigen::Vector3d rectifyPoint(
  *  raw ones: a point seen s = rowFraction * readout_s seconds after the
  *  middle row is carried into the middle row's camera, X' = exp(omega s) X +
  *  linear s, and its pixel is X' projected. A zero rate or readout_s = 0
- *  restores the raw values. */
+ *  restores the raw values. Records `rate` as lifted.rate either way. */
 void rectifyRollingShutter(
     TLiftedFeatures& lifted, const TCameraRate& rate, double readout_s, const TPinhole& pinhole);
 
@@ -97,7 +88,8 @@ struct TUncorrectedKeyframe
 TUncorrectedKeyframe uncorrectedKeyframe(
     std::size_t id, const TLiftedFeatures& lifted, const std::vector<int>& idx);
 
-/** Replaces k's points and pixels with u's raw ones corrected with rate. */
+/** Replaces k's points and pixels with u's raw ones corrected with rate,
+ *  and its velocity with rate. */
 void correctKeyframe(
     TKeyframe& k, const TUncorrectedKeyframe& u, const TCameraRate& rate, double readout_s,
     const TPinhole& pinhole);

@@ -22,6 +22,7 @@ void applySensorFacts(
   fe.depth_noise = choice.sensor.depth_noise;
   fe.common_pixel_sigma_px = choice.sensor.common_pixel_sigma_px;
   fe.keypoint_sigma_px = choice.sensor.keypoint_sigma_px;
+  fe.keypoint_time_sigma_ms = choice.sensor.keypoint_time_sigma_ms;
   const double sensorMs = choice.sensor.frameReadoutMs();
   if (!iniReadout)
     fe.rolling_shutter_ms = sensorMs;

@@ -188,8 +188,9 @@ mrpt::img::TCamera cameraPreset(const std::string& name)
 
 namespace
 {
-/** px per image axis; see sensorPreset. */
-constexpr double kKeypointSigmaFr1 = 1.0;
+/** px per image axis, and ms; see sensorPreset. */
+constexpr double kKeypointSigmaFr1 = 0.5;
+constexpr double kKeypointTimeSigmaFr1Ms = 1.443;
 }  // namespace
 
 TSensorDescription sensorPreset(const std::string& name)
@@ -214,18 +215,24 @@ TSensorDescription sensorPreset(const std::string& name)
   if (name == "fr1")
     d.common_pixel_sigma_px = 0.3;
   // What a real camera adds to each keypoint's noise beyond the detector's
-  // own (blur, compression, rolling-shutter residue). On fr1 (12 runs per
-  // value: traditional and big ROI x ORB / SURF / SIFT on both excerpts)
-  // the edges' likelihood with a free overall factor, as for
-  // common_pixel_sigma_px, is highest at 0.25 px on fr1/rpy and 0.5 px on
-  // fr1/xyz, but the ATE sum on fr1/rpy is 71.5 mm at 0.5 px against 62.7
-  // at 1 px (fr1/xyz 31.8 against 32.5): the noise grows with the motion
-  // (blur), which one value cannot follow, and 1 px keeps the fast excerpt
-  // whole (README "Keypoint noise per detector and camera"). fr2, fr3 and an unknown
-  // camera (ros) are real Kinect-class cameras too and take the same value,
-  // unmeasured; ICL-NUIM is rendered.
+  // own: a constant share (compression, sensor noise) and one that grows
+  // with the keypoint's image speed (exposure smear, the rolling-shutter
+  // and colour-depth timing errors). On fr1 (12 runs per pair of values:
+  // traditional and big ROI x ORB / SURF / SIFT on both excerpts), with
+  // the constant alone the edges' likelihood (free overall factor, as for
+  // common_pixel_sigma_px) was highest at 0.25-0.5 px but the fr1/rpy ATE
+  // wanted 1 px (62.6 mm against 72.4 at 0.5 px): one value could not
+  // follow the motion. With the speed term, 0.5 px and 1.443 ms give the
+  // likelihood's best (within 0.01 nats per edge) and the best ATE sum
+  // (fr1/rpy 61.8, fr1/xyz 32.2 mm; README "Keypoint noise that follows
+  // the motion"). fr2, fr3 and an unknown camera (ros) are real
+  // Kinect-class cameras too and take the same values, unmeasured;
+  // ICL-NUIM is rendered (no such noise).
   if (name != "icl")
+  {
     d.keypoint_sigma_px = kKeypointSigmaFr1;
+    d.keypoint_time_sigma_ms = kKeypointTimeSigmaFr1Ms;
+  }
   if (name == "icl")
   {
     // Rendered: global shutter, no distortion, and the dataset's simulated

@@ -17,13 +17,13 @@ std::string TSensorChoice::summary() const
   std::snprintf(
       rest, sizeof(rest),
       ", rolling shutter %g ms%s, %g Hz, depth scale %g, depth noise %s, common keypoint shift "
-      "%g px, keypoint noise %g px",
+      "%g px, keypoint noise %g px + image speed x %g ms",
       s.rolling_shutter_ms,
       s.rolling_shutter_ms == 0
           ? " (global)"
           : (s.rolling_shutter_bottom_to_top ? " bottom to top" : " top to bottom"),
       s.frame_rate, s.depth_scale, s.depth_noise.model.c_str(), s.common_pixel_sigma_px,
-      s.keypoint_sigma_px);
+      s.keypoint_sigma_px, s.keypoint_time_sigma_ms);
   const std::string registration =
       s.depth_registered ? ", depth registered"
                          : ", depth not registered (re-projected into the colour camera)";
@@ -42,6 +42,7 @@ nlohmann::json TSensorChoice::toJson() const
       {"frame_rate", sensor.frame_rate},
       {"common_pixel_sigma_px", sensor.common_pixel_sigma_px},
       {"keypoint_sigma_px", sensor.keypoint_sigma_px},
+      {"keypoint_time_sigma_ms", sensor.keypoint_time_sigma_ms},
       {"description", sensor.toIniText()}};
 }
 }  // namespace roislam::io

@@ -105,6 +105,8 @@ void readScalars(
   d.common_pixel_sigma_px =
       common::readDouble(cfg, s, "common_pixel_sigma_px", d.common_pixel_sigma_px);
   d.keypoint_sigma_px = common::readDouble(cfg, s, "keypoint_sigma_px", d.keypoint_sigma_px);
+  d.keypoint_time_sigma_ms =
+      common::readDouble(cfg, s, "keypoint_time_sigma_ms", d.keypoint_time_sigma_ms);
   n.model = common::readString(cfg, s, "depth_noise_model", n.model);
   n.a = common::readDouble(cfg, s, "depth_noise_a", n.a);
   n.b = common::readDouble(cfg, s, "depth_noise_b", n.b);
@@ -184,6 +186,9 @@ void TSensorDescription::validate(const std::string& s) const
   common::require(
       keypoint_sigma_px >= 0 && std::isfinite(keypoint_sigma_px), s, "keypoint_sigma_px",
       keypoint_sigma_px, ">= 0 px");
+  common::require(
+      keypoint_time_sigma_ms >= 0 && keypoint_time_sigma_ms <= 1000 / frame_rate, s,
+      "keypoint_time_sigma_ms", keypoint_time_sigma_ms, "in [0, one frame period]");
   const auto& n = depth_noise;
   if (n.model != "kinect" && n.model != "disparity" && n.model != "none")
     common::throwBadIniKey(
@@ -235,6 +240,7 @@ void TSensorDescription::saveToConfigFile(
   w("frame_rate", frame_rate);
   w("common_pixel_sigma_px", common_pixel_sigma_px);
   w("keypoint_sigma_px", keypoint_sigma_px);
+  w("keypoint_time_sigma_ms", keypoint_time_sigma_ms);
   cfg.write(s, "depth_noise_model", n.model);
   w("depth_noise_a", n.a);
   w("depth_noise_b", n.b);

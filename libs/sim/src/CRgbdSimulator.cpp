@@ -287,7 +287,7 @@ struct CRgbdSimulator::TBands
 
 CRgbdSimulator::TBands CRgbdSimulator::renderBands(
     std::size_t i, const mrpt::poses::CPose3D& offset, double fx, double fy, double cx, double cy,
-    double dt)
+    double dt, bool exposed)
 {
   const unsigned ss = m_opts.supersampling;
   const unsigned W = m_opts.width, H = m_opts.height;
@@ -307,9 +307,6 @@ CRgbdSimulator::TBands CRgbdSimulator::renderBands(
     // frame's stamp, where the ground truth is.
     const double yMid = r0 + (bandRows - 1) / 2.0;
     const double t = tFrame + (yMid / H - 0.5) * m_opts.rollingShutterMs * 1e-3;
-    mrpt::opengl::CCamera cam;
-    cam.set6DOFMode(true);
-    cam.setPose((bandRows == H && dt == 0 ? groundTruthPose(i) : m_path.opticalPoseAt(t)) + offset);
     // OpenGL samples pixel (u, v) at (u + 0.5, v + 0.5): shift the principal
     // point so rays go through integer pixel centres as in MRPT/TUM. With
     // ss x ss supersampling, output pixel u is the block centred at
@@ -321,15 +318,52 @@ CRgbdSimulator::TBands CRgbdSimulator::renderBands(
     pinhole.fy(fy * ss);
     pinhole.cx(cx * ss + ss / 2.0);
     pinhole.cy(cy * ss + ss / 2.0 - static_cast<double>(r0 * ss));
-    cam.setProjectiveFromPinhole(pinhole);
-    fbo.setCamera(glScene, cam);
+    const unsigned rows = std::min(bandRows, H - r0) * ss;
+    const cv::Rect band(0, 0, static_cast<int>(W * ss), static_cast<int>(rows));
+    const cv::Rect into(
+        0, static_cast<int>(r0 * ss), static_cast<int>(W * ss), static_cast<int>(rows));
+    // The band seen from the camera at time tb (the frame's ground-truth
+    // pose itself for a global shutter's one band at the frame's time).
+    const auto render =
+        [&](double tb, bool atStamp, mrpt::img::CImage& img, mrpt::math::CMatrixFloat& range)
+    {
+      mrpt::opengl::CCamera cam;
+      cam.set6DOFMode(true);
+      cam.setPose(
+          (bandRows == H && dt == 0 && atStamp ? groundTruthPose(i) : m_path.opticalPoseAt(tb)) +
+          offset);
+      cam.setProjectiveFromPinhole(pinhole);
+      fbo.setCamera(glScene, cam);
+      fbo.render_RGBD(glScene, img, range);
+    };
     mrpt::img::CImage rgbImg;
     mrpt::math::CMatrixFloat depthM;
-    fbo.render_RGBD(glScene, rgbImg, depthM);
-    const unsigned rows = std::min(bandRows, H - r0) * ss;
-    rgbImg.asCvMatRef()(cv::Rect(0, 0, static_cast<int>(W * ss), static_cast<int>(rows)))
-        .copyTo(out.rgbSS(cv::Rect(
-            0, static_cast<int>(r0 * ss), static_cast<int>(W * ss), static_cast<int>(rows))));
+    // An exposed colour band is the mean of renders spread evenly over the
+    // exposure, centred on the band's time; the middle one (an odd count)
+    // is at that time and gives the depth.
+    const unsigned n = exposed && m_opts.exposureMs > 0 ? m_opts.exposureSamples : 1;
+    if (n == 1)
+    {
+      render(t, true, rgbImg, depthM);
+      rgbImg.asCvMatRef()(band).copyTo(out.rgbSS(into));
+    }
+    else
+    {
+      cv::Mat sum = cv::Mat::zeros(band.size(), CV_32FC3), one;
+      for (unsigned k = 0; k < n; ++k)
+      {
+        const bool middle = 2 * k + 1 == n;
+        mrpt::img::CImage kRgb;
+        mrpt::math::CMatrixFloat kDepth;
+        render(t + ((k + 0.5) / n - 0.5) * m_opts.exposureMs * 1e-3, middle, kRgb, kDepth);
+        kRgb.asCvMatRef()(band).convertTo(one, CV_32FC3, 1.0 / n);
+        sum += one;
+        if (middle)
+          depthM = kDepth;
+      }
+      cv::Mat dst = out.rgbSS(into);  // same size and type: written in place
+      sum.convertTo(dst, CV_8UC3);
+    }
     out.depthSS.asEigen().block(r0 * ss, 0, rows, W * ss) =
         depthM.asEigen().block(0, 0, rows, W * ss);
   }
@@ -410,7 +444,8 @@ CRgbdSimulator::TFrame CRgbdSimulator::renderFrame(std::size_t i)
   const bool shifted = shiftX != 0 || shiftY != 0;
   f.colourShiftPx = {shiftX, shiftY};
   TBands colour = renderBands(
-      i, mrpt::poses::CPose3D(), m_opts.fx, m_opts.fy, m_opts.cx + shiftX, m_opts.cy + shiftY);
+      i, mrpt::poses::CPose3D(), m_opts.fx, m_opts.fy, m_opts.cx + shiftX, m_opts.cy + shiftY, 0,
+      true);
   if (ss == 1)
     f.rgb = colour.rgbSS;
   else

@@ -116,6 +116,10 @@ void validateSequence(const TOptions& o, const TKeyError& fail)
     fail("depth_time_offset", "must be within +-0.02 s");
   if (!(o.rollingShutterMs >= 0 && o.rollingShutterMs * 1e-3 <= 1.0 / o.fps))
     fail("rolling_shutter_ms", "must be in [0, frame period]");
+  if (!(o.exposureMs >= 0 && o.exposureMs * 1e-3 <= 1.0 / o.fps))
+    fail("exposure_ms", "must be in [0, frame period]");
+  if (o.exposureSamples < 3 || o.exposureSamples > 63 || o.exposureSamples % 2 == 0)
+    fail("exposure_samples", "must be odd, in [3, 63]");
   if (!(o.commonShiftPx >= 0 && o.commonShiftPx <= 10))
     fail("common_shift_px", "must be in [0, 10]");
 }
@@ -224,6 +228,8 @@ void CRgbdSimulator::TOptions::loadFromConfigFile(
   r.get("base_timestamp", baseTimestamp);
   r.get("depth_time_offset", depthTimeOffset);
   r.get("rolling_shutter_ms", rollingShutterMs);
+  r.get("exposure_ms", exposureMs);
+  r.get("exposure_samples", exposureSamples);
   r.get("common_shift_px", commonShiftPx);
   r.get("width", width);
   r.get("height", height);
@@ -276,6 +282,8 @@ void CRgbdSimulator::TOptions::saveToConfigFile(
   wd("base_timestamp", baseTimestamp);
   wd("depth_time_offset", depthTimeOffset);
   wd("rolling_shutter_ms", rollingShutterMs);
+  wd("exposure_ms", exposureMs);
+  w("exposure_samples", std::to_string(exposureSamples));
   wd("common_shift_px", commonShiftPx);
   w("width", std::to_string(width));
   w("height", std::to_string(height));

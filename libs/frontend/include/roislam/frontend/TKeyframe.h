@@ -37,6 +37,12 @@ struct TKeyframe
   std::vector<mrpt::math::TPoint3D> points;
   /** Undistorted pixel coordinates of each feature (for reprojection). */
   std::vector<cv::Point2f> pixels;
+  /** The camera's velocity when the frame was taken, in its own optical
+   *  frame: angular (rad/s) and linear (m/s), as the front end estimated it
+   *  for the frame's rolling-shutter correction (zero when unknown). It
+   *  says how fast each keypoint moved in the image, which widens its noise
+   *  (TOptions::keypoint_time_sigma_ms, KeyframeRegistration.cpp). */
+  mrpt::math::TVector3D angularRate{0, 0, 0}, linearRate{0, 0, 0};
   /** Search structure over features, kept only while the keyframe is one of
    *  the recent ones every frame is matched against (null otherwise: older
    *  keyframes are matched rarely, by loop closures, and the indexes of a

@@ -200,8 +200,9 @@
  *                             detection scale, per image axis; 0 = the
  *                             detector's own (features::finestScaleSigmaPx:
  *                             ORB 0.72, SURF 0.46, SIFT 0.31). The camera's
- *                             share (keypoint_sigma_px below) adds to it in
- *                             quadrature; each pair's inlier gate is
+ *                             shares (keypoint_sigma_px and the keypoint's
+ *                             image speed x keypoint_time_sigma_ms below)
+ *                             add to it in quadrature; each pair's inlier gate is
  *                             reprojection_threshold_px x its sigma
  *  - scale_aware_weights     bool (true): the detector's share grows with the
  *                             detection size (ORB: size/31; SIFT/SURF: size /
@@ -430,6 +431,12 @@ struct TRgbdOdometryOptions : public mrpt::config::CLoadableOptions
    *  compression and timing add to the detector's share, whatever the
    *  detection scale; added in quadrature. */
   double keypoint_sigma_px = 0;
+  /** The uncertainty of the time each keypoint is seen at, ms (not an ini
+   *  key: a camera fact, TSensorDescription::keypoint_time_sigma_ms). Each
+   *  keypoint's image speed (the velocity its frame was lifted with,
+   *  TKeyframe::angularRate and linearRate, at its point) times it adds to
+   *  its noise in quadrature. 0: no such term. */
+  double keypoint_time_sigma_ms = 0;
 
   roi::CRoiDetector::TOptions roi;
   features::CFeatureExtractor::TOptions extractor;

@@ -49,6 +49,14 @@
  *         beyond a rendered image's), whatever its detection scale; added in
  *         quadrature to the detector's share (features::finestScaleSigmaPx;
  *         0 = none: a rendered camera)
+ *     keypoint_time_sigma_ms     double in [0, 1000/frame_rate]  0
+ *         1-sigma uncertainty of the time each keypoint is seen at, ms:
+ *         its image motion over that time (the camera's velocity at the
+ *         frame, the keypoint's depth) adds to its noise in quadrature.
+ *         What it stands for on a real camera: the exposure's smear, the
+ *         rolling-shutter correction's and the colour-depth timing's
+ *         errors, all of which grow with the motion (0 = none: a rendered
+ *         camera with exact timing)
  *     depth_noise_model          kinect | disparity | none    kinect
  *     depth_noise_a              double >= 0                  0.0012 (m)
  *     depth_noise_b              double >= 0                  0.0019 (1/m)
@@ -99,9 +107,10 @@ struct TSensorDescription : public mrpt::config::CLoadableOptions
   double depth_scale = 5000;                  //!< raw units per metre
   double rolling_shutter_ms = 0;              //!< readout of all rows, >= 0
   bool rolling_shutter_bottom_to_top = false;
-  double frame_rate = 30;            //!< Hz
-  double common_pixel_sigma_px = 0;  //!< per-image keypoint shift, 1 sigma per axis
-  double keypoint_sigma_px = 0;      //!< the camera's per-keypoint noise, 1 sigma per axis
+  double frame_rate = 30;             //!< Hz
+  double common_pixel_sigma_px = 0;   //!< per-image keypoint shift, 1 sigma per axis
+  double keypoint_sigma_px = 0;       //!< the camera's per-keypoint noise, 1 sigma per axis
+  double keypoint_time_sigma_ms = 0;  //!< keypoint timing noise, ms (x image speed: px)
   TDepthNoise depth_noise;
 
   /** The readout as declared: positive top to bottom, negative bottom to
