@@ -216,17 +216,17 @@ TSensorDescription sensorPreset(const std::string& name)
     d.common_pixel_sigma_px = 0.3;
   // What a real camera adds to each keypoint's noise beyond the detector's
   // own: a constant share (compression, sensor noise) and one that grows
-  // with the keypoint's image speed (exposure smear, the rolling-shutter
-  // and colour-depth timing errors). On fr1 (12 runs per pair of values:
-  // traditional and big ROI x ORB / SURF / SIFT on both excerpts), with
-  // the constant alone the edges' likelihood (free overall factor, as for
-  // common_pixel_sigma_px) was highest at 0.25-0.5 px but the fr1/rpy ATE
-  // wanted 1 px (62.6 mm against 72.4 at 0.5 px): one value could not
-  // follow the motion. With the speed term, 0.5 px and 1.443 ms give the
-  // likelihood's best (within 0.01 nats per edge) and the best ATE sum
-  // (fr1/rpy 61.8, fr1/xyz 32.2 mm; README "Keypoint noise that follows
-  // the motion"). fr2, fr3 and an unknown camera (ros) are real
-  // Kinect-class cameras too and take the same values, unmeasured;
+  // with the keypoint's image speed (errors that grow with the motion; on
+  // fr1 not a rendered blur, not the colour-depth timing). On fr1 (12 runs
+  // per pair of values: traditional and big ROI x ORB / SURF / SIFT on both
+  // excerpts), with the constant alone the edges' likelihood (free overall
+  // factor, as for common_pixel_sigma_px) was highest at 0.25-0.5 px but
+  // the fr1/rpy ATE wanted 1 px (62.6 mm against 72.4 at 0.5 px): one value
+  // could not follow the motion. With the speed term, 0.5 px and 1.443 ms
+  // give the best ATE sum (fr1/rpy 61.8, fr1/xyz 32.2 mm) and a likelihood
+  // within 0.08 nats per edge of the grid's best (README "Keypoint noise
+  // that follows the motion"). fr2, fr3 and an unknown camera (ros) are
+  // real Kinect-class cameras too and take the same values, unmeasured;
   // ICL-NUIM is rendered (no such noise).
   if (name != "icl")
   {

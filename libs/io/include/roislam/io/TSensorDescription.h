@@ -53,10 +53,10 @@
  *         1-sigma uncertainty of the time each keypoint is seen at, ms:
  *         its image motion over that time (the camera's velocity at the
  *         frame, the keypoint's depth) adds to its noise in quadrature.
- *         What it stands for on a real camera: the exposure's smear, the
- *         rolling-shutter correction's and the colour-depth timing's
- *         errors, all of which grow with the motion (0 = none: a rendered
- *         camera with exact timing)
+ *         On a real camera it stands for errors that grow with the motion
+ *         (on fr1 neither a rendered blur nor the colour-depth timing:
+ *         README "Keypoint noise that follows the motion"; 0 = none: a
+ *         rendered camera)
  *     depth_noise_model          kinect | disparity | none    kinect
  *     depth_noise_a              double >= 0                  0.0012 (m)
  *     depth_noise_b              double >= 0                  0.0019 (1/m)
