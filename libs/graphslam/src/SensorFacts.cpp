@@ -1,4 +1,5 @@
 #include <mrpt/core/format.h>
+#include <roislam/frontend/SensorNoise.h>
 #include <roislam/graphslam/SensorFacts.h>
 #include <roislam/graphslam/SlamIni.h>
 
@@ -19,10 +20,7 @@ void applySensorFacts(
 {
   if (progress)
     progress(app + ": " + choice.summary());
-  fe.depth_noise = choice.sensor.depth_noise;
-  fe.common_pixel_sigma_px = choice.sensor.common_pixel_sigma_px;
-  fe.keypoint_sigma_px = choice.sensor.keypoint_sigma_px;
-  fe.keypoint_time_sigma_ms = choice.sensor.keypoint_time_sigma_ms;
+  frontend::applySensorNoise(fe, choice.sensor);
   const double sensorMs = choice.sensor.frameReadoutMs();
   if (!iniReadout)
     fe.rolling_shutter_ms = sensorMs;

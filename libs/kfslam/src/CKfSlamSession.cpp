@@ -10,6 +10,7 @@
 #include <roislam/common/JsonOrNull.h>
 #include <roislam/common/TextFiles.h>
 #include <roislam/evaluation/CTrajectoryEvaluator.h>
+#include <roislam/frontend/SensorNoise.h>
 #include <roislam/io/ObservationConversion.h>
 
 #include <cmath>
@@ -76,6 +77,8 @@ frontend::CRgbdOdometry::TOptions CKfSlamSession::frontEndOptions(const TSetup& 
   }
   if (!readoutFromIni)
     o.rolling_shutter_ms = setup.sensorReadoutMs;
+  if (setup.sensor)
+    frontend::applySensorNoise(o, *setup.sensor);
   if (setup.feature)
     o.extractor.feature_type = *setup.feature;
   if (setup.maxFeatures)

@@ -535,6 +535,7 @@ kfslam::CKfSlamSession::TSetup CRoiLandmarksApp::kfSlamSetup(
     s.feature = m_options.features.feature_type;
   s.maxFeatures = m_args.maxFeatures;
   s.sensorReadoutMs = source.sensor().sensor.frameReadoutMs();
+  s.sensor = source.sensor().sensor;
   return s;
 }
 

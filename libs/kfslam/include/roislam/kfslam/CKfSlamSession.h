@@ -29,6 +29,7 @@
 #include <roislam/frontend/CRgbdOdometry.h>
 #include <roislam/io/CRawlogWriter.h>
 #include <roislam/io/TRGBDFrame.h>
+#include <roislam/io/TSensorDescription.h>
 #include <roislam/io/TumTrajectory.h>
 #include <roislam/kfslam/CKfSlamFilter.h>
 #include <roislam/kfslam/CMeasurementConditioner.h>
@@ -65,6 +66,10 @@ class CKfSlamSession
     /** The sensor description's signed rolling-shutter readout (ms), for the
      *  front end unless front_end_ini sets [FrontEnd] rolling_shutter_ms. */
     double sensorReadoutMs = 0;
+    /** The sensor the source was opened with: its noise facts go to the
+     *  front end (frontend::applySensorNoise), as in roi-graphslam. None:
+     *  the front end's defaults. */
+    std::optional<io::TSensorDescription> sensor;
   };
 
   /** Loads the kf-slam ini and the front end (errors name the file and key)
