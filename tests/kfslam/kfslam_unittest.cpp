@@ -346,16 +346,15 @@ TEST(KfSlamSession, FrontEndTakesTheSensorsNoiseFacts)
   // facts as roi-graphslam's (frontend::applySensorNoise); an ini's readout
   // still wins over the sensor's, its noise facts are not ini keys.
   CKfSlamSession::TSetup s;
-  s.sensorReadoutMs = 25;
   const frontend::CRgbdOdometry::TOptions none = CKfSlamSession::frontEndOptions(s);
-  EXPECT_EQ(none.rolling_shutter_ms, 25);
+  EXPECT_EQ(none.rolling_shutter_ms, 0);
   EXPECT_EQ(none.keypoint_time_sigma_ms, 0);
   io::TSensorDescription d = io::sensorPreset("fr1");
   d.depth_noise.model = "disparity";
   d.keypoint_time_sigma_ms = 2.5;
   s.sensor = d;
   const frontend::CRgbdOdometry::TOptions o = CKfSlamSession::frontEndOptions(s);
-  EXPECT_EQ(o.rolling_shutter_ms, 25);
+  EXPECT_EQ(o.rolling_shutter_ms, 25);  // the fr1 preset's readout
   EXPECT_EQ(o.depth_noise.model, "disparity");
   EXPECT_EQ(o.common_pixel_sigma_px, d.common_pixel_sigma_px);
   EXPECT_EQ(o.keypoint_sigma_px, d.keypoint_sigma_px);

@@ -49,14 +49,19 @@ TKeyframe makeFeatureSet(
   return k;
 }
 
+void setKeyframeRate(TKeyframe& k, const TCameraRate& rate)
+{
+  k.angularRate = {rate.omega.x(), rate.omega.y(), rate.omega.z()};
+  k.linearRate = {rate.linear.x(), rate.linear.y(), rate.linear.z()};
+}
+
 void updateFeatureSetPoints(
     TKeyframe& k, const TLiftedFeatures& lifted, const std::vector<int>& idx,
     const TPinhole& pinhole)
 {
   k.points.clear();
   k.pixels.clear();
-  k.angularRate = {lifted.rate.omega.x(), lifted.rate.omega.y(), lifted.rate.omega.z()};
-  k.linearRate = {lifted.rate.linear.x(), lifted.rate.linear.y(), lifted.rate.linear.z()};
+  setKeyframeRate(k, lifted.rate);
   k.points.reserve(idx.size());
   k.pixels.reserve(idx.size());
   for (int i : idx)

@@ -73,6 +73,9 @@ TKeyframe makeFeatureSet(
     const features::TFeatureSet& all, const TLiftedFeatures& lifted, const std::vector<int>& idx,
     const TPinhole& pinhole);
 
+/** Sets k's velocity (TKeyframe::angularRate, linearRate) to rate. */
+void setKeyframeRate(TKeyframe& k, const TCameraRate& rate);
+
 /** Recomputes k's points, pixels and velocity (k made by makeFeatureSet
  *  with the same idx) from lifted, after a new rolling-shutter correction;
  *  the features, and so any index built over them, stay. */

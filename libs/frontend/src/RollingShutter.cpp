@@ -166,7 +166,6 @@ void correctKeyframe(
     k.points[j] = mrpt::math::TPoint3D(X.x(), X.y(), X.z());
     k.pixels[j] = pinhole.project(X);
   }
-  k.angularRate = {rate.omega.x(), rate.omega.y(), rate.omega.z()};
-  k.linearRate = {rate.linear.x(), rate.linear.y(), rate.linear.z()};
+  setKeyframeRate(k, rate);
 }
 }  // namespace roislam::frontend::detail

@@ -76,7 +76,7 @@ frontend::CRgbdOdometry::TOptions CKfSlamSession::frontEndOptions(const TSetup& 
     }
   }
   if (!readoutFromIni)
-    o.rolling_shutter_ms = setup.sensorReadoutMs;
+    o.rolling_shutter_ms = setup.sensor ? setup.sensor->frameReadoutMs() : 0.0;
   if (setup.sensor)
     frontend::applySensorNoise(o, *setup.sensor);
   if (setup.feature)

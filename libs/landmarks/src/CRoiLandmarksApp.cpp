@@ -534,7 +534,6 @@ kfslam::CKfSlamSession::TSetup CRoiLandmarksApp::kfSlamSetup(
   if (m_args.feature)
     s.feature = m_options.features.feature_type;
   s.maxFeatures = m_args.maxFeatures;
-  s.sensorReadoutMs = source.sensor().sensor.frameReadoutMs();
   s.sensor = source.sensor().sensor;
   return s;
 }

@@ -63,11 +63,10 @@ class CKfSlamSession
     /** Extractor overrides (roi-landmarks --feature / --max-features). */
     std::optional<features::EFeatureType> feature;
     std::optional<int> maxFeatures;
-    /** The sensor description's signed rolling-shutter readout (ms), for the
-     *  front end unless front_end_ini sets [FrontEnd] rolling_shutter_ms. */
-    double sensorReadoutMs = 0;
-    /** The sensor the source was opened with: its noise facts go to the
-     *  front end (frontend::applySensorNoise), as in roi-graphslam. None:
+    /** The sensor the source was opened with: its readout
+     *  (frameReadoutMs(), unless front_end_ini sets [FrontEnd]
+     *  rolling_shutter_ms) and its noise facts (frontend::applySensorNoise)
+     *  go to the front end, as in roi-graphslam. None: a global shutter and
      *  the front end's defaults. */
     std::optional<io::TSensorDescription> sensor;
   };
