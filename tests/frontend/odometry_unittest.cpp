@@ -10,6 +10,8 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <map>
 #include <opencv2/imgproc.hpp>
 #include <string>
 #include <utility>
@@ -400,6 +402,185 @@ TEST(RgbdOdometry, FeaturelessWithoutIcpUsesConstantVelocity)
 
 namespace
 {
+/** A pan of 7 deg a frame (the room's long walls sweep through the view):
+ *  each frame still overlaps the last by 90 %, its keyframe less and less. */
+CPose3D panPose(std::size_t k)
+{
+  const double t = static_cast<double>(k);
+  return CPose3D(0.004 * t, 0.0, 0.002 * t, 0.0, 7.0 * t * M_PI / 180.0, 0.0);
+}
+}  // namespace
+
+TEST(RgbdOdometry, FrameThatLosesItsKeyframeIsBridgedThroughThePreviousOne)
+{
+  // Keyframes only when a frame no longer registers; no depth ICP. Without
+  // the bridge such a frame falls to constant velocity; with it, it is
+  // registered against the previous frame, chained to the keyframe that one
+  // tracked, and becomes the next keyframe, its edge from that keyframe.
+  for (const bool bridge : {false, true})
+  {
+    SCOPED_TRACE(bridge);
+    auto o = baseOptions();
+    o.bridge_previous_frame = bridge;
+    o.icp_fallback = false;
+    o.keyframe_rotation_deg = 180;
+    o.keyframe_translation_m = 10;
+    o.keyframe_min_inliers = 0;
+    CRgbdOdometry odo(o);
+    odo.setInitialPose(panPose(0));
+    std::vector<TFrameResult> res;
+    for (std::size_t k = 0; k < 14; ++k)
+      res.push_back(odo.process(renderRoom(panPose(k), 100, k, 0.1 * k)));
+    std::size_t bridged = 0, cv = 0;
+    for (std::size_t k = 1; k < res.size(); ++k)
+    {
+      const auto& r = res[k];
+      ASSERT_TRUE(r.pose.has_value()) << "frame " << k;
+      cv += r.method == ETrackingMethod::ConstantVelocity ? 1 : 0;
+      if (!r.bridged)
+        continue;
+      ++bridged;
+      EXPECT_EQ(r.method, ETrackingMethod::Features) << "frame " << k;
+      EXPECT_TRUE(r.isNewKeyframe) << "frame " << k;
+      // From the keyframe the previous frame tracked, as a feature edge.
+      ASSERT_FALSE(r.constraints.empty());
+      EXPECT_EQ(r.constraints.front().fromKeyframe, res[k - 1].referenceKeyframe);
+      EXPECT_EQ(r.constraints.front().method, ETrackingMethod::Features);
+      EXPECT_GT(r.constraints.front().information(0, 0), 0);
+      EXPECT_LT(transErr(*r.pose, panPose(k)), 0.01) << "frame " << k;
+      EXPECT_LT(rotErrDeg(*r.pose, panPose(k)), 0.3) << "frame " << k;
+      // Its information is less than the previous frame's registration's:
+      // the two registrations' covariances add up.
+      EXPECT_LT(r.relativeInformation(0, 0), res[k - 1].relativeInformation(0, 0) * 1.0001);
+    }
+    EXPECT_EQ(odo.stats().bridged, bridged);
+    std::printf(
+        "bridge %d: %zu bridged, %zu constant-velocity frames, %zu keyframes; last frame %.1f mm "
+        "off\n",
+        bridge ? 1 : 0, bridged, cv, odo.keyframes().size(),
+        1e3 * transErr(*res.back().pose, panPose(res.size() - 1)));
+    if (bridge)
+    {
+      EXPECT_GE(bridged, 1u);
+      EXPECT_EQ(cv, 0u);
+      EXPECT_LT(transErr(*res.back().pose, panPose(res.size() - 1)), 0.02);
+    }
+    else
+    {
+      EXPECT_EQ(bridged, 0u);
+      EXPECT_GE(cv, 1u);
+    }
+  }
+}
+
+TEST(RgbdOdometry, KeyframeBeforeTheRegistrationsWearOut)
+{
+  // The pan of the test above, neither bridge nor depth ICP: with
+  // keyframe_min_inlier_share a keyframe is made while the frame still keeps
+  // half the inliers its keyframe gave, so no frame loses its keyframe.
+  for (const double share : {0.0, 0.5})
+  {
+    SCOPED_TRACE(share);
+    auto o = baseOptions();
+    o.keyframe_min_inlier_share = share;
+    o.icp_fallback = false;
+    o.keyframe_rotation_deg = 180;
+    o.keyframe_translation_m = 10;
+    o.keyframe_min_inliers = 0;
+    CRgbdOdometry odo(o);
+    odo.setInitialPose(panPose(0));
+    std::map<std::size_t, std::size_t> best;
+    std::size_t cv = 0;
+    for (std::size_t k = 0; k < 14; ++k)
+    {
+      const auto r = odo.process(renderRoom(panPose(k), 100, k, 0.1 * k));
+      ASSERT_TRUE(r.pose.has_value());
+      cv += r.method == ETrackingMethod::ConstantVelocity ? 1 : 0;
+      if (k == 0 || r.method != ETrackingMethod::Features)
+        continue;
+      if (share > 0 && !r.isNewKeyframe && best.count(r.referenceKeyframe))
+        EXPECT_GE(static_cast<double>(r.inliers), share * best[r.referenceKeyframe])
+            << "frame " << k;
+      if (share > 0)
+        EXPECT_LT(transErr(*r.pose, panPose(k)), 0.025) << "frame " << k;
+      if (!r.isNewKeyframe)
+        best[r.referenceKeyframe] = std::max(best[r.referenceKeyframe], r.inliers);
+    }
+    std::printf(
+        "share %.1f: %zu keyframes, %zu constant-velocity frames\n", share, odo.keyframes().size(),
+        cv);
+    if (share > 0)
+    {
+      EXPECT_EQ(cv, 0u);
+      EXPECT_GE(odo.keyframes().size(), 2u);
+    }
+    else
+      EXPECT_GE(cv, 1u);
+  }
+}
+
+TEST(RgbdOdometry, KeyframeLeftBehindKeepsAnEdgeChainedThroughThePreviousFrame)
+{
+  // The pan of the test above to 105 deg, then back 14 deg a frame: the
+  // frame back at 49 deg no longer registers against the keyframe the pan
+  // made last but does against an older one, its reference. Its edge from
+  // the last one is chained through the previous frame, which tracked it
+  // (without the bridge that keyframe keeps one edge).
+  const std::vector<double> anglesDeg = {0,  7,  14, 21, 28,  35, 42, 49, 56, 63, 70,
+                                         77, 84, 91, 98, 105, 91, 77, 63, 49, 35};
+  auto pose = [&](std::size_t k)
+  {
+    const double t = static_cast<double>(k);
+    return CPose3D(0.004 * t, 0.0, 0.002 * t, 0.0, anglesDeg[k] * M_PI / 180.0, 0.0);
+  };
+  for (const bool bridge : {false, true})
+  {
+    SCOPED_TRACE(bridge);
+    auto o = baseOptions();
+    o.bridge_previous_frame = bridge;
+    o.icp_fallback = false;
+    o.keyframe_rotation_deg = 180;
+    o.keyframe_translation_m = 10;
+    o.keyframe_min_inliers = 0;
+    CRgbdOdometry odo(o);
+    odo.setInitialPose(pose(0));
+    std::vector<TFrameResult> res;
+    std::vector<std::size_t> keyframeFrame = {0};
+    std::size_t chained = 0;
+    for (std::size_t k = 0; k < anglesDeg.size(); ++k)
+    {
+      res.push_back(odo.process(renderRoom(pose(k), 100, k, 0.1 * k)));
+      const auto& r = res.back();
+      if (!r.isNewKeyframe || k == 0)
+        continue;
+      keyframeFrame.push_back(k);
+      for (std::size_t c = 0; c < r.constraints.size(); ++c)
+      {
+        const auto& e = r.constraints[c];
+        const CPose3D truth = pose(k) - pose(keyframeFrame.at(e.fromKeyframe));
+        // Chained edges come after the first, from the previous frame's reference.
+        if (c == 0 || r.bridged || e.fromKeyframe != res[k - 1].referenceKeyframe ||
+            e.fromKeyframe == r.referenceKeyframe)
+          continue;
+        ++chained;
+        EXPECT_EQ(e.method, ETrackingMethod::Features);
+        EXPECT_LT(transErr(e.relativePose, truth), 0.015) << "frame " << k;
+        EXPECT_LT(rotErrDeg(e.relativePose, truth), 0.5) << "frame " << k;
+      }
+    }
+    std::printf(
+        "bridge %d: %zu keyframes, %zu frames and %zu keyframe edges chained\n", bridge ? 1 : 0,
+        odo.keyframes().size(), odo.stats().bridged, odo.stats().bridgedConstraints);
+    EXPECT_EQ(odo.stats().bridgedConstraints, chained);
+    if (bridge)
+      EXPECT_GE(chained, 1u);
+    else
+      EXPECT_EQ(odo.stats().bridged + chained, 0u);
+  }
+}
+
+namespace
+{
 /** The room seen by a camera of twice the resolution (1280 x 960): the
  *  640 x 480 render upscaled, the intrinsics with it (pixel centres). */
 roislam::io::TRGBDFrame doubled(const roislam::io::TRGBDFrame& f)
@@ -491,6 +672,8 @@ TEST(RgbdOdometry, OptionsIniRoundTripAndErrors)
   o.rolling_shutter_ms = 25;
   o.keyframe_full_features = false;
   o.keyframe_full_registration = false;
+  o.bridge_previous_frame = true;
+  o.keyframe_min_inlier_share = 0.4;
   mrpt::config::CConfigFileMemory cfg;
   o.saveToConfigFile(cfg, "FrontEnd");
   CRgbdOdometry::TOptions l;
@@ -509,6 +692,8 @@ TEST(RgbdOdometry, OptionsIniRoundTripAndErrors)
   EXPECT_EQ(l.feature_resolution, "auto");
   EXPECT_EQ(l.flow_anchors, "corners");
   EXPECT_DOUBLE_EQ(l.rolling_shutter_ms, 25);
+  EXPECT_TRUE(l.bridge_previous_frame);
+  EXPECT_DOUBLE_EQ(l.keyframe_min_inlier_share, 0.4);
   EXPECT_FALSE(l.keyframe_full_features);
   EXPECT_FALSE(l.keyframe_full_registration);
   EXPECT_EQ(l.extractor.max_features, 500);
@@ -546,6 +731,8 @@ TEST(RgbdOdometry, OptionsIniRoundTripAndErrors)
            {"rolling_shutter_ms", -1001},
            {"rolling_shutter_ms", 2000},
            {"pixel_sigma_px", -0.5},
+           {"keyframe_min_inlier_share", -0.1},
+           {"keyframe_min_inlier_share", 1.0},
            {"reprojection_threshold_px", 0}})
   {
     mrpt::config::CConfigFileMemory bad3;

@@ -1,8 +1,10 @@
 // CRgbdOdometry: construction, the public queries, prepare() (checks and
 // stage 1) and process(), which runs the stages in order. The stages are in
-// StageExtract.cpp, StageTrack.cpp, StageRefine.cpp and StageKeyframe.cpp.
+// StageExtract.cpp, StageTrack.cpp, StageRefine.cpp, StageBridge.cpp and
+// StageKeyframe.cpp.
 #include "roislam/frontend/CRgbdOdometry.h"
 
+#include <algorithm>
 #include <opencv2/imgproc.hpp>
 #include <stdexcept>
 #include <tuple>
@@ -228,6 +230,7 @@ TFrameResult CRgbdOdometry::process(const TPreparedFrame& frame)
   liftFeatures(w);
   if (m_keyframes.empty() || w.strictLost)
   {
+    m_impl->previous.reset();
     startMap(w);
     return finish(w);
   }
@@ -236,12 +239,21 @@ TFrameResult CRgbdOdometry::process(const TPreparedFrame& frame)
   refineRollingShutter(w);
   refineWithDepth(w);
   if (!resolvePose(w))
+  {
+    m_impl->previous.reset();
     return finish(w);
+  }
   if (!needsKeyframe(w))
   {
     m_impl->haveLast = true;
     m_impl->lastRef = w.ref;
     m_impl->lastRel = w.res.relativePose;
+    if (isFeatureMethod(w.res.method))
+    {
+      std::size_t& best = m_impl->bestInliers[w.ref];
+      best = std::max(best, w.res.inliers);
+    }
+    rememberFrame(w);
     return finish(w);
   }
   // Keyframes store (and register) the whole image's features.
@@ -249,6 +261,7 @@ TFrameResult CRgbdOdometry::process(const TPreparedFrame& frame)
     extendToImage(w, EExtension::Keyframe);
   makeKeyframeConstraints(w);
   insertKeyframe(w, *w.res.pose);
+  m_impl->previous.reset();
   return finish(w);
 }
 
@@ -276,6 +289,10 @@ TFrameResult CRgbdOdometry::finish(TFrameWork& w)
   m_stats.describedFractionSum += res.work.describedFraction(res.imageSize);
   if (res.icpRefined)
     ++m_stats.icpRefined;
+  res.bridged = w.bridged;
+  if (w.bridged)
+    ++m_stats.bridged;
+  m_stats.bridgedConstraints += res.bridgedConstraints;
   switch (res.method)
   {
     case ETrackingMethod::Initial:

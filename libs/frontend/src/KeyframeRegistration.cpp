@@ -243,4 +243,26 @@ bool lessDetermined(const TRegistration& a, const TRegistration& b)
     return !sa && sb;
   return sa->translation_m > sb->translation_m;
 }
+std::optional<TRegistration> chainRegistrations(
+    const TRegistration& refToPrev, const TRegistration& prevToCur)
+{
+  const auto information =
+      composedInformation(refToPrev.T, refToPrev.information, prevToCur.information);
+  const auto edgeInformation =
+      composedInformation(refToPrev.T, refToPrev.edgeInformation, prevToCur.edgeInformation);
+  if (!information || !edgeInformation)
+    return std::nullopt;
+  TRegistration r;
+  r.T.R = refToPrev.T.R * prevToCur.T.R;
+  r.T.t = refToPrev.T.R * prevToCur.T.t + refToPrev.T.t;
+  r.information = *information;
+  r.edgeInformation = *edgeInformation;
+  r.matches = prevToCur.matches;
+  r.inliers = std::min(refToPrev.inliers, prevToCur.inliers);
+  r.rmse3d = prevToCur.rmse3d;
+  r.rmsePx = prevToCur.rmsePx;
+  // No pairs: the matches are with the previous frame, not with ref
+  // (nothing refines a chained registration again).
+  return r;
+}
 }  // namespace roislam::frontend::detail

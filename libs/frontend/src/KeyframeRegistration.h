@@ -35,6 +35,24 @@ struct TRegistration
   std::vector<std::size_t> inlierPairs;
 };
 
+/** A frame tracked by its described features against keyframe `ref` that
+ *  did not become a keyframe: what the next frame may register against when
+ *  that keyframe no longer registers (bridge_previous_frame). */
+struct TTrackedFrame
+{
+  TKeyframe set;
+  std::size_t ref = 0;
+  /** set registered against keyframe ref. */
+  TRegistration reg;
+};
+
+/** refToPrev chained with prevToCur: cur registered against ref, both
+ *  informations composed (RigidMath.h composedInformation; the two taken as
+ *  independent), the fewer inliers of the two. nullopt when a direction of
+ *  either is undetermined. */
+std::optional<TRegistration> chainRegistrations(
+    const TRegistration& refToPrev, const TRegistration& prevToCur);
+
 /** Correspondences known without matching (optical flow, FlowTracking.h):
  *  cur's features from `first` on, each with the ref feature it came from. */
 struct TKnownPairs

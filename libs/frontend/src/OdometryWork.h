@@ -78,6 +78,12 @@ struct CRgbdOdometry::TImpl
    *  shrinks back after each good one, so that the region is as large as
    *  this scene needs for a determined pose (StageTrack.cpp). */
   double regionGrowth = 1;
+  /** keyframe_min_inlier_share: the most feature inliers a frame had
+   *  against each recent keyframe (erased with their ICP maps). */
+  std::map<std::size_t, std::size_t> bestInliers;
+  /** bridge_previous_frame: the last frame, if it was tracked by its
+   *  described features and did not become a keyframe (StageBridge.cpp). */
+  std::optional<detail::TTrackedFrame> previous;
   /** Pixels of the features the last process() call described
    *  (lastFeaturePixels()). */
   std::vector<cv::Point2f> lastFeaturePixels;
@@ -217,6 +223,9 @@ struct CRgbdOdometry::TFrameWork
   std::optional<detail::TRegistration> reg;
   /** Keyframe the registration is against. */
   std::size_t ref = 0;
+  /** reg is chained through the previous frame (bridgeFromPrevious): the
+   *  frame becomes a keyframe. */
+  bool bridged = false;
 };
 
 bool isFeatureMethod(ETrackingMethod m);

@@ -93,6 +93,19 @@ std::optional<Matrix6d> covarianceOf(const Matrix6d& information)
   return C;
 }
 
+std::optional<Matrix6d> composedInformation(const TRigid& a, const Matrix6d& Ha, const Matrix6d& Hb)
+{
+  const auto Ca = covarianceOf(Ha);
+  const auto Cb = covarianceOf(Hb);
+  if (!Ca || !Cb)
+    return std::nullopt;
+  Matrix6d Ad = Matrix6d::Zero();
+  Ad.topLeftCorner<3, 3>() = a.R;
+  Ad.topRightCorner<3, 3>() = mrpt::math::skew_symmetric3(a.t).asEigen() * a.R;
+  Ad.bottomRightCorner<3, 3>() = a.R;
+  return covarianceOf(*Ca + Ad * *Cb * Ad.transpose());
+}
+
 TRigid fuseLeft(const TRigid& a, const Matrix6d& Ha, const TRigid& b, const Matrix6d& Hb)
 {
   const Vector6d d = leftDifference(a, b);

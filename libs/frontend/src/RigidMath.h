@@ -43,6 +43,13 @@ Vector6d leftDifference(const TRigid& a, const TRigid& b);
  *  definite (an undetermined direction). */
 std::optional<Matrix6d> covarianceOf(const Matrix6d& information);
 
+/** The information of a * b (left perturbation, as in applyLeft) from a's
+ *  and b's, independent: b's perturbation moves into a's reference frame by
+ *  a's adjoint, Cov = Cov_a + Ad(a) Cov_b Ad(a)^T with Ad(a) = [R, [t]x R;
+ *  0, R]. nullopt when either leaves a direction undetermined. */
+std::optional<Matrix6d> composedInformation(
+    const TRigid& a, const Matrix6d& Ha, const Matrix6d& Hb);
+
 /** Information H of delta (left perturbation of T, as in applyLeft) ->
  *  information of (x, y, z, yaw, pitch, roll) of T (CPose3DPDFGaussianInf). */
 Matrix6d tangentInfoToYpr(const Matrix6d& H, const mrpt::poses::CPose3D& T);

@@ -94,8 +94,19 @@ void CRgbdOdometry::startMap(TFrameWork& w)
 bool CRgbdOdometry::needsKeyframe(const TFrameWork& w) const
 {
   const TOptions& o = m_options;
-  bool fewInliers =
-      isFeatureMethod(w.res.method) && static_cast<int>(w.res.inliers) < o.keyframe_min_inliers;
+  // A bridged frame no longer registers against any keyframe: the next
+  // frames need it as one.
+  bool fewInliers = w.bridged || (isFeatureMethod(w.res.method) &&
+                                  static_cast<int>(w.res.inliers) < o.keyframe_min_inliers);
+  // Fewer than a share of the most this keyframe gave: the registrations
+  // against it are wearing out (counts differ by detector and scene, the
+  // share does not).
+  const auto best = m_impl->bestInliers.find(w.ref);
+  if (o.keyframe_min_inlier_share > 0 && isFeatureMethod(w.res.method) &&
+      best != m_impl->bestInliers.end() &&
+      static_cast<double>(w.res.inliers) <
+          o.keyframe_min_inlier_share * static_cast<double>(best->second))
+    fewInliers = true;
   // Anchors alone: their pairs are known, so their share of inliers says
   // how much of the keyframe's view still moves as one with the frame.
   if (o.keyframe_min_flow_inlier_share > 0 && w.res.method == ETrackingMethod::Flow &&
@@ -187,7 +198,15 @@ void CRgbdOdometry::makeKeyframeConstraints(TFrameWork& w)
     ++extra;
     const auto r = I.registerSets(m_keyframes[id], edgeSet, o);
     if (!r)
+    {
+      // The keyframe the previous frame tracked, chained through it.
+      if (const auto c = bridgedConstraint(id, edgeSet, w))
+      {
+        res.constraints.push_back(*c);
+        ++res.bridgedConstraints;
+      }
       continue;
+    }
     TKeyframeConstraint c;
     c.fromKeyframe = id;
     c.toKeyframe = first.toKeyframe;
@@ -259,6 +278,8 @@ void CRgbdOdometry::insertKeyframe(TFrameWork& w, const mrpt::poses::CPose3D& po
     m_keyframes[m_keyframes.size() - 1 - keep].index.reset();
   while (I.icpMaps.size() > keep)
     I.icpMaps.erase(I.icpMaps.begin());
+  while (I.bestInliers.size() > keep)
+    I.bestInliers.erase(I.bestInliers.begin());
   if (followsWithFlow())
   {
     setAnchors(m_keyframes.back(), w);

@@ -185,6 +185,10 @@ bool CRgbdOdometry::resolvePose(TFrameWork& w)
   TImpl& I = *m_impl;
   const TOptions& o = m_options;
   TFrameResult& res = w.res;
+  // Features failed against every keyframe: through the previous frame
+  // before depth ICP (on fr1 several times less accurate than features).
+  if (!w.reg)
+    bridgeFromPrevious(w);
   if (w.reg)
   {
     res.method = featureMethodOf(w);

@@ -121,6 +121,8 @@ void TRgbdOdometryOptions::loadFromConfigFile(
   keyframe_translation_m = c.read_double(s, "keyframe_translation_m", keyframe_translation_m);
   keyframe_rotation_deg = c.read_double(s, "keyframe_rotation_deg", keyframe_rotation_deg);
   keyframe_min_inliers = c.read_int(s, "keyframe_min_inliers", keyframe_min_inliers);
+  keyframe_min_inlier_share =
+      c.read_double(s, "keyframe_min_inlier_share", keyframe_min_inlier_share);
   keyframe_min_flow_inlier_share =
       c.read_double(s, "keyframe_min_flow_inlier_share", keyframe_min_flow_inlier_share);
   keyframe_policy = c.read_string(s, "keyframe_policy", keyframe_policy);
@@ -139,6 +141,7 @@ void TRgbdOdometryOptions::loadFromConfigFile(
   depth_discontinuity_m = c.read_double(s, "depth_discontinuity_m", depth_discontinuity_m);
   rolling_shutter_ms = c.read_double(s, "rolling_shutter_ms", rolling_shutter_ms);
   icp_fallback = c.read_bool(s, "icp_fallback", icp_fallback);
+  bridge_previous_frame = c.read_bool(s, "bridge_previous_frame", bridge_previous_frame);
   icp_refine_sigma_m = c.read_double(s, "icp_refine_sigma_m", icp_refine_sigma_m);
   icp_fusion = c.read_string(s, "icp_fusion", icp_fusion);
   icp_min_share = c.read_double(s, "icp_min_share", icp_min_share);
@@ -183,6 +186,7 @@ void TRgbdOdometryOptions::saveToConfigFile(
   c.write(s, "keyframe_translation_m", keyframe_translation_m);
   c.write(s, "keyframe_rotation_deg", keyframe_rotation_deg);
   c.write(s, "keyframe_min_inliers", keyframe_min_inliers);
+  c.write(s, "keyframe_min_inlier_share", keyframe_min_inlier_share);
   c.write(s, "keyframe_min_flow_inlier_share", keyframe_min_flow_inlier_share);
   c.write(s, "keyframe_policy", keyframe_policy);
   c.write(s, "keyframe_min_overlap", keyframe_min_overlap);
@@ -199,6 +203,7 @@ void TRgbdOdometryOptions::saveToConfigFile(
   c.write(s, "depth_discontinuity_m", depth_discontinuity_m);
   c.write(s, "rolling_shutter_ms", rolling_shutter_ms);
   c.write(s, "icp_fallback", icp_fallback);
+  c.write(s, "bridge_previous_frame", bridge_previous_frame);
   c.write(s, "icp_refine_sigma_m", icp_refine_sigma_m);
   c.write(s, "icp_fusion", icp_fusion);
   c.write(s, "icp_min_share", icp_min_share);
@@ -285,6 +290,8 @@ void validateKeyframes(const TOptions& o, const std::string& s)
         s, "keyframe_rotation_deg", motionPolicy ? "must be > 0" : "must be >= 0 (0 = no bound)");
   if (o.keyframe_min_inliers < 0)
     throwBadIniKey(s, "keyframe_min_inliers", "must be >= 0");
+  if (!(o.keyframe_min_inlier_share >= 0 && o.keyframe_min_inlier_share < 1))
+    throwBadIniKey(s, "keyframe_min_inlier_share", "must be in [0, 1) (0 = off)");
   if (!(o.keyframe_min_flow_inlier_share >= 0 && o.keyframe_min_flow_inlier_share < 1))
     throwBadIniKey(s, "keyframe_min_flow_inlier_share", "must be in [0, 1) (0 = off)");
   if (o.recent_keyframes < 0)

@@ -102,7 +102,9 @@ nlohmann::json trackingJson(const CSlamPipeline& pipeline, const TSlamSummary& s
       {"constant_velocity", st.constantVelocity},
       {"lost", st.lost},
       {"no_roi", st.noRoi},
-      {"icp_refined", st.icpRefined}};
+      {"icp_refined", st.icpRefined},
+      {"bridged", st.bridged},
+      {"bridged_constraints", st.bridgedConstraints}};
   // What stage 2 described: ROI-only frames describe their tracking region
   // alone; the others were extended once, for the reason given.
   nlohmann::json ext = nlohmann::json::object();

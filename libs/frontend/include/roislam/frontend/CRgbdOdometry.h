@@ -80,6 +80,9 @@ class CRgbdOdometry : public mrpt::system::COutputLogger
     std::size_t noRoi = 0;
     /** Feature-tracked frames also combined with depth ICP (icp_refine_sigma_m). */
     std::size_t icpRefined = 0;
+    /** Frames tracked through the previous frame, and keyframe constraints
+     *  chained through it (bridge_previous_frame). */
+    std::size_t bridged = 0, bridgedConstraints = 0;
     /** Frames by what stage 2 described (TDescribedWork::extension). */
     std::map<EExtension, std::size_t> extensions;
     /** Sum over frames of the described-pixel fraction. */
@@ -146,7 +149,7 @@ class CRgbdOdometry : public mrpt::system::COutputLogger
   struct TImpl;
   struct TFrameWork;
   // The stages of process(), in order (files StageExtract.cpp, StageTrack.cpp,
-  // StageRefine.cpp, StageKeyframe.cpp).
+  // StageRefine.cpp, StageBridge.cpp, StageKeyframe.cpp).
   void extractFeatures(TFrameWork& w) const;
   void liftFeatures(TFrameWork& w) const;
   /** ROI-only frames: describes the rest of the image too (once; nothing
@@ -201,6 +204,18 @@ class CRgbdOdometry : public mrpt::system::COutputLogger
   bool icpWorthRunning(double pairShare, bool ignoreProbe = false) const;
   /** Pose from the registration, or from the fallbacks; false when Lost. */
   bool resolvePose(TFrameWork& w);
+  // bridge_previous_frame (StageBridge.cpp).
+  /** Features failed against every keyframe: registers the frame against
+   *  the previous frame and chains that to the keyframe it tracked (w.reg,
+   *  w.ref, w.bridged); false when there is no such frame or no match. */
+  bool bridgeFromPrevious(TFrameWork& w) const;
+  /** The new keyframe's edge from keyframe `id`, whose own registration
+   *  failed, chained through the previous frame if that tracked `id`. */
+  std::optional<TKeyframeConstraint> bridgedConstraint(
+      std::size_t id, const TKeyframe& set, const TFrameWork& w) const;
+  /** Keeps a tracked, non-keyframe frame for the next one to bridge with
+   *  (or forgets the previous one). */
+  void rememberFrame(TFrameWork& w);
   bool needsKeyframe(const TFrameWork& w) const;
   /** The keyframe criteria for the frame at `pose` (its measured or its
    *  predicted one), with `fewInliers` as measured. */

@@ -186,6 +186,14 @@ struct TFrameResult
 
   /** This frame became a keyframe (id newKeyframeId). */
   bool isNewKeyframe = false;
+  /** The frame's features no longer registered against any keyframe and
+   *  were registered against the previous frame, chained to the keyframe
+   *  that one tracked (TOptions::bridge_previous_frame); it became a
+   *  keyframe. */
+  bool bridged = false;
+  /** Of this keyframe's constraints, those chained through the previous
+   *  frame (its own registration against their keyframe failed). */
+  std::size_t bridgedConstraints = 0;
   /** A feature registration combined with depth ICP: it left the pose
    *  poorly determined (TOptions::icp_refine_sigma_m), or measured fusion
    *  found ICP worth it (TOptions::icp_fusion). */

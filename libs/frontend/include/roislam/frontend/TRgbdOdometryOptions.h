@@ -174,6 +174,16 @@
  *  - keyframe_rotation_deg    [deg] (10): ... or beyond this rotation angle
  *                             (> 0, or >= 0 with overlap, as above)
  *  - keyframe_min_inliers     int >= 0 (20): ... or when inliers drop below this
+ *  - keyframe_min_inlier_share [0, 1) (0 = off): ... or when a frame's
+ *                             feature inliers fall below this share of the
+ *                             most any frame had against the same keyframe
+ *                             (a registration wearing out: fast motion,
+ *                             blur; a share, so the same for every detector
+ *                             and scene). Off by default: 0.5 makes fr1/rpy
+ *                             more accurate in every mode but traditional
+ *                             the most, so that big ROI SURF no longer stays
+ *                             within 1.10x of it (README "Previous-frame
+ *                             bridge and a keyframe share")
  *  - keyframe_min_flow_inlier_share [0, 1) (0 = off): roi_extraction = flow:
  *                             ... or when a frame tracked by the anchors
  *                             alone has fewer RANSAC inliers than this share
@@ -241,6 +251,20 @@
  *                             better on fr1/xyz, mixed on fr1/rpy with ORB
  *                             (README "Depth taken at another time")
  *  - icp_fallback             bool (true): depth ICP when features fail
+ *                             (after bridge_previous_frame)
+ *  - bridge_previous_frame    bool (false): a frame whose features no longer
+ *                             register against the keyframe the previous
+ *                             frame tracked is registered against that
+ *                             previous frame instead, and the two
+ *                             registrations chained (their covariances
+ *                             added): for the frame's pose before depth ICP
+ *                             or constant velocity, and for the keyframe
+ *                             edge from that keyframe, which would otherwise
+ *                             hang on one edge. Not in strict_roi. Off by
+ *                             default: it mends traditional mode's failures
+ *                             on fr1/rpy, which the ROI modes' optical flow
+ *                             rarely has, so they fall behind it (README
+ *                             "Previous-frame bridge and a keyframe share")
  *  - icp_refine_sigma_m       [m] >= 0 (0.01; 0 = no depth refinement at
  *                             all): a feature registration whose worst
  *                             translation 1-sigma (PoseUncertainty.h)
@@ -387,6 +411,7 @@ struct TRgbdOdometryOptions : public mrpt::config::CLoadableOptions
   double keyframe_translation_m = 0.10;
   double keyframe_rotation_deg = 10.0;
   int keyframe_min_inliers = 20;
+  double keyframe_min_inlier_share = 0;
   double keyframe_min_flow_inlier_share = 0;
   std::string keyframe_policy = "motion";
   double keyframe_min_overlap = 0.5;
@@ -403,6 +428,7 @@ struct TRgbdOdometryOptions : public mrpt::config::CLoadableOptions
   double depth_discontinuity_m = 0.05;
   double rolling_shutter_ms = 0;
   bool icp_fallback = true;
+  bool bridge_previous_frame = false;
   double icp_refine_sigma_m = 0.01;
   std::string icp_fusion = "measured";
   double icp_min_share = 0.1;

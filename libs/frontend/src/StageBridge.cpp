@@ -1,0 +1,87 @@
+// The previous-frame bridge (bridge_previous_frame): a frame whose features
+// no longer register against the keyframe the previous frame tracked is
+// registered against that previous frame, and the two registrations are
+// chained. Without it, a keyframe made from a blurred frame (by depth ICP,
+// its features matching nothing older) was tracked well by the next frames
+// and then left behind with its one edge: on fr1/rpy its frames were 20-45
+// mm off. Off by default (README "Previous-frame bridge and a keyframe
+// share").
+#include "OdometryWork.h"
+
+namespace roislam::frontend
+{
+namespace
+{
+/** The frame's described features with the most of them: the whole
+ *  image's once described, else the tracked set without followed anchors
+ *  (those carry no descriptors). */
+const TKeyframe& describedSet(const TKeyframe& full, const TKeyframe& tracked)
+{
+  return full.features.size() > tracked.features.size() ? full : tracked;
+}
+
+bool tracksWithDescriptors(ETrackingMethod m)
+{
+  return m == ETrackingMethod::Features || m == ETrackingMethod::RoiFeatures ||
+         m == ETrackingMethod::FullImageFallback;
+}
+}  // namespace
+
+bool CRgbdOdometry::bridgeFromPrevious(TFrameWork& w) const
+{
+  const TImpl& I = *m_impl;
+  if (!m_options.bridge_previous_frame || !I.previous ||
+      (m_options.strict_roi && isRoiMode(m_options.mode)))
+    return false;
+  const TKeyframe& query = describedSet(w.full, w.flowRef ? w.regionSet : w.cur);
+  std::size_t matches = 0;
+  const auto r = I.registerSets(I.previous->set, query, m_options, &matches, &w.res.times);
+  if (!r)
+    return false;
+  auto chained = detail::chainRegistrations(I.previous->reg, *r);
+  if (!chained)
+    return false;
+  w.reg = std::move(chained);
+  w.ref = I.previous->ref;
+  w.res.matches = matches;
+  w.bridged = true;
+  return true;
+}
+
+std::optional<TKeyframeConstraint> CRgbdOdometry::bridgedConstraint(
+    std::size_t id, const TKeyframe& set, const TFrameWork& w) const
+{
+  const TImpl& I = *m_impl;
+  if (!m_options.bridge_previous_frame || !I.previous || I.previous->ref != id)
+    return std::nullopt;
+  const auto r = I.registerSets(I.previous->set, set, m_options);
+  if (!r)
+    return std::nullopt;
+  const auto chained = detail::chainRegistrations(I.previous->reg, *r);
+  if (!chained)
+    return std::nullopt;
+  TKeyframeConstraint c;
+  c.fromKeyframe = id;
+  c.toKeyframe = m_keyframes.size();
+  std::tie(c.relativePose, c.information) = detail::toMrptEstimate(*chained);
+  c.edgeInformation = detail::toSpaEstimate(*chained);
+  c.method = featureMethodOf(w);
+  c.inliers = chained->inliers;
+  return c;
+}
+
+void CRgbdOdometry::rememberFrame(TFrameWork& w)
+{
+  TImpl& I = *m_impl;
+  I.previous.reset();
+  if (!m_options.bridge_previous_frame || !w.reg || w.bridged ||
+      !tracksWithDescriptors(w.res.method))
+    return;
+  TKeyframe& set = w.flowRef ? w.regionSet : w.cur;
+  if (set.features.size() < static_cast<std::size_t>(m_options.min_inliers))
+    return;
+  // Its search index is built when a frame needs it (rarely).
+  set.index.reset();
+  I.previous = detail::TTrackedFrame{std::move(set), w.ref, *w.reg};
+}
+}  // namespace roislam::frontend
