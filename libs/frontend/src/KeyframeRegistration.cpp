@@ -243,6 +243,7 @@ bool lessDetermined(const TRegistration& a, const TRegistration& b)
     return !sa && sb;
   return sa->translation_m > sb->translation_m;
 }
+
 std::optional<TRegistration> chainRegistrations(
     const TRegistration& refToPrev, const TRegistration& prevToCur)
 {

@@ -6,6 +6,8 @@
 // and then left behind with its one edge: on fr1/rpy its frames were 20-45
 // mm off. Off by default (README "Previous-frame bridge and a keyframe
 // share").
+#include <tuple>
+
 #include "OdometryWork.h"
 
 namespace roislam::frontend
