@@ -409,6 +409,18 @@ CPose3D panPose(std::size_t k)
   const double t = static_cast<double>(k);
   return CPose3D(0.004 * t, 0.0, 0.002 * t, 0.0, 7.0 * t * M_PI / 180.0, 0.0);
 }
+
+/** For the pans: keyframes only when a frame no longer registers (no motion
+ *  bound, no inlier count), and no depth ICP to fall back on. */
+CRgbdOdometry::TOptions panOptions()
+{
+  auto o = baseOptions();
+  o.icp_fallback = false;
+  o.keyframe_rotation_deg = 180;
+  o.keyframe_translation_m = 10;
+  o.keyframe_min_inliers = 0;
+  return o;
+}
 }  // namespace
 
 TEST(RgbdOdometry, FrameThatLosesItsKeyframeIsBridgedThroughThePreviousOne)
@@ -420,12 +432,8 @@ TEST(RgbdOdometry, FrameThatLosesItsKeyframeIsBridgedThroughThePreviousOne)
   for (const bool bridge : {false, true})
   {
     SCOPED_TRACE(bridge);
-    auto o = baseOptions();
+    auto o = panOptions();
     o.bridge_previous_frame = bridge;
-    o.icp_fallback = false;
-    o.keyframe_rotation_deg = 180;
-    o.keyframe_translation_m = 10;
-    o.keyframe_min_inliers = 0;
     CRgbdOdometry odo(o);
     odo.setInitialPose(panPose(0));
     std::vector<TFrameResult> res;
@@ -481,12 +489,8 @@ TEST(RgbdOdometry, KeyframeBeforeTheRegistrationsWearOut)
   for (const double share : {0.0, 0.5})
   {
     SCOPED_TRACE(share);
-    auto o = baseOptions();
+    auto o = panOptions();
     o.keyframe_min_inlier_share = share;
-    o.icp_fallback = false;
-    o.keyframe_rotation_deg = 180;
-    o.keyframe_translation_m = 10;
-    o.keyframe_min_inliers = 0;
     CRgbdOdometry odo(o);
     odo.setInitialPose(panPose(0));
     std::map<std::size_t, std::size_t> best;
@@ -536,12 +540,8 @@ TEST(RgbdOdometry, KeyframeLeftBehindKeepsAnEdgeChainedThroughThePreviousFrame)
   for (const bool bridge : {false, true})
   {
     SCOPED_TRACE(bridge);
-    auto o = baseOptions();
+    auto o = panOptions();
     o.bridge_previous_frame = bridge;
-    o.icp_fallback = false;
-    o.keyframe_rotation_deg = 180;
-    o.keyframe_translation_m = 10;
-    o.keyframe_min_inliers = 0;
     CRgbdOdometry odo(o);
     odo.setInitialPose(pose(0));
     std::vector<TFrameResult> res;

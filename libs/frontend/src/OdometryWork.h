@@ -81,8 +81,9 @@ struct CRgbdOdometry::TImpl
   /** keyframe_min_inlier_share: the most feature inliers a frame had
    *  against each recent keyframe (erased with their ICP maps). */
   std::map<std::size_t, std::size_t> bestInliers;
-  /** bridge_previous_frame: the last frame, if it was tracked by its
-   *  described features and did not become a keyframe (StageBridge.cpp). */
+  /** bridge_previous_frame (not in strict_roi): the last frame, if it was
+   *  tracked by its described features and did not become a keyframe
+   *  (StageBridge.cpp). Unset, nothing is bridged. */
   std::optional<detail::TTrackedFrame> previous;
   /** Pixels of the features the last process() call described
    *  (lastFeaturePixels()). */
@@ -119,6 +120,12 @@ struct CRgbdOdometry::TImpl
       const TKeyframe& ref, const TKeyframe& cur, const TOptions& o,
       std::size_t* matchesOut = nullptr, TStageTimes* times = nullptr,
       const detail::TKnownPairs* known = nullptr) const;
+  /** query registered against the previous frame and chained to the
+   *  keyframe that frame tracked (previous->ref); nullopt without a previous
+   *  frame or a registration (StageBridge.cpp). */
+  std::optional<detail::TRegistration> chainedThroughPrevious(
+      const TKeyframe& query, const TOptions& o, std::size_t* matchesOut = nullptr,
+      TStageTimes* times = nullptr) const;
 };
 
 /** One frame on its way through the stages of process(). */

@@ -6,8 +6,6 @@
 // and then left behind with its one edge: on fr1/rpy its frames were 20-45
 // mm off. Off by default (README "Previous-frame bridge and a keyframe
 // share").
-#include <tuple>
-
 #include "OdometryWork.h"
 
 namespace roislam::frontend
@@ -29,18 +27,23 @@ bool tracksWithDescriptors(ETrackingMethod m)
 }
 }  // namespace
 
+std::optional<detail::TRegistration> CRgbdOdometry::TImpl::chainedThroughPrevious(
+    const TKeyframe& query, const TOptions& o, std::size_t* matchesOut, TStageTimes* times) const
+{
+  if (!previous)
+    return std::nullopt;
+  const auto r = registerSets(previous->set, query, o, matchesOut, times);
+  if (!r)
+    return std::nullopt;
+  return detail::chainRegistrations(previous->reg, *r);
+}
+
 bool CRgbdOdometry::bridgeFromPrevious(TFrameWork& w) const
 {
   const TImpl& I = *m_impl;
-  if (!m_options.bridge_previous_frame || !I.previous ||
-      (m_options.strict_roi && isRoiMode(m_options.mode)))
-    return false;
-  const TKeyframe& query = describedSet(w.full, w.flowRef ? w.regionSet : w.cur);
   std::size_t matches = 0;
-  const auto r = I.registerSets(I.previous->set, query, m_options, &matches, &w.res.times);
-  if (!r)
-    return false;
-  auto chained = detail::chainRegistrations(I.previous->reg, *r);
+  auto chained = I.chainedThroughPrevious(
+      describedSet(w.full, w.flowRef ? w.regionSet : w.cur), m_options, &matches, &w.res.times);
   if (!chained)
     return false;
   w.reg = std::move(chained);
@@ -50,34 +53,12 @@ bool CRgbdOdometry::bridgeFromPrevious(TFrameWork& w) const
   return true;
 }
 
-std::optional<TKeyframeConstraint> CRgbdOdometry::bridgedConstraint(
-    std::size_t id, const TKeyframe& set, const TFrameWork& w) const
-{
-  const TImpl& I = *m_impl;
-  if (!m_options.bridge_previous_frame || !I.previous || I.previous->ref != id)
-    return std::nullopt;
-  const auto r = I.registerSets(I.previous->set, set, m_options);
-  if (!r)
-    return std::nullopt;
-  const auto chained = detail::chainRegistrations(I.previous->reg, *r);
-  if (!chained)
-    return std::nullopt;
-  TKeyframeConstraint c;
-  c.fromKeyframe = id;
-  c.toKeyframe = m_keyframes.size();
-  std::tie(c.relativePose, c.information) = detail::toMrptEstimate(*chained);
-  c.edgeInformation = detail::toSpaEstimate(*chained);
-  c.method = featureMethodOf(w);
-  c.inliers = chained->inliers;
-  return c;
-}
-
 void CRgbdOdometry::rememberFrame(TFrameWork& w)
 {
   TImpl& I = *m_impl;
   I.previous.reset();
-  if (!m_options.bridge_previous_frame || !w.reg || w.bridged ||
-      !tracksWithDescriptors(w.res.method))
+  if (!m_options.bridge_previous_frame || (m_options.strict_roi && isRoiMode(m_options.mode)) ||
+      !w.reg || w.bridged || !tracksWithDescriptors(w.res.method))
     return;
   TKeyframe& set = w.flowRef ? w.regionSet : w.cur;
   if (set.features.size() < static_cast<std::size_t>(m_options.min_inliers))

@@ -196,17 +196,15 @@ void CRgbdOdometry::makeKeyframeConstraints(TFrameWork& w)
     if (id == w.ref)
       continue;
     ++extra;
-    const auto r = I.registerSets(m_keyframes[id], edgeSet, o);
-    if (!r)
+    auto r = I.registerSets(m_keyframes[id], edgeSet, o);
+    if (!r && I.previous && I.previous->ref == id)
     {
       // The keyframe the previous frame tracked, chained through it.
-      if (const auto c = bridgedConstraint(id, edgeSet, w))
-      {
-        res.constraints.push_back(*c);
-        ++res.bridgedConstraints;
-      }
-      continue;
+      r = I.chainedThroughPrevious(edgeSet, o);
+      res.bridgedConstraints += r ? 1 : 0;
     }
+    if (!r)
+      continue;
     TKeyframeConstraint c;
     c.fromKeyframe = id;
     c.toKeyframe = first.toKeyframe;

@@ -209,10 +209,6 @@ class CRgbdOdometry : public mrpt::system::COutputLogger
    *  the previous frame and chains that to the keyframe it tracked (w.reg,
    *  w.ref, w.bridged); false when there is no such frame or no match. */
   bool bridgeFromPrevious(TFrameWork& w) const;
-  /** The new keyframe's edge from keyframe `id`, whose own registration
-   *  failed, chained through the previous frame if that tracked `id`. */
-  std::optional<TKeyframeConstraint> bridgedConstraint(
-      std::size_t id, const TKeyframe& set, const TFrameWork& w) const;
   /** Keeps a tracked, non-keyframe frame for the next one to bridge with
    *  (or forgets the previous one). */
   void rememberFrame(TFrameWork& w);
