@@ -470,6 +470,49 @@ TEST(OdometrySynthetic, FlowInlierShareMakesKeyframes)
   EXPECT_GT(keyframes[0.999], keyframes[0.0]);
 }
 
+TEST(OdometrySynthetic, WeakRoiFramesBecomeKeyframes)
+{
+  ROISLAM_REQUIRE_SYNTHETIC(dir, "textured");
+  // keyframe_on_weak_roi: a frame whose ROI registration was weak (here every
+  // one: max_roi_sigma_m = 1e-9) and that was therefore described on the
+  // whole image becomes a keyframe; off, most such frames do not. Every
+  // frame still tracks.
+  using roislam::frontend::EExtension;
+  for (auto mode : {EFrontEndMode::RoiBig, EFrontEndMode::RoiSmall})
+    for (const bool on : {false, true})
+    {
+      SCOPED_TRACE(toString(mode) + (on ? " on" : " off"));
+      auto o = orbFlow(mode);
+      o.max_roi_sigma_m = 1e-9;
+      o.keyframe_on_weak_roi = on;
+      const auto s = runOdometry(dir, o);
+      ASSERT_TRUE(s.ate.has_value());
+      std::size_t weak = 0, weakKeyframes = 0;
+      for (const auto& r : s.results)
+      {
+        const auto e = r.work.extension;
+        if (e != EExtension::RoiWeak && e != EExtension::RoiFailed)
+          continue;
+        ++weak;
+        weakKeyframes += r.isNewKeyframe ? 1 : 0;
+      }
+      std::cout << toString(mode) << " keyframe_on_weak_roi " << on << ": weak frames " << weak
+                << ", of them keyframes " << weakKeyframes << ", keyframes "
+                << s.keyframes.size() << ", ATE " << *s.ate << " m\n";
+      EXPECT_GT(weak, 5u);
+      if (on)
+      {
+        EXPECT_EQ(weakKeyframes, weak);
+      }
+      else
+      {
+        EXPECT_LT(2 * weakKeyframes, weak);
+      }
+      EXPECT_EQ(s.stats.lost, 0u);
+      EXPECT_LT(*s.ate, 0.05);
+    }
+}
+
 TEST(OdometrySynthetic, RollingShutterCorrectionRecoversTheSkewedFrames)
 {
   ROISLAM_REQUIRE_SYNTHETIC(dir, "textured");

@@ -674,6 +674,7 @@ TEST(RgbdOdometry, OptionsIniRoundTripAndErrors)
   o.keyframe_full_registration = false;
   o.bridge_previous_frame = true;
   o.keyframe_min_inlier_share = 0.4;
+  o.keyframe_on_weak_roi = true;
   mrpt::config::CConfigFileMemory cfg;
   o.saveToConfigFile(cfg, "FrontEnd");
   CRgbdOdometry::TOptions l;
@@ -694,6 +695,7 @@ TEST(RgbdOdometry, OptionsIniRoundTripAndErrors)
   EXPECT_DOUBLE_EQ(l.rolling_shutter_ms, 25);
   EXPECT_TRUE(l.bridge_previous_frame);
   EXPECT_DOUBLE_EQ(l.keyframe_min_inlier_share, 0.4);
+  EXPECT_TRUE(l.keyframe_on_weak_roi);
   EXPECT_FALSE(l.keyframe_full_features);
   EXPECT_FALSE(l.keyframe_full_registration);
   EXPECT_EQ(l.extractor.max_features, 500);

@@ -107,6 +107,16 @@ bool CRgbdOdometry::needsKeyframe(const TFrameWork& w) const
       static_cast<double>(w.res.inliers) <
           o.keyframe_min_inlier_share * static_cast<double>(best->second))
     fewInliers = true;
+  // ROI modes: the ROI's registration was weak or failed, so the frame was
+  // described on the whole image (trackFeatures) and registered. The
+  // keyframe's view is wearing out, and making the frame a keyframe costs
+  // no second description. (On fr1/rpy the frames before a blurred one end
+  // so: made keyframes, the blurred one registers against a sharp, near
+  // neighbour instead of falling to depth ICP.)
+  const EExtension ext = w.res.work.extension;
+  if (o.keyframe_on_weak_roi && isFeatureMethod(w.res.method) &&
+      (ext == EExtension::RoiWeak || ext == EExtension::RoiFailed))
+    fewInliers = true;
   // Anchors alone: their pairs are known, so their share of inliers says
   // how much of the keyframe's view still moves as one with the frame.
   if (o.keyframe_min_flow_inlier_share > 0 && w.res.method == ETrackingMethod::Flow &&

@@ -125,6 +125,7 @@ void TRgbdOdometryOptions::loadFromConfigFile(
       c.read_double(s, "keyframe_min_inlier_share", keyframe_min_inlier_share);
   keyframe_min_flow_inlier_share =
       c.read_double(s, "keyframe_min_flow_inlier_share", keyframe_min_flow_inlier_share);
+  keyframe_on_weak_roi = c.read_bool(s, "keyframe_on_weak_roi", keyframe_on_weak_roi);
   keyframe_policy = c.read_string(s, "keyframe_policy", keyframe_policy);
   keyframe_min_overlap = c.read_double(s, "keyframe_min_overlap", keyframe_min_overlap);
   keyframe_place_limit = c.read_int(s, "keyframe_place_limit", keyframe_place_limit);
@@ -188,6 +189,7 @@ void TRgbdOdometryOptions::saveToConfigFile(
   c.write(s, "keyframe_min_inliers", keyframe_min_inliers);
   c.write(s, "keyframe_min_inlier_share", keyframe_min_inlier_share);
   c.write(s, "keyframe_min_flow_inlier_share", keyframe_min_flow_inlier_share);
+  c.write(s, "keyframe_on_weak_roi", keyframe_on_weak_roi);
   c.write(s, "keyframe_policy", keyframe_policy);
   c.write(s, "keyframe_min_overlap", keyframe_min_overlap);
   c.write(s, "keyframe_place_limit", keyframe_place_limit);

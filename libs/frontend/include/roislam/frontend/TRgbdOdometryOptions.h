@@ -195,6 +195,19 @@
  *                             keyframes on fr1/rpy, whose ATE improves, and
  *                             fr1/xyz's moves by -5..+6 % (README "ROI that
  *                             pays")
+ *  - keyframe_on_weak_roi     bool (false): ROI modes: ... or when the
+ *                             frame's ROI registration was weak or failed
+ *                             (EExtension::RoiWeak / RoiFailed) and the
+ *                             frame still registered: its keyframe's view
+ *                             is wearing out (the ROI analogue of
+ *                             keyframe_min_inlier_share, judged by the
+ *                             determinacy test that triggered the
+ *                             extension, so the same for every detector),
+ *                             and the frame is described on the whole image
+ *                             already, so the keyframe costs no second
+ *                             description. The shipped ROI configs turn it
+ *                             on with bridge_previous_frame (README "A
+ *                             keyframe where the ROI weakens")
  *  - recent_keyframes         int >= 0 (3): older keyframes (besides the
  *                             reference) tried for tracking fallback and for
  *                             new-keyframe constraints
@@ -260,11 +273,14 @@
  *                             added): for the frame's pose before depth ICP
  *                             or constant velocity, and for the keyframe
  *                             edge from that keyframe, which would otherwise
- *                             hang on one edge. Not in strict_roi. Off by
- *                             default: it mends traditional mode's failures
- *                             on fr1/rpy, which the ROI modes' optical flow
+ *                             hang on one edge. Not in strict_roi. Off in
+ *                             the library; the shipped configs turn it on.
+ *                             Alone it mends traditional mode's failures on
+ *                             fr1/rpy, which the ROI modes' optical flow
  *                             rarely has, so they fall behind it (README
- *                             "Previous-frame bridge and a keyframe share")
+ *                             "Previous-frame bridge and a keyframe share");
+ *                             with keyframe_on_weak_roi they keep up (README
+ *                             "A keyframe where the ROI weakens")
  *  - icp_refine_sigma_m       [m] >= 0 (0.01; 0 = no depth refinement at
  *                             all): a feature registration whose worst
  *                             translation 1-sigma (PoseUncertainty.h)
@@ -413,6 +429,7 @@ struct TRgbdOdometryOptions : public mrpt::config::CLoadableOptions
   int keyframe_min_inliers = 20;
   double keyframe_min_inlier_share = 0;
   double keyframe_min_flow_inlier_share = 0;
+  bool keyframe_on_weak_roi = false;
   std::string keyframe_policy = "motion";
   double keyframe_min_overlap = 0.5;
   int keyframe_place_limit = 8;
