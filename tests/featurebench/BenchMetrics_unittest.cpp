@@ -181,4 +181,10 @@ TEST(BenchMetrics, FinestScaleErrorsAreTheCorrectMatchesOffsets)
     EXPECT_NEAR(m.finestScaleErrors[i], 0.25, 1e-4);
     EXPECT_NEAR(m.finestScaleErrors[i + 1], -0.5, 1e-4);
   }
+  // Not collected when the caller does not want them; the counts are the same.
+  const auto n = evaluatePair(
+      a.kps, a.desc, b.kps, b.desc, cv::Matx33d::eye(), {640, 480}, {640, 480}, cv::NORM_L2,
+      TCorrespondenceCriterion(), false);
+  EXPECT_EQ(n.correctMatches, 100u);
+  EXPECT_TRUE(n.finestScaleErrors.empty());
 }

@@ -497,8 +497,8 @@ TEST(OdometrySynthetic, WeakRoiFramesBecomeKeyframes)
         weakKeyframes += r.isNewKeyframe ? 1 : 0;
       }
       std::cout << toString(mode) << " keyframe_on_weak_roi " << on << ": weak frames " << weak
-                << ", of them keyframes " << weakKeyframes << ", keyframes "
-                << s.keyframes.size() << ", ATE " << *s.ate << " m\n";
+                << ", of them keyframes " << weakKeyframes << ", keyframes " << s.keyframes.size()
+                << ", ATE " << *s.ate << " m\n";
       EXPECT_GT(weak, 5u);
       if (on)
       {

@@ -1,6 +1,7 @@
 #include "roislam/evaluation/EdgeChi2.h"
 
 #include <mrpt/math/geometry.h>
+#include <roislam/common/Median.h>
 #include <roislam/geometry/Rotation.h>
 
 #include <Eigen/Dense>
@@ -171,9 +172,7 @@ std::optional<TStampJitter> stampJitter(const std::vector<double>& sorted)
   std::vector<double> intervals;
   for (std::size_t i = 1; i < sorted.size(); ++i)
     intervals.push_back(sorted[i] - sorted[i - 1]);
-  auto mid = intervals.begin() + static_cast<std::ptrdiff_t>(intervals.size() / 2);
-  std::nth_element(intervals.begin(), mid, intervals.end());
-  const double period = *mid;
+  const double period = common::upperMedian(std::move(intervals));
   if (!(period > 0))
     return std::nullopt;
   // A dropped frame doubles an interval; jitter moves it by a few percent.

@@ -1,4 +1,5 @@
 /* Repeatability and matching score (see BenchMetrics.h). */
+#include <roislam/common/Median.h>
 #include <roislam/featurebench/BenchMetrics.h>
 
 #include <algorithm>
@@ -233,16 +234,14 @@ double localisationSigma(std::vector<double> errors)
     return 0;
   for (double& e : errors)
     e = std::abs(e);
-  const auto mid = errors.begin() + static_cast<std::ptrdiff_t>(errors.size() / 2);
-  std::nth_element(errors.begin(), mid, errors.end());
-  return 1.482602218505602 * *mid / std::sqrt(2.0);
+  return 1.482602218505602 * common::upperMedian(std::move(errors)) / std::sqrt(2.0);
 }
 
 TPairMetrics evaluatePair(
     const std::vector<cv::KeyPoint>& kpsA, const cv::Mat& descA,
     const std::vector<cv::KeyPoint>& kpsB, const cv::Mat& descB, const cv::Matx33d& H,
     const cv::Size& sizeA, const cv::Size& sizeB, int normType,
-    const TCorrespondenceCriterion& crit)
+    const TCorrespondenceCriterion& crit, bool finestScaleErrors)
 {
   const bool withDesc = !descA.empty() && !descB.empty();
   if (withDesc &&
@@ -264,7 +263,8 @@ TPairMetrics evaluatePair(
   if (withDesc)
   {
     m.correctMatches = countCorrectMatches(
-        descA, descB, normType, common, consistent, kpsA, kpsB, H, &m.finestScaleErrors);
+        descA, descB, normType, common, consistent, kpsA, kpsB, H,
+        finestScaleErrors ? &m.finestScaleErrors : nullptr);
     m.matchingScore = static_cast<double>(m.correctMatches) / static_cast<double>(denom);
   }
   return m;

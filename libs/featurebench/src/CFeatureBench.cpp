@@ -204,8 +204,9 @@ std::vector<CFeatureBench::TRow> benchExtractor(
       }
       const TPairMetrics m =
           evaluatePair(kpA, descA, kpB, descB, H, img.size(), img.size(), norm, crit.pixel);
-      const TPairMetrics mo =
-          evaluatePair(kpA, descA, kpB, descB, H, img.size(), img.size(), norm, crit.overlap);
+      // The finest scale's errors once, from the pixel criterion's matches.
+      const TPairMetrics mo = evaluatePair(
+          kpA, descA, kpB, descB, H, img.size(), img.size(), norm, crit.overlap, false);
       addPair(rows[k], m, mo, kpB.size(), msB);
       finestErrors[k].insert(
           finestErrors[k].end(), m.finestScaleErrors.begin(), m.finestScaleErrors.end());

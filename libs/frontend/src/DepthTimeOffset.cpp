@@ -1,10 +1,10 @@
 #include "DepthTimeOffset.h"
 
+#include <roislam/common/Median.h>
+
 #include <algorithm>
 #include <cmath>
 #include <vector>
-
-#include "Median.h"
 
 namespace roislam::frontend::detail
 {
@@ -32,7 +32,7 @@ double CDepthTimeOffset::period() const
 {
   return m_intervals.empty()
              ? 0.0
-             : upperMedian(std::vector<double>(m_intervals.begin(), m_intervals.end()));
+             : common::upperMedian(std::vector<double>(m_intervals.begin(), m_intervals.end()));
 }
 
 double CDepthTimeOffset::update(double colourStamp, double depthStamp)
@@ -65,7 +65,7 @@ double CDepthTimeOffset::update(double colourStamp, double depthStamp)
   dev.reserve(m_differences.size());
   for (double d : m_differences)
     dev.push_back(wrap(d - mean, p));
-  const double phase = mean + upperMedian(dev);
+  const double phase = mean + common::upperMedian(dev);
   // The frame's depth image is the one the stamps say (before or after its
   // colour image), at the estimated phase.
   return phase + p * std::round((diff - phase) / p);

@@ -1,12 +1,12 @@
 #include "IcpConsistency.h"
 
+#include <roislam/common/Median.h>
+
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <utility>
 #include <vector>
-
-#include "Median.h"
 
 namespace roislam::frontend::detail
 {
@@ -76,7 +76,7 @@ double CIcpConsistency::medianChi2(double k) const
   c.reserve(m_samples.size());
   for (const auto& s : m_samples)
     c.push_back(chi2(s.d, s.featureCov, s.icpCov, shareScale(k, s.pairShare)));
-  return upperMedian(std::move(c));
+  return common::upperMedian(std::move(c));
 }
 
 void CIcpConsistency::update()
@@ -85,7 +85,7 @@ void CIcpConsistency::update()
   s.reserve(m_samples.size());
   for (const auto& x : m_samples)
     s.push_back(x.share);
-  m_share = upperMedian(std::move(s));
+  m_share = common::upperMedian(std::move(s));
   m_scale.reset();
   if (m_samples.size() < m_minSamples)
     return;

@@ -1,6 +1,8 @@
 // The keyframe stages of the front end: the first keyframe (the map's
 // origin), the keyframe decision, a new keyframe's constraints to the recent
 // keyframes, and its storage.
+#include <roislam/common/Median.h>
+
 #include <algorithm>
 #include <cmath>
 #include <tuple>
@@ -29,8 +31,7 @@ void setRegion(TKeyframe& kf, const cv::Rect& region)
       z.push_back(kf.points[i].z);
   if (z.empty())
     return;
-  std::nth_element(z.begin(), z.begin() + static_cast<std::ptrdiff_t>(z.size() / 2), z.end());
-  kf.regionDepth = z[z.size() / 2];
+  kf.regionDepth = common::upperMedian(std::move(z));
 }
 }  // namespace
 

@@ -2,6 +2,7 @@
 #include <mrpt/graphslam/levmarq.h>
 #include <mrpt/system/CTicTac.h>
 #include <roislam/common/IniErrors.h>
+#include <roislam/common/Median.h>
 #include <roislam/evaluation/EdgeChi2.h>
 #include <roislam/graphslam/CSlamContext.h>
 #include <roislam/graphslam/SlamIni.h>
@@ -387,10 +388,8 @@ double CSlamContext::graphVarianceFactor(const TGraph& graph)
   chi2.reserve(graph.edges.size());
   for (auto it = graph.edges.begin(); it != graph.edges.end(); ++it)
     chi2.push_back(edgeChi2(graph, it));
-  auto mid = chi2.begin() + static_cast<std::ptrdiff_t>(chi2.size() / 2);
-  std::nth_element(chi2.begin(), mid, chi2.end());
   const double expected = kChi2Median6 * redundancy / (6 * edges);
-  return std::max(1.0, *mid / expected);
+  return std::max(1.0, common::upperMedian(std::move(chi2)) / expected);
 }
 
 double CSlamContext::closureVarianceFactor(std::vector<double> closureChi2)

@@ -92,11 +92,14 @@ double localisationSigma(std::vector<double> errors);
 
 /** H maps pixel coordinates of A (size sizeA) to B (size sizeB); 3x3 CV_64F.
  *  Descriptors (one row per keypoint) may be empty: the matching score is then
- *  0. normType: cv::NORM_L2 or cv::NORM_HAMMING. Throws std::invalid_argument
- *  on inconsistent sizes. */
+ *  0. normType: cv::NORM_L2 or cv::NORM_HAMMING. finestScaleErrors: whether
+ *  to collect TPairMetrics::finestScaleErrors (a caller evaluating the same
+ *  pair under a second criterion needs them once). Throws
+ *  std::invalid_argument on inconsistent sizes. */
 TPairMetrics evaluatePair(
     const std::vector<cv::KeyPoint>& kpsA, const cv::Mat& descA,
     const std::vector<cv::KeyPoint>& kpsB, const cv::Mat& descB, const cv::Matx33d& H,
     const cv::Size& sizeA, const cv::Size& sizeB, int normType,
-    const TCorrespondenceCriterion& criterion = TCorrespondenceCriterion());
+    const TCorrespondenceCriterion& criterion = TCorrespondenceCriterion(),
+    bool finestScaleErrors = true);
 }  // namespace roislam::featurebench
