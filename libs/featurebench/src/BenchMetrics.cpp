@@ -7,6 +7,7 @@
 #include <opencv2/features2d.hpp>
 #include <stdexcept>
 #include <tuple>
+#include <utility>
 
 namespace roislam::featurebench
 {

@@ -11,6 +11,7 @@
 #include <cmath>
 #include <set>
 #include <stdexcept>
+#include <utility>
 
 namespace roislam::graphslam
 {

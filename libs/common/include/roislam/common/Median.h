@@ -1,7 +1,8 @@
-/* The median the libraries' robust estimators share (front end's depth time
- * offset and ICP consistency, the graph's variance factor, the feature
- * bench's keypoint noise, the stamps' period): the upper one of an even
- * count, no averaging, so that it is always one of the samples. */
+/* The median the libraries' robust estimators share (the front end's depth
+ * time offset, ICP consistency and tracking-region depth, the graph's
+ * variance factor, the feature bench's keypoint noise, the stamps' period):
+ * the upper one of an even count, no averaging, so that it is always one of
+ * the samples. */
 #pragma once
 
 #include <algorithm>

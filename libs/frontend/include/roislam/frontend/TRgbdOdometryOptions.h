@@ -200,12 +200,12 @@
  *                             (EExtension::RoiWeak / RoiFailed) and the
  *                             frame still registered: its keyframe's view
  *                             is wearing out (the ROI analogue of
- *                             keyframe_min_inlier_share, judged by the
- *                             determinacy test that triggered the
- *                             extension, so the same for every detector),
- *                             and the frame is described on the whole image
- *                             already, so the keyframe costs no second
- *                             description. The shipped ROI configs turn it
+ *                             keyframe_min_inlier_share, judged by the ROI's
+ *                             own weak-registration test: min_roi_inliers,
+ *                             max_roi_sigma_m / _deg, no threshold of its
+ *                             own), and the frame is described on the
+ *                             whole image already, so the keyframe costs no
+ *                             second description. The shipped ROI configs turn it
  *                             on with bridge_previous_frame (README "A
  *                             keyframe where the ROI weakens")
  *  - recent_keyframes         int >= 0 (3): older keyframes (besides the
