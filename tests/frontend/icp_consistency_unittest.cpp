@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <random>
 
 #include "IcpConsistency.h"
@@ -250,4 +251,35 @@ TEST(IcpConsistency, BelowOneAShareOfThePairsIsNoiseAlone)
   EXPECT_DOUBLE_EQ(*c.scaleFor(0.25), *c.scale());
   EXPECT_DOUBLE_EQ(c.informationKept(0.25), 0.25);
   EXPECT_DOUBLE_EQ(c.informationKept(1.0), 1.0);
+}
+
+TEST(IcpConsistency, IcpBetterDeterminedScalesIcpsCovarianceByTheMeasuredScale)
+{
+  using roislam::frontend::TInformation66;
+  using roislam::frontend::detail::icpBetterDetermined;
+  // Isotropic estimates: sigma_t in metres, 0.1 deg in rotation.
+  const auto info = [](double sigmaT)
+  {
+    TInformation66 m;
+    m.setZero();
+    const double sr = 0.1 * M_PI / 180;
+    for (int i = 0; i < 3; ++i)
+    {
+      m(i, i) = 1 / (sigmaT * sigmaT);
+      m(i + 3, i + 3) = 1 / (sr * sr);
+    }
+    return m;
+  };
+  // ICP claims 1.2 mm, the chain 8 mm (a bridged frame on a rendered loop).
+  const TInformation66 icp = info(0.0012), chain = info(0.008);
+  EXPECT_TRUE(icpBetterDetermined(icp, 2.3, chain));     // ICP agrees with the features
+  EXPECT_TRUE(icpBetterDetermined(icp, 40.0, chain));    // 1.2 mm x sqrt(40) = 7.6 mm
+  EXPECT_FALSE(icpBetterDetermined(icp, 100.0, chain));  // 12 mm
+  EXPECT_FALSE(icpBetterDetermined(icp, std::numeric_limits<double>::infinity(), chain));
+  EXPECT_FALSE(icpBetterDetermined(icp, 0.0, chain));
+  // A singular estimate loses; ICP singular: the other is kept.
+  TInformation66 singular = chain;
+  singular(0, 0) = 0;
+  EXPECT_TRUE(icpBetterDetermined(icp, 40.0, singular));
+  EXPECT_FALSE(icpBetterDetermined(singular, 1.0, chain));
 }

@@ -481,6 +481,32 @@ TEST(RgbdOdometry, FrameThatLosesItsKeyframeIsBridgedThroughThePreviousOne)
   }
 }
 
+TEST(RgbdOdometry, BridgeAndDepthIcpTogether)
+{
+  // The pan above with depth ICP available too. Where a frame loses its
+  // keyframe, the chain through the previous frame and depth ICP against
+  // the last keyframe compete (IcpConsistency.h icpBetterDetermined, tested
+  // there): either way the frame is tracked, not left to constant
+  // velocity, and every frame stays within about a centimetre.
+  auto o = panOptions();
+  o.bridge_previous_frame = true;
+  o.icp_fallback = true;
+  CRgbdOdometry odo(o);
+  odo.setInitialPose(panPose(0));
+  std::size_t bridged = 0, icp = 0;
+  for (std::size_t k = 0; k < 14; ++k)
+  {
+    const auto r = odo.process(renderRoom(panPose(k), 100, k, 0.1 * k));
+    ASSERT_TRUE(r.pose.has_value()) << "frame " << k;
+    EXPECT_NE(r.method, ETrackingMethod::ConstantVelocity) << "frame " << k;
+    EXPECT_LT(transErr(*r.pose, panPose(k)), 0.012) << "frame " << k;
+    bridged += r.bridged ? 1 : 0;
+    icp += r.method == ETrackingMethod::DepthIcp ? 1 : 0;
+  }
+  std::printf("bridged %zu, depth ICP %zu\n", bridged, icp);
+  EXPECT_GE(bridged + icp, 1u);
+}
+
 TEST(RgbdOdometry, KeyframeBeforeTheRegistrationsWearOut)
 {
   // The pan of the test above, neither bridge nor depth ICP: with

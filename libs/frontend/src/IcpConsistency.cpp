@@ -1,6 +1,7 @@
 #include "IcpConsistency.h"
 
 #include <roislam/common/Median.h>
+#include <roislam/frontend/PoseUncertainty.h>
 
 #include <algorithm>
 #include <cmath>
@@ -10,6 +11,15 @@
 
 namespace roislam::frontend::detail
 {
+bool icpBetterDetermined(const TInformation66& icp, double icpScale, const TInformation66& other)
+{
+  const auto si = worstSigmas(icp);
+  if (!si || !(icpScale > 0) || !std::isfinite(icpScale))
+    return false;
+  const auto so = worstSigmas(other);
+  return !so || std::sqrt(icpScale) * si->translation_m < so->translation_m;
+}
+
 CIcpConsistency::CIcpConsistency(std::size_t window, std::size_t minSamples, double minScale)
     : m_window(window), m_minSamples(minSamples), m_minScale(minScale)
 {

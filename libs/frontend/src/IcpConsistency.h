@@ -34,6 +34,8 @@
  */
 #pragma once
 
+#include <roislam/frontend/TFrameResult.h>
+
 #include <cstddef>
 #include <deque>
 #include <limits>
@@ -110,4 +112,13 @@ class CIcpConsistency
   std::optional<double> m_scale;
   double m_share = 0;
 };
+
+/** Whether depth ICP's estimate (information icp, CPose3DPDFGaussianInf
+ *  order), its covariance scaled by icpScale (CIcpConsistency::scale(): what
+ *  its disagreement with the features measured; +infinity: of no use), has a
+ *  smaller worst translation 1-sigma than another estimate of the same frame
+ *  (information other; a singular one loses). The front end uses it where a
+ *  frame's features failed and a chain through the previous frame competes
+ *  with depth ICP (bridge_previous_frame). */
+bool icpBetterDetermined(const TInformation66& icp, double icpScale, const TInformation66& other);
 }  // namespace roislam::frontend::detail

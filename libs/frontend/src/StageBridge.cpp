@@ -4,8 +4,9 @@
 // chained. Without it, a keyframe made from a blurred frame (by depth ICP,
 // its features matching nothing older) was tracked well by the next frames
 // and then left behind with its one edge: on fr1/rpy its frames were 20-45
-// mm off. Off by default (README "Previous-frame bridge and a keyframe
-// share").
+// mm off. Off in the library, on in the shipped configs (README "A keyframe
+// where the ROI weakens"). Where depth ICP is available too, the better
+// determined of the chain and ICP is kept (resolvePose, StageRefine.cpp).
 #include "OdometryWork.h"
 
 namespace roislam::frontend

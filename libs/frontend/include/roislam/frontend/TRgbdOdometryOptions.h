@@ -280,7 +280,11 @@
  *                             rarely has, so they fall behind it (README
  *                             "Previous-frame bridge and a keyframe share");
  *                             with keyframe_on_weak_roi they keep up (README
- *                             "A keyframe where the ROI weakens")
+ *                             "A keyframe where the ROI weakens"). With
+ *                             icp_fallback the chain competes with depth
+ *                             ICP: the better determined is kept, ICP's
+ *                             covariance scaled by what its disagreement
+ *                             with the features measured
  *  - icp_refine_sigma_m       [m] >= 0 (0.01; 0 = no depth refinement at
  *                             all): a feature registration whose worst
  *                             translation 1-sigma (PoseUncertainty.h)
