@@ -25,6 +25,24 @@ namespace
  *  synthetic loops 1 or below (noise: every pair counts). */
 constexpr double kCoarseIcpMinInformationKept = 0.8;
 constexpr int kCoarseIcpStride = 2;
+
+/** A frame bridged through the previous frame, with depth ICP available
+ *  too: a chain is worth more than ICP where ICP disagrees with the
+ *  features (fr1: its covariance scaled by 33-49), less where ICP agrees
+ *  with them (rendered depth, global shutter: the chain claimed 4-12 mm
+ *  where ICP had 1-1.5 mm, and kept it worse). So the better determined of
+ *  the two, ICP's covariance scaled by what its disagreement with the
+ *  features measured (before any measurement, the conservative model of
+ *  ICP alone). */
+bool chainLosesToIcp(
+    const detail::TRegistration& chain, const detail::CDepthIcp::TResult& icp,
+    const detail::CIcpConsistency& consistency)
+{
+  const double k = consistency.scale().value_or(
+      detail::CDepthIcp::kIndependentPairShare / detail::CDepthIcp::kUnverifiedPairShare);
+  return detail::icpBetterDetermined(
+      detail::toMrptEstimate(icp).second, k, detail::toMrptEstimate(chain).second);
+}
 }  // namespace
 
 void CRgbdOdometry::refineRollingShutter(TFrameWork& w)
@@ -189,39 +207,21 @@ bool CRgbdOdometry::resolvePose(TFrameWork& w)
   // before depth ICP (on fr1 several times less accurate than features).
   if (!w.reg)
     bridgeFromPrevious(w);
-  // Depth ICP against the last keyframe, run at most once per frame.
-  std::optional<std::optional<detail::CDepthIcp::TResult>> icp;
-  const auto fallbackIcp = [&]() -> const std::optional<detail::CDepthIcp::TResult>&
+  // Depth ICP against the last keyframe, where the features failed (for the
+  // pose) or were bridged (to compare): once per frame.
+  std::optional<detail::CDepthIcp::TResult> icp;
+  if (o.icp_fallback && I.icpMaps.count(w.lastKf) > 0 && (!w.reg || w.bridged))
   {
-    if (!icp)
-    {
-      const auto t0 = Clock::now();
-      icp = I.icp->align(
-          I.icpMaps[w.lastKf], w.currentIcpMap(*I.icp), detail::fromPose(w.predictedRel));
-      res.times.icp_ms += msSince(t0);
-    }
-    return *icp;
-  };
-  const bool icpAvailable = o.icp_fallback && I.icpMaps.count(w.lastKf) > 0;
-  // A chain through the previous frame is worth more than depth ICP where
-  // ICP disagrees with the features (fr1: its covariance scaled by 33-49),
-  // less where ICP agrees with them (rendered depth, global shutter: the
-  // chain claimed 4-12 mm where ICP had 1-1.5 mm, and kept it worse). So
-  // the better determined of the two, ICP's covariance scaled by what its
-  // disagreement with the features measured (before any measurement, the
-  // conservative model of ICP alone).
-  if (w.bridged && icpAvailable)
-    if (const auto& ir = fallbackIcp())
-    {
-      const double k = I.icpConsistency.scale().value_or(
-          detail::CDepthIcp::kIndependentPairShare / detail::CDepthIcp::kUnverifiedPairShare);
-      if (detail::icpBetterDetermined(
-              detail::toMrptEstimate(*ir).second, k, detail::toMrptEstimate(*w.reg).second))
-      {
-        w.reg.reset();
-        w.bridged = false;
-      }
-    }
+    const auto t0 = Clock::now();
+    icp = I.icp->align(
+        I.icpMaps[w.lastKf], w.currentIcpMap(*I.icp), detail::fromPose(w.predictedRel));
+    res.times.icp_ms += msSince(t0);
+  }
+  if (w.bridged && icp && chainLosesToIcp(*w.reg, *icp, I.icpConsistency))
+  {
+    w.reg.reset();
+    w.bridged = false;
+  }
   if (w.reg)
   {
     res.method = featureMethodOf(w);
@@ -244,20 +244,16 @@ bool CRgbdOdometry::resolvePose(TFrameWork& w)
     res.relativeInformation = scaledIdentity(o.constant_velocity_information_scale);
     res.relativeEdgeInformation = res.relativeInformation;
     res.inliers = 0;
-    if (icpAvailable)
+    if (icp)
     {
-      const auto& ir = fallbackIcp();
-      if (ir)
-      {
-        res.method = ETrackingMethod::DepthIcp;
-        std::tie(res.relativePose, res.relativeInformation) = detail::toMrptEstimate(*ir);
-        // Alone in the graph, unchecked by features: the conservative model.
-        auto alone = *ir;
-        alone.edgeInformation *=
-            detail::CDepthIcp::kUnverifiedPairShare / detail::CDepthIcp::kIndependentPairShare;
-        res.relativeEdgeInformation = detail::toSpaEstimate(alone);
-        res.inliers = ir->pairs;
-      }
+      res.method = ETrackingMethod::DepthIcp;
+      std::tie(res.relativePose, res.relativeInformation) = detail::toMrptEstimate(*icp);
+      // Alone in the graph, unchecked by features: the conservative model.
+      auto alone = *icp;
+      alone.edgeInformation *=
+          detail::CDepthIcp::kUnverifiedPairShare / detail::CDepthIcp::kIndependentPairShare;
+      res.relativeEdgeInformation = detail::toSpaEstimate(alone);
+      res.inliers = icp->pairs;
     }
   }
   res.referenceKeyframe = w.ref;
