@@ -22,7 +22,8 @@ int main(int argc, char** argv)
   cli.add_option("--method", args.method, "rgbd | icp | rgbdicp (overrides the ini)")
       ->check(CLI::IsMember({"rgbd", "icp", "rgbdicp"}));
   cli.add_option("--ini", args.iniFile, "Options: MRPT ini with a [CvOdometry] section");
-  cli.add_option("--camera", args.camera, "Camera: auto|fr1|fr2|fr3|ros|<calibration file>");
+  cli.add_option(
+      "--camera", args.camera, "Camera: auto|fr1|fr2|fr3|icl|7scenes|ros|<calibration file>");
   cli.add_option("--max-frames", args.maxFrames, "Process at most N frames (0 = all)");
   CLI11_PARSE(cli, argc, argv);
   try

@@ -40,7 +40,8 @@ void addOptions(CLI::App& cli, CRoiGraphSlamApp::TArguments& args, TCliFlags& fl
       ->check(CLI::NonNegativeNumber);
   cli.add_flag(
       "--strict-roi", flags.strict, "ROI modes: no fallback (the dissertation's behaviour)");
-  cli.add_option("--camera", args.camera, "Camera: auto|fr1|fr2|fr3|ros|<calibration file>");
+  cli.add_option(
+      "--camera", args.camera, "Camera: auto|fr1|fr2|fr3|icl|7scenes|ros|<calibration file>");
   cli.add_option("--max-frames", args.maxFrames, "Process at most N frames (0 = all)");
   cli.add_flag("--no-snapshot", flags.noSnapshot, "Do not render snapshot.png");
   cli.add_flag("--overwrite", args.overwrite, "Replace an earlier output in --output-dir");

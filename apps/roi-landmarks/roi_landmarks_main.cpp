@@ -29,7 +29,8 @@ int main(int argc, char** argv)
       ->check(CLI::IsMember({"small", "big"}, CLI::ignore_case));
   cli.add_option(
       "--output-rawlog", rawlog, "Also write an annotated rawlog (3-D scans + landmarks)");
-  cli.add_option("--camera", args.camera, "Camera: auto|fr1|fr2|fr3|ros|<calibration file>");
+  cli.add_option(
+      "--camera", args.camera, "Camera: auto|fr1|fr2|fr3|icl|7scenes|ros|<calibration file>");
   cli.add_option("--max-frames", args.maxFrames, "Process at most N frames (0 = all)");
   cli.add_flag("--overwrite", args.overwrite, "Replace an earlier output in --output-dir");
   cli.add_flag(

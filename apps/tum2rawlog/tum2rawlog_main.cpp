@@ -22,7 +22,8 @@ int main(int argc, char** argv)
   cli.add_option("-o,--output", opts.output, "Output .rawlog file")->required();
   cli.add_option(
       "-c,--camera", opts.camera,
-      "Sensor description: auto | fr1 | fr2 | fr3 | ros | sensor-description / TCamera ini | "
+      "Sensor description: auto | fr1 | fr2 | fr3 | icl | 7scenes | ros | sensor-description / "
+      "TCamera ini | "
       "yaml");
   cli.add_option("--max-frames", opts.maxFrames, "Stop after N frames (0 = all; live: required)");
   cli.add_option(

@@ -529,10 +529,14 @@ TEST(RgbdOdometry, KeyframeBeforeTheRegistrationsWearOut)
       if (k == 0 || r.method != ETrackingMethod::Features)
         continue;
       if (share > 0 && !r.isNewKeyframe && best.count(r.referenceKeyframe))
+      {
         EXPECT_GE(static_cast<double>(r.inliers), share * best[r.referenceKeyframe])
             << "frame " << k;
+      }
       if (share > 0)
+      {
         EXPECT_LT(transErr(*r.pose, panPose(k)), 0.025) << "frame " << k;
+      }
       if (!r.isNewKeyframe)
         best[r.referenceKeyframe] = std::max(best[r.referenceKeyframe], r.inliers);
     }

@@ -143,6 +143,18 @@ TEST(SensorDescription, PresetsRoundTripAndCarryTheReadout)
     EXPECT_DOUBLE_EQ(
         p.keypoint_time_sigma_ms, roislam::io::sensorPreset("fr1").keypoint_time_sigma_ms);
   }
+  // 7-Scenes: a Kinect v1 whose depth is not registered, in millimetres.
+  const TSensorDescription seven = roislam::io::sensorPreset("7scenes");
+  expectSame(seven, reload(seven.toIniText()));
+  EXPECT_FALSE(seven.depth_registered);
+  EXPECT_DOUBLE_EQ(seven.depth_scale, 1000);
+  EXPECT_DOUBLE_EQ(seven.depth.fx(), 585);
+  EXPECT_DOUBLE_EQ(seven.depth.fy(), 585);
+  EXPECT_DOUBLE_EQ(seven.depth.cx(), 320);
+  EXPECT_DOUBLE_EQ(seven.depth.cy(), 240);
+  EXPECT_DOUBLE_EQ(seven.colour.fx(), 525);
+  EXPECT_DOUBLE_EQ(seven.rolling_shutter_ms, 25);
+  EXPECT_DOUBLE_EQ(seven.keypoint_sigma_px, roislam::io::sensorPreset("fr1").keypoint_sigma_px);
   // A rendered camera adds none.
   EXPECT_DOUBLE_EQ(roislam::io::sensorPreset("icl").keypoint_sigma_px, 0);
   EXPECT_DOUBLE_EQ(roislam::io::sensorPreset("icl").keypoint_time_sigma_ms, 0);

@@ -4,9 +4,12 @@
 #include <roislam/common/IniRead.h>
 #include <roislam/io/CameraAxes.h>
 #include <roislam/io/ObservationConversion.h>
+#include <roislam/io/SevenScenes.h>
 #include <roislam/io/StampAssociation.h>
+#include <unistd.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -87,6 +90,10 @@ bool isTruncatedPng(const std::vector<unsigned char>& bytes)
     return false;  // not a PNG: left to the decoder
   return bytes.size() < 8 + 12 || !std::equal(iend, iend + 12, bytes.end() - 12);
 }
+
+/** A 16-bit depth PNG's "no reading" besides 0: 7-Scenes writes 65535
+ *  (65.5 m in millimetres, no RGB-D camera's range; 13.1 m at TUM's 5000). */
+constexpr uint16_t kNoDepthReading = 0xFFFF;
 
 cv::Mat readImage(const std::string& file, int flags)
 {
@@ -178,6 +185,11 @@ CTumFrameSource::CTumFrameSource(
   if (!m_dir.empty() && m_dir.back() == '/' && m_dir.size() > 1)
     m_dir.pop_back();
 
+  if (isSevenScenesFolder(m_dir))
+  {
+    readSevenScenesFolder();
+    return;
+  }
   const auto rgb = readList(root / "rgb.txt");
   const auto depth = readList(root / "depth.txt");
 
@@ -219,6 +231,61 @@ CTumFrameSource::CTumFrameSource(
 CTumFrameSource::CTumFrameSource(const std::string& dir, const mrpt::img::TCamera& camera)
     : CTumFrameSource(dir, camera, TOptions())
 {
+}
+
+CTumFrameSource::~CTumFrameSource()
+{
+  if (!m_groundTruthTemp.empty())
+  {
+    std::error_code ec;
+    fs::remove_all(fs::path(m_groundTruthTemp).parent_path(), ec);
+  }
+}
+
+void CTumFrameSource::readSevenScenesFolder()
+{
+  const TSensorDescription& sensor = m_sensor.sensor;
+  const auto frames = listSevenScenesFrames(m_dir);
+  for (const auto& f : frames)
+  {
+    // No timestamps in the layout: frame numbers at the camera's frame rate.
+    const double stamp = static_cast<double>(f.number) / sensor.frame_rate;
+    m_entries.push_back({stamp, stamp, f.colourFile, f.depthFile});
+  }
+  const auto gt = loadSevenScenesGroundTruth(
+      frames, sensor.frame_rate,
+      sensor.depth_registered ? mrpt::poses::CPose3D() : sensor.depth_pose_in_colour);
+  if (gt.empty())
+    return;
+  // The apps take the ground truth as a TUM file (evaluation, tum2rawlog's
+  // side file, the live view): it is written once, to a folder of this
+  // source's own under the system's temporary folder, removed with it.
+  std::error_code ec;
+  const fs::path tmpRoot = fs::temp_directory_path(ec);
+  if (ec)
+    throw std::runtime_error(
+        "no temporary folder for " + m_dir + "'s ground truth: " + ec.message());
+  static std::atomic<unsigned> counter{0};
+  const fs::path folder =
+      tmpRoot / ("roislam-7scenes-" + std::to_string(::getpid()) + "-" + std::to_string(counter++));
+  fs::create_directories(folder, ec);
+  if (ec)
+    throw std::runtime_error(folder.string() + ": cannot create: " + ec.message());
+  const std::string file = (folder / "groundtruth.txt").string();
+  try
+  {
+    saveTumTrajectory(
+        file, gt,
+        "ground truth of " + m_dir +
+            " (7-Scenes frame-NNNNNN.pose.txt, the colour camera's pose; time = frame number / " +
+            "frame_rate)");
+  }
+  catch (...)
+  {
+    fs::remove_all(folder, ec);
+    throw;
+  }
+  m_groundTruthTemp = file;
 }
 
 cv::Mat CTumFrameSource::readColourImage(const std::string& file, const mrpt::img::TCamera& camera)
@@ -272,7 +339,7 @@ std::optional<TRGBDFrame> CTumFrameSource::next()
     const auto* src = raw.ptr<uint16_t>(r);
     auto* dst = f.depth.ptr<float>(r);
     for (int c = 0; c < raw.cols; ++c)
-      dst[c] = static_cast<float>(src[c] / scale);
+      dst[c] = src[c] == kNoDepthReading ? 0.0f : static_cast<float>(src[c] / scale);
   }
   if (!sensor.depth_registered)
     f.depth = registerDepthToColour(f.depth, m_depthCamera, m_camera, sensor.depth_pose_in_colour);
@@ -284,6 +351,8 @@ std::optional<TRGBDFrame> CTumFrameSource::next()
 
 std::optional<std::string> CTumFrameSource::groundTruthFile() const
 {
+  if (!m_groundTruthTemp.empty())
+    return m_groundTruthTemp;
   const fs::path gt = fs::path(m_dir) / "groundtruth.txt";
   if (fs::is_regular_file(gt))
     return gt.string();

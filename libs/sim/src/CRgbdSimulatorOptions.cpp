@@ -110,6 +110,10 @@ void validateSequence(const TOptions& o, const TKeyError& fail)
     fail("scene", "'" + o.scene + "' is not textured|featureless");
   if (o.frames < 2)
     fail("frames", "must be >= 2");
+  if (o.layout != "tum" && o.layout != "7scenes")
+    fail("layout", "'" + o.layout + "' is not tum|7scenes");
+  if (o.layout == "7scenes" && o.cameraYUp)
+    fail("layout", "7scenes publishes optical-frame poses: camera_y_up must be false");
   if (!(o.fps > 0 && o.fps <= 1000))
     fail("fps", "must be in (0, 1000]");
   if (!(std::abs(o.depthTimeOffset) < 0.02))
@@ -220,6 +224,7 @@ void CRgbdSimulator::TOptions::loadFromConfigFile(
 {
   CKeyReader r(cfg, section);
   r.get("scene", scene);
+  r.get("layout", layout);
   r.get("frames", frames);
   r.get("seed", seed);
   r.get("texture_seed", textureSeed);
@@ -274,6 +279,7 @@ void CRgbdSimulator::TOptions::saveToConfigFile(
   auto w = [&](const char* k, const std::string& v) { cfg.write(section, k, v); };
   auto wd = [&](const char* k, double v) { w(k, fmtDouble(v)); };
   w("scene", scene);
+  w("layout", layout);
   w("frames", std::to_string(frames));
   w("seed", std::to_string(seed));
   w("texture_seed", std::to_string(textureSeed));

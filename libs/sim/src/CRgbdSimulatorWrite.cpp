@@ -2,6 +2,7 @@
 // folder (images, lists, ground truth, accelerometer, camera.ini and
 // simulator.ini), complete or absent. Rendering is in CRgbdSimulator.cpp.
 #include <mrpt/config/CConfigFileMemory.h>
+#include <mrpt/math/CMatrixFixed.h>
 #include <mrpt/random/RandomGenerators.h>
 #include <roislam/common/COutputFolder.h>
 
@@ -68,7 +69,35 @@ roislam::common::COutputFolder::TOptions sequenceFolderOptions(bool overwrite)
   folderOptions.overwrite = overwrite;
   folderOptions.known = {"rgb",        "depth",         "rgb.txt",         "depth.txt",
                          "camera.ini", "simulator.ini", "groundtruth.txt", "accelerometer.txt"};
+  folderOptions.knownPrefixes = {"frame-"};  // layout 7scenes
   return folderOptions;
+}
+
+/** 7-Scenes' file stem of frame i: frame-NNNNNN. */
+std::string sevenScenesStem(std::size_t i)
+{
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "frame-%06zu", i);
+  return buf;
+}
+
+/** One frame in 7-Scenes' layout: colour, depth in mm with 65535 where there
+ *  is no reading, and the 4x4 pose of the camera the depth comes from. */
+void writeSevenScenesFrame(
+    const fs::path& tmp, const CRgbdSimulator::TFrame& f, const mrpt::poses::CPose3D& depthPose,
+    cv::Mat& depth16)
+{
+  const std::string stem = sevenScenesStem(f.index);
+  f.depth.convertTo(depth16, CV_16UC1, 1000.0);  // max_depth <= 13.1 m: no overflow
+  depth16.setTo(0xFFFF, f.depth <= 0);
+  writePng(tmp / (stem + ".color.png"), f.rgb);
+  writePng(tmp / (stem + ".depth.png"), depth16);
+  const auto H = depthPose.getHomogeneousMatrixVal<mrpt::math::CMatrixDouble44>();
+  std::ostringstream pose;
+  pose.precision(17);
+  for (int r = 0; r < 4; ++r)
+    pose << H(r, 0) << '\t' << H(r, 1) << '\t' << H(r, 2) << '\t' << H(r, 3) << "\t\n";
+  writeTextFile(tmp / (stem + ".pose.txt"), pose.str());
 }
 
 void createImageFolders(const fs::path& tmp)
@@ -142,12 +171,17 @@ void writeSequenceLogs(const fs::path& tmp, const std::string& desc, const TSequ
       "accelerometer data of " + desc + " (TUM Kinect axes)");
 }
 
-void writeSequenceSettings(const fs::path& tmp, const CRgbdSimulator& sim)
+void writeSimulatorSettings(const fs::path& tmp, const CRgbdSimulator& sim)
 {
-  writeTextFile(tmp / "camera.ini", sim.sensorDescription().toIniText());
   mrpt::config::CConfigFileMemory simCfg;
   sim.options().saveToConfigFile(simCfg, "RgbdSimulator");
   writeTextFile(tmp / "simulator.ini", simCfg.getContent());
+}
+
+void writeSequenceSettings(const fs::path& tmp, const CRgbdSimulator& sim)
+{
+  writeTextFile(tmp / "camera.ini", sim.sensorDescription().toIniText());
+  writeSimulatorSettings(tmp, sim);
 }
 }  // namespace
 
@@ -158,7 +192,9 @@ CRgbdSimulator::TWriteStats CRgbdSimulator::writeSequence(const std::string& out
   // Complete or absent: a staging folder beside outDir, renamed at the end.
   roislam::common::COutputFolder folder(outDir, sequenceFolderOptions(overwrite));
   const fs::path tmp(folder.path());
-  createImageFolders(tmp);
+  const bool sevenScenes = m_opts.layout == "7scenes";
+  if (!sevenScenes)
+    createImageFolders(tmp);
 
   TWriteStats st;
   try
@@ -174,6 +210,14 @@ CRgbdSimulator::TWriteStats CRgbdSimulator::writeSequence(const std::string& out
       const auto r0 = Clock::now();
       const TFrame f = renderFrame(i);
       const auto r1 = Clock::now();
+      if (sevenScenes)
+      {
+        writeSevenScenesFrame(
+            tmp, f, m_opts.depthRegistered ? f.pose : f.pose + depthPoseInColour(), depth16);
+        st.writeSeconds += std::chrono::duration<double>(Clock::now() - r1).count();
+        st.renderSeconds += std::chrono::duration<double>(r1 - r0).count();
+        continue;
+      }
       writeFrameImages(tmp, f, depth16, logs);
       logs.gt.push_back({f.timestamp, published(f.pose)});
       logs.accelerometer.push_back(
@@ -183,8 +227,13 @@ CRgbdSimulator::TWriteStats CRgbdSimulator::writeSequence(const std::string& out
       MRPT_LOG_DEBUG_STREAM("frame " << i << " written");
     }
     st.frames = m_opts.frames;
-    writeSequenceLogs(tmp, desc, logs);
-    writeSequenceSettings(tmp, *this);
+    if (sevenScenes)
+      writeSimulatorSettings(tmp, *this);
+    else
+    {
+      writeSequenceLogs(tmp, desc, logs);
+      writeSequenceSettings(tmp, *this);
+    }
 
     folder.commit();
   }

@@ -31,6 +31,9 @@ std::optional<std::string> syntheticSequence(const std::string& scene)
   const fs::path p = fs::path(ROISLAM_SYNTH_DATA_DIR) / scene;
   if (fs::exists(p / "rgb.txt") && fs::exists(p / "groundtruth.txt"))
     return p.string();
+  // 7-Scenes' own layout (rgbd-simul layout = 7scenes).
+  if (fs::exists(p / "frame-000000.color.png") && fs::exists(p / "frame-000000.pose.txt"))
+    return p.string();
   return std::nullopt;
 }
 

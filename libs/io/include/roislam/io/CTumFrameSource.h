@@ -6,6 +6,11 @@
  * associateStamps()); colour frames without a partner are skipped and counted.
  * Images are read lazily, one frame per next(). Created by CFrameSource::open()
  * and used directly by tum2rawlog (entries(), readColourImage(), readDepthImage()).
+ * A 7-Scenes sequence folder (frame-NNNNNN.color/depth.png and .pose.txt, no
+ * rgb.txt; SevenScenes.h) is read too: frame i at i / frame_rate, its poses as
+ * the ground truth (groundTruthFile(): a TUM file of the colour camera's
+ * poses, written to a temporary folder that lives as long as the source).
+ * Depth readings of 65535 mean "none" (7-Scenes) in every folder.
  * With a sensor description whose depth is not registered (e.g. a 7-Scenes-like
  * rgbd-simul folder), depth PNGs are on the depth camera's grid and next()
  * re-projects them into the colour camera (registerDepthToColour()).
@@ -62,6 +67,11 @@ class CTumFrameSource : public CFrameSource
    *  depth_pose_in_colour. */
   CTumFrameSource(const std::string& dir, const TSensorChoice& choice, const TOptions& options);
 
+  /** Removes the ground truth written for a 7-Scenes folder. */
+  ~CTumFrameSource() override;
+  CTumFrameSource(const CTumFrameSource&) = delete;
+  CTumFrameSource& operator=(const CTumFrameSource&) = delete;
+
   std::optional<TRGBDFrame> next() override;
   void rewind() override { m_next = 0; }
   void seek(std::size_t index) override;
@@ -97,5 +107,11 @@ class CTumFrameSource : public CFrameSource
   std::vector<TEntry> m_entries;
   std::size_t m_skipped = 0;
   std::size_t m_next = 0;
+  /** A 7-Scenes folder's ground truth as a TUM file (its own temporary
+   *  folder, removed by the destructor); empty otherwise. */
+  std::string m_groundTruthTemp;
+
+  /** The frames and ground truth of a 7-Scenes folder (SevenScenes.h). */
+  void readSevenScenesFolder();
 };
 }  // namespace roislam::io

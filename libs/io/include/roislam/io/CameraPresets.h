@@ -20,17 +20,19 @@ namespace roislam::io
 mrpt::img::TCamera cameraFromConfig(
     const mrpt::config::CConfigFileBase& cfg, const std::string& section);
 
-/** Intrinsics of a named preset: "fr1", "fr2", "fr3", "icl" or "ros" (640x480).
+/** Intrinsics of a named preset: "fr1", "fr2", "fr3", "icl", "7scenes" or "ros" (640x480).
  *  fr1/fr2 carry the benchmark's distortion coefficients; fr3, icl and ros have
  *  none (fr3 images are already undistorted). icl is ICL-NUIM's published
  *  camera, fy < 0 (CameraAxes.h). Throws std::invalid_argument otherwise. */
 mrpt::img::TCamera cameraPreset(const std::string& name);
 
-/** The description of a preset "fr1", "fr2", "fr3", "icl" or "ros":
- *  cameraPreset()'s intrinsics, depth registered, scale 5000, 30 Hz, the
- *  Kinect depth noise (icl: ICL-NUIM's simulated disparity noise), and a
- *  25 ms top-to-bottom readout for fr1/fr2/fr3 (measured on fr1), none for
- *  icl and ros. Throws std::invalid_argument for another name. */
+/** The description of a preset "fr1", "fr2", "fr3", "icl", "7scenes" or
+ *  "ros": cameraPreset()'s intrinsics, depth registered, scale 5000, 30 Hz,
+ *  the Kinect depth noise (icl: ICL-NUIM's simulated disparity noise), and a
+ *  25 ms top-to-bottom readout for the Kinects fr1/fr2/fr3/7scenes (measured
+ *  on fr1), none for icl and ros. 7scenes: depth unregistered (the
+ *  dataset's depth camera, 585 px; a Kinect v1's factory extrinsics), in
+ *  millimetres. Throws std::invalid_argument for another name. */
 TSensorDescription sensorPreset(const std::string& name);
 
 /** A description file: an ini with [SensorDescription] (TSensorDescription.h),
@@ -58,8 +60,8 @@ std::string sensorFileBeside(const std::string& recording);
  *    "camera.yaml" in the folder wins; else "freiburg1|2|3" in the folder
  *    name selects fr1/fr2/fr3; else an ICL-NUIM name (a word starting with
  *    "icl", or living_room, office_room, frei_png, lr_kt, of_kt) selects icl;
- *    otherwise "ros".
- *  - "fr1" | "fr2" | "fr3" | "icl" | "ros": the preset.
+ *    a folder in 7-Scenes' own layout (SevenScenes.h) 7scenes; otherwise "ros".
+ *  - "fr1" | "fr2" | "fr3" | "icl" | "7scenes" | "ros": the preset.
  *  - anything else: a file, as loadSensorFile().
  *  Throws std::runtime_error naming the file or value when it cannot resolve. */
 mrpt::img::TCamera resolveCamera(const std::string& spec, const std::string& datasetDir);

@@ -20,11 +20,18 @@
  *                       unregistered depth, [DEPTH_CAMERA_PARAMS] and the depth
  *                       camera's pose; read by roislam::io
  *   simulator.ini       [RgbdSimulator] options used
+ * With layout = 7scenes, the folder is Microsoft 7-Scenes' own layout
+ * instead (io/SevenScenes.h): frame-NNNNNN.color.png, frame-NNNNNN.depth.png
+ * (millimetres, 65535 = no reading) and frame-NNNNNN.pose.txt (the 4x4
+ * camera-to-world matrix of the depth camera, as KinectFusion gives it), no
+ * lists, no timestamps, no camera.ini (the reader takes the 7scenes preset,
+ * which config/rgbd-simul-7scenes.ini renders), and simulator.ini.
  * The folder is complete or absent (common::COutputFolder: a staging folder
  * beside it, renamed at the end).
  *
  * Ini section [RgbdSimulator] (every key optional; defaults in brackets):
  *   scene              textured | featureless                         [textured]
+ *   layout             tum | 7scenes (output layout, above)           [tum]
  *   frames             number of frames, >= 2                         [90]
  *   seed               noise seed (uint32)                            [1]
  *   texture_seed       seed of the procedural textures (uint32)       [1]
@@ -121,6 +128,7 @@ class CRgbdSimulator : public mrpt::system::COutputLogger
   struct TOptions : public mrpt::config::CLoadableOptions
   {
     std::string scene = "textured";
+    std::string layout = "tum";
     unsigned frames = 90;
     uint32_t seed = 1;
     uint32_t textureSeed = 1;
