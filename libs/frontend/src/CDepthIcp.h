@@ -80,6 +80,9 @@ class CDepthIcp
    *  and small ROI ORB on fr1/rpy lost 10-27 % (the Kinect's ICP is
    *  overconfident, and nothing measured by how much). */
   static constexpr double kUnverifiedPairShare = 0.01;
+  /** How much wider ICP alone's covariance is than its verified one (4):
+   *  the fusion scale assumed before IcpConsistency has measured one. */
+  static constexpr double kUnverifiedCovarianceScale = kIndependentPairShare / kUnverifiedPairShare;
 
   CDepthIcp(const TParams& params, const mrpt::img::TCamera& camera);
 

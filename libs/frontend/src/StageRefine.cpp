@@ -38,8 +38,7 @@ bool chainLosesToIcp(
     const detail::TRegistration& chain, const detail::CDepthIcp::TResult& icp,
     const detail::CIcpConsistency& consistency)
 {
-  const double k = consistency.scale().value_or(
-      detail::CDepthIcp::kIndependentPairShare / detail::CDepthIcp::kUnverifiedPairShare);
+  const double k = consistency.scale().value_or(detail::CDepthIcp::kUnverifiedCovarianceScale);
   return detail::icpBetterDetermined(
       detail::toMrptEstimate(icp).second, k, detail::toMrptEstimate(chain).second);
 }
@@ -250,8 +249,7 @@ bool CRgbdOdometry::resolvePose(TFrameWork& w)
       std::tie(res.relativePose, res.relativeInformation) = detail::toMrptEstimate(*icp);
       // Alone in the graph, unchecked by features: the conservative model.
       auto alone = *icp;
-      alone.edgeInformation *=
-          detail::CDepthIcp::kUnverifiedPairShare / detail::CDepthIcp::kIndependentPairShare;
+      alone.edgeInformation /= detail::CDepthIcp::kUnverifiedCovarianceScale;
       res.relativeEdgeInformation = detail::toSpaEstimate(alone);
       res.inliers = icp->pairs;
     }
