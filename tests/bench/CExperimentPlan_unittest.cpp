@@ -239,6 +239,25 @@ TEST(CExperimentPlan, discoverSequencesAndWriteVariantConfigs)
   EXPECT_TRUE(seqs[0].hasGroundTruth);
   EXPECT_THROW(CExperimentPlan::discoverSequences({tmp + "/nothing"}), std::runtime_error);
 
+  // 7-Scenes' own layout: a sequence named by its scene (every scene has a
+  // seq-01), with ground truth when it has poses.
+  for (const char* scene : {"chess", "fire"})
+  {
+    const fs::path seq = fs::path(tmp) / "7scenes" / scene / "seq-01";
+    fs::create_directories(seq);
+    for (const char* f : {"frame-000000.color.png", "frame-000000.depth.png"})
+      std::ofstream(seq / f) << "x";
+    if (std::string(scene) == "chess")
+      std::ofstream(seq / "frame-000000.pose.txt") << "1 0 0 0\n0 1 0 0\n0 0 1 0\n0 0 0 1\n";
+  }
+  const auto seven =
+      CExperimentPlan::discoverSequences({tmp + "/7scenes/chess", tmp + "/7scenes/fire/seq-01"});
+  ASSERT_EQ(seven.size(), 2u);
+  EXPECT_EQ(seven[0].name, "chess_seq-01");
+  EXPECT_EQ(seven[1].name, "fire_seq-01");
+  EXPECT_TRUE(seven[0].hasGroundTruth);
+  EXPECT_FALSE(seven[1].hasGroundTruth);
+
   fake::makeFakeApps(tmp);
   auto loc = locations();
   loc.configDir = tmp + "/config";

@@ -3,6 +3,7 @@
 #include <mrpt/config/CConfigFileBase.h>
 #include <roislam/bench/ProcessUtils.h>
 #include <roislam/common/StringLists.h>
+#include <roislam/io/SevenScenes.h>
 
 #include <algorithm>
 #include <filesystem>
@@ -27,9 +28,10 @@ std::string safeName(const std::string& s)
   return out;
 }
 
+/** A TUM folder, or a 7-Scenes sequence in that dataset's own layout. */
 bool isSequence(const fs::path& p)
 {
-  return fs::is_regular_file(p / "rgb.txt");
+  return fs::is_regular_file(p / "rgb.txt") || io::isSevenScenesFolder(p.string());
 }
 }  // namespace
 
@@ -314,11 +316,16 @@ std::vector<TSequence> CExperimentPlan::discoverSequences(const std::vector<std:
     if (!s.path.empty() && s.path.back() == '/')
       s.path.pop_back();
     std::string base = fs::path(s.path).filename().string();
+    // 7-Scenes names its sequences seq-01, seq-02, ... in every scene.
+    const bool sevenScenes = io::isSevenScenesFolder(s.path);
+    if (sevenScenes)
+      base = fs::path(s.path).parent_path().filename().string() + "_" + base;
     s.name = base;
     for (int k = 2; names.count(s.name); ++k)
       s.name = base + "_" + std::to_string(k);
     names.insert(s.name);
-    s.hasGroundTruth = fs::is_regular_file(p / "groundtruth.txt");
+    s.hasGroundTruth = fs::is_regular_file(p / "groundtruth.txt") ||
+                       (sevenScenes && fs::is_regular_file(p / "frame-000000.pose.txt"));
     out.push_back(s);
   };
   for (const auto& d : dirs)

@@ -11,6 +11,6 @@ struct TSequence
 {
   std::string name;             //!< folder name, made unique within a plan (used in run ids)
   std::string path;             //!< absolute folder path
-  bool hasGroundTruth = false;  //!< groundtruth.txt present
+  bool hasGroundTruth = false;  //!< groundtruth.txt present (7-Scenes: its pose files)
 };
 }  // namespace roislam::bench
