@@ -89,6 +89,10 @@ TEST(SevenScenes, FramesInOrderAtTheFrameRateAndNoReadingAt65535)
 {
   roislam::testing::CTempDir tmp("seven_scenes_frames");
   // Out of order on disk and not from 0; a stray file is ignored.
+  // A sequence cut to start at frame 5 is one too.
+  EXPECT_TRUE(
+      roislam::io::isSevenScenesFolder(writeSevenScenes(fs::path(tmp.path()) / "cut", {5, 6})));
+  EXPECT_FALSE(roislam::io::isSevenScenesFolder(tmp.path() + "/none"));
   const auto dir = writeSevenScenes(fs::path(tmp.path()) / "seq-01", {0, 2, 1, 10});
   writeText(fs::path(dir) / "notes.txt", "not a frame\n");
   EXPECT_TRUE(roislam::io::isSevenScenesFolder(dir));

@@ -65,8 +65,16 @@ constexpr double kRotationTolerance = 1e-3;
 bool isSevenScenesFolder(const std::string& dir)
 {
   const fs::path root(dir);
-  return fs::is_directory(root) && !fs::exists(root / "rgb.txt") &&
-         fs::is_regular_file(root / "frame-000000.color.png");
+  std::error_code ec;
+  if (!fs::is_directory(root, ec) || fs::exists(root / "rgb.txt", ec))
+    return false;
+  if (fs::is_regular_file(root / "frame-000000.color.png", ec))
+    return true;
+  // A sequence cut to start later.
+  for (const auto& entry : fs::directory_iterator(root, ec))
+    if (std::regex_match(entry.path().filename().string(), colourName()))
+      return true;
+  return false;
 }
 
 std::vector<TSevenScenesFrame> listSevenScenesFrames(const std::string& dir)

@@ -32,7 +32,7 @@ struct TSevenScenesFrame
 };
 
 /** Whether `dir` holds a 7-Scenes sequence: no rgb.txt and a
- *  frame-NNNNNN.color.png. */
+ *  frame-NNNNNN.color.png (any number: a sequence may be cut). */
 bool isSevenScenesFolder(const std::string& dir);
 
 /** The frames of a 7-Scenes folder in frame-number order: every
