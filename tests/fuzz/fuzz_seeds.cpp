@@ -122,6 +122,17 @@ void textSeeds(const fs::path& src, const fs::path& shared)
   seed(
       "trajectory", "small.txt",
       "# gt\n1.0 1 2 3 0 0 0 1\n2.0,4,5,6,0,0,1,1\n3.0 nan 0 0 0 0 0 1\n");
+  seed(
+      "seven_scenes_pose", "rigid.txt",
+      "0.19298998693231886\t-0.3781226715774525\t0.90541598736878581\t0.11401524362797334\t\n"
+      "-0.97920237757954853\t-0.01535778391951924\t0.20230383638389191\t-0.1149161556437033\t\n"
+      "-0.062590483992557081\t-0.92562810227013492\t-0.37322251754330971\t1.4117711745589332\t\n"
+      "0\t0\t0\t1\t\n");
+  seed(
+      "seven_scenes_pose", "lost.txt",
+      "-inf -inf -inf -inf\n-inf -inf -inf -inf\n"
+      "-inf -inf -inf -inf\n0 0 0 1\n");
+  seed("seven_scenes_pose", "short.txt", "1 0 0 0\n0 1 0 0\n0 0 1 0\n");
   for (const auto& e : fs::directory_iterator(src / "tests/evaluation/data"))
     seed("trajectory", e.path().filename().string(), readFile(e.path()));
   for (const auto& e : fs::directory_iterator(src / "config"))
