@@ -29,6 +29,17 @@
 
 namespace roislam::frontend
 {
+namespace detail
+{
+/** Depth ICP as fused into a registration: its estimate and the scale its
+ *  information was divided by (icp_fusion = measured; 1 otherwise). */
+struct TFusedIcp
+{
+  CDepthIcp::TResult icp;
+  double scale = 1;
+};
+}  // namespace detail
+
 struct CRgbdOdometry::TImpl
 {
   roi::CRoiDetector roiDetector;
@@ -233,7 +244,23 @@ struct CRgbdOdometry::TFrameWork
   /** reg is chained through the previous frame (bridgeFromPrevious): the
    *  frame becomes a keyframe. */
   bool bridged = false;
+  /** refineWithDepth fused depth ICP against `ref` into reg. A keyframe
+   *  registered again with the whole image's features
+   *  (makeKeyframeConstraints) is fused with the same ICP: the depth
+   *  constrains it no less. */
+  std::optional<detail::TFusedIcp> fusedIcp;
 };
+
+namespace detail
+{
+/** reg fused with depth ICP, its information divided by f.scale (StageRefine.cpp). */
+void fuseDepthIcp(TRegistration& reg, const TFusedIcp& f);
+/** Whether depth ICP joins a registration by refineWithDepth's rule: always
+ *  where it leaves the pose poorly determined (icp_refine_sigma_m), else
+ *  under measured fusion where the two agree within what the scale explains
+ *  (IcpConsistency.h's gate). */
+bool depthIcpJoins(const TRegistration& reg, const TFusedIcp& f, const CRgbdOdometry::TOptions& o);
+}  // namespace detail
 
 bool isFeatureMethod(ETrackingMethod m);
 /** s * identity. */

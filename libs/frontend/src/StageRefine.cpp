@@ -174,10 +174,34 @@ void CRgbdOdometry::refineWithDepth(TFrameWork& w) const
             detail::CIcpConsistency::kChi2Gate6)
       return;
   }
-  w.reg->T = detail::fuseLeft(w.reg->T, w.reg->information, ir->T, ir->information / scale);
-  w.reg->information += ir->information / scale;
-  w.reg->edgeInformation += ir->edgeInformation / scale;
+  w.fusedIcp = detail::TFusedIcp{*ir, scale};
+  detail::fuseDepthIcp(*w.reg, *w.fusedIcp);
   w.res.icpRefined = true;
+}
+
+void detail::fuseDepthIcp(TRegistration& reg, const TFusedIcp& f)
+{
+  reg.T = detail::fuseLeft(reg.T, reg.information, f.icp.T, f.icp.information / f.scale);
+  reg.information += f.icp.information / f.scale;
+  reg.edgeInformation += f.icp.edgeInformation / f.scale;
+}
+
+bool detail::depthIcpJoins(
+    const TRegistration& reg, const TFusedIcp& f, const CRgbdOdometry::TOptions& o)
+{
+  // refineWithDepth's rule for a registration of its own: a poorly
+  // determined one always; a well-determined one under measured fusion, as
+  // long as it agrees with ICP within what the scale explains.
+  const auto sg = worstSigmas(toMrptEstimate(reg).second);
+  if (!sg || sg->translation_m > o.icp_refine_sigma_m)
+    return true;
+  if (o.icp_fusion != "measured")
+    return false;
+  const auto featureCov = covarianceOf(reg.edgeInformation);
+  const auto icpCov = covarianceOf(f.icp.information);
+  return !featureCov || !icpCov ||
+         CIcpConsistency::chi2(leftDifference(reg.T, f.icp.T), *featureCov, *icpCov, f.scale) <=
+             CIcpConsistency::kChi2Gate6;
 }
 
 bool CRgbdOdometry::icpWorthRunning(double pairShare, bool ignoreProbe) const
