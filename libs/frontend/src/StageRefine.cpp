@@ -166,16 +166,16 @@ void CRgbdOdometry::refineWithDepth(TFrameWork& w) const
     // inliers, 5 cm off, ICP right). A well-determined one is not when ICP's
     // scaled share is below icp_min_share (the frame was a probe, it only
     // measured), nor when its own disagreement is beyond what the scale
-    // explains (a fast turn, where depth and colour differ most).
+    // explains (a fast turn, where depth and colour differ most:
+    // depthIcpJoins).
     if (!weak && k && !worth)
       return;
-    if (!weak && featureCov && icpCov &&
-        detail::CIcpConsistency::chi2(d, *featureCov, *icpCov, scale) >
-            detail::CIcpConsistency::kChi2Gate6)
-      return;
   }
-  w.fusedIcp = detail::TFusedIcp{*ir, scale};
-  detail::fuseDepthIcp(*w.reg, *w.fusedIcp);
+  const detail::TFusedIcp fused{*ir, scale};
+  if (!detail::depthIcpJoins(*w.reg, fused, m_options))
+    return;
+  w.fusedIcp = fused;
+  detail::fuseDepthIcp(*w.reg, fused);
   w.res.icpRefined = true;
 }
 
@@ -189,9 +189,9 @@ void detail::fuseDepthIcp(TRegistration& reg, const TFusedIcp& f)
 bool detail::depthIcpJoins(
     const TRegistration& reg, const TFusedIcp& f, const CRgbdOdometry::TOptions& o)
 {
-  // refineWithDepth's rule for a registration of its own: a poorly
-  // determined one always; a well-determined one under measured fusion, as
-  // long as it agrees with ICP within what the scale explains.
+  // A poorly determined registration always; a well-determined one under
+  // measured fusion, as long as it agrees with ICP within what the scale
+  // explains.
   const auto sg = worstSigmas(toMrptEstimate(reg).second);
   if (!sg || sg->translation_m > o.icp_refine_sigma_m)
     return true;

@@ -209,8 +209,8 @@ TSensorDescription sensorPreset(const std::string& name)
   // 25 -> 0.0119, 30 -> 0.0141 (moved here from the mode configs). fr2 is a Kinect v1 of
   // the same model and fr3 an Asus Xtion; neither was measured, and 25 ms is
   // what every mode config assumed for them before the readout moved here;
-  // 7-Scenes' camera is a Kinect v1 too. The ROS default stands for an unknown camera: no readout
-  // assumed.
+  // 7-Scenes' camera is a Kinect v1 too. The ROS default stands for an
+  // unknown camera: no readout assumed.
   d.rolling_shutter_ms = name == "ros" || name == "icl" ? 0 : 25;
   // What each fr1 image shifts all its keypoints by alike, measured against
   // the ground truth by maximum likelihood (README, "Stop 41: an error
@@ -231,8 +231,8 @@ TSensorDescription sensorPreset(const std::string& name)
   // could not follow the motion. With the speed term, 0.5 px and 1.443 ms
   // give the best ATE sum (fr1/rpy 61.8, fr1/xyz 32.2 mm) and a likelihood
   // within 0.08 nats per edge of the grid's best (README "Keypoint noise
-  // that follows the motion"). fr2, fr3, 7-Scenes' and an unknown camera (ros) are
-  // real Kinect-class cameras too and take the same values, unmeasured;
+  // that follows the motion"). fr2, fr3, 7-Scenes' and an unknown camera
+  // (ros) are real Kinect-class cameras too and take the same values, unmeasured;
   // ICL-NUIM is rendered (no such noise).
   if (name != "icl")
   {
