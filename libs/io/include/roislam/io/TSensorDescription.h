@@ -2,7 +2,7 @@
  * depth camera and its pose when depth is not registered to colour, the depth
  * scale, the colour camera's rolling-shutter readout, the depth-noise model
  * and the frame rate. The mode configs hold algorithm settings only; camera
- * facts live here. Presets fr1, fr2, fr3, icl, ros (sensorPreset()); files are an
+ * facts live here. Presets fr1, fr2, fr3, icl, 7scenes, ros (sensorPreset()); files are an
  * MRPT ini (a TUM-layout folder may carry one as camera.ini, a rawlog or .oni
  * one as <stem>.camera.ini; rgbd-simul and tum2rawlog write one). Resolved by
  * resolveSensor() (CameraPresets.h), held by every frame source
