@@ -51,8 +51,7 @@ void addOptions(
   cli.add_flag("--list-optimizers", flags.listOpt, "List the optimizers and exit");
   cli.add_option(
          "--camera", args.camera,
-         "Sensor description: auto|fr1|fr2|fr3|icl|7scenes|ros|<file> (camera facts: readout, "
-         "depth noise)")
+         "Sensor description: auto|fr1|fr2|fr3|icl|7scenes|ros|<file> (readout, depth noise)")
       ->capture_default_str();
   cli.add_option("--output-dir", args.outputDir, "Output folder")->capture_default_str();
   cli.add_flag("--no-snapshot", flags.noSnapshot, "Do not render snapshot.png");

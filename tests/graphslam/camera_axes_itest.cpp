@@ -5,37 +5,16 @@
  * its trajectory is the mirror image of the ground truth, which the ATE's
  * rigid alignment cannot undo and mirrored_rmse recognises. */
 #include <gtest/gtest.h>
-#include <roislam/evaluation/CTrajectoryEvaluator.h>
-#include <roislam/graphslam/CSlamPipeline.h>
 #include <roislam/io/CameraPresets.h>
-#include <roislam/io/TumTrajectory.h>
 #include <roislam/testing/TestData.h>
 
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 
-namespace graphslam = roislam::graphslam;
+#include "PipelineRuns.h"
 
-namespace
-{
-roislam::evaluation::TAteResult run(const std::string& seq, const std::string& camera)
-{
-  graphslam::CSlamContext::TConfig cfg;
-  cfg.frontEnd.extractor.feature_type = roislam::features::EFeatureType::ORB;
-  cfg.frontEnd.extractor.max_features = 600;
-  auto source = roislam::io::CFrameSource::open(seq, camera);
-  cfg.frontEnd.rolling_shutter_ms = source->sensor().sensor.frameReadoutMs();
-  cfg.frontEnd.depth_noise = source->sensor().sensor.depth_noise;
-  const auto gt = roislam::io::loadTumTrajectory(*source->groundTruthFile());
-  graphslam::CSlamPipeline p(cfg, std::move(source));
-  while (p.step())
-  {
-  }
-  p.finish();
-  return roislam::evaluation::CTrajectoryEvaluator().evaluate(gt, p.trajectory()).ate;
-}
-}  // namespace
+using roislam::testing::runOrbPipeline;
 
 TEST(CameraAxes, AYUpGroundTruthNeedsTheCameraAsDeclared)
 {
@@ -43,14 +22,14 @@ TEST(CameraAxes, AYUpGroundTruthNeedsTheCameraAsDeclared)
   const auto declared = roislam::io::loadSensorFile(seq + "/camera.ini");
   ASSERT_LT(declared.colour.fy(), 0) << "the fixture should publish a y-up camera";
 
-  const auto asDeclared = run(seq, "auto");
+  const auto asDeclared = runOrbPipeline(seq, "auto").ate;
   auto yDown = declared;
   yDown.colour.setIntrinsicParamsFromValues(
       declared.colour.fx(), -declared.colour.fy(), declared.colour.cx(), declared.colour.cy());
   const std::string dir = roislam::testing::makeTempDir("camera_axes_itest");
   const std::string file = dir + "/y-down.ini";
   std::ofstream(file) << yDown.toIniText();
-  const auto mirrored = run(seq, file);
+  const auto mirrored = runOrbPipeline(seq, file).ate;
   std::filesystem::remove_all(dir);
   std::printf(
       "as declared (fy < 0): ATE %.4f m (mirrored %.4f); given fy > 0: ATE %.4f m (mirrored "

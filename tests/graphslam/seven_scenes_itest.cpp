@@ -7,53 +7,28 @@
  * Read as if its depth were registered (the same cameras otherwise), it
  * does markedly worse: the registration is what makes it work. */
 #include <gtest/gtest.h>
-#include <roislam/evaluation/CTrajectoryEvaluator.h>
-#include <roislam/graphslam/CSlamPipeline.h>
 #include <roislam/io/CameraPresets.h>
-#include <roislam/io/TumTrajectory.h>
 #include <roislam/testing/TestData.h>
 
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 
-namespace graphslam = roislam::graphslam;
-
-namespace
-{
-double ate(const std::string& seq, const std::string& camera, std::string* source = nullptr)
-{
-  graphslam::CSlamContext::TConfig cfg;
-  cfg.frontEnd.extractor.feature_type = roislam::features::EFeatureType::ORB;
-  cfg.frontEnd.extractor.max_features = 600;
-  auto src = roislam::io::CFrameSource::open(seq, camera);
-  if (source)
-    *source = src->sensor().source;
-  cfg.frontEnd.rolling_shutter_ms = src->sensor().sensor.frameReadoutMs();
-  cfg.frontEnd.depth_noise = src->sensor().sensor.depth_noise;
-  const auto gt = roislam::io::loadTumTrajectory(*src->groundTruthFile());
-  graphslam::CSlamPipeline p(cfg, std::move(src));
-  while (p.step())
-  {
-  }
-  p.finish();
-  return roislam::evaluation::CTrajectoryEvaluator().evaluate(gt, p.trajectory()).ate.rmse;
-}
-}  // namespace
+#include "PipelineRuns.h"
 
 TEST(SevenScenes, UnregisteredDepthInItsOwnLayoutIsTrackedWithinACentimetre)
 {
   ROISLAM_REQUIRE_SYNTHETIC(seq, "sevenscenes");
-  std::string source;
-  const double registered = ate(seq, "auto", &source);
-  EXPECT_EQ(source, "preset 7scenes");
+  const auto run = roislam::testing::runOrbPipeline(seq, "auto");
+  EXPECT_EQ(run.sensorSource, "preset 7scenes");
+  const double registered = run.ate.rmse;
 
   auto asIs = roislam::io::sensorPreset("7scenes");
   asIs.depth_registered = true;
   const std::string dir = roislam::testing::makeTempDir("seven_scenes_itest");
   const std::string file = dir + "/as-is.ini";
   std::ofstream(file) << asIs.toIniText();
-  const double unregistered = ate(seq, file);
+  const double unregistered = roislam::testing::runOrbPipeline(seq, file).ate.rmse;
   std::filesystem::remove_all(dir);
   std::printf(
       "7-Scenes layout, ORB: ATE %.4f m with the depth registered, %.4f m read as it is\n",

@@ -1,0 +1,46 @@
+/* A SLAM pipeline run on a sequence with its sensor description applied as
+ * the apps apply it (the colour readout and the depth-noise model), ORB with
+ * 600 features, evaluated against the sequence's ground truth. Shared by the
+ * integration tests that compare one sequence read through two
+ * descriptions (camera_axes_itest, seven_scenes_itest).
+ */
+#pragma once
+
+#include <roislam/evaluation/CTrajectoryEvaluator.h>
+#include <roislam/graphslam/CSlamPipeline.h>
+#include <roislam/io/CFrameSource.h>
+#include <roislam/io/TumTrajectory.h>
+
+#include <string>
+#include <utility>
+
+namespace roislam::testing
+{
+struct TPipelineRun
+{
+  evaluation::TAteResult ate;
+  /** TSensorChoice::source of the description it ran with ("preset fr1", "file ..."). */
+  std::string sensorSource;
+};
+
+/** Runs `seq` read with --camera `camera` to its end. */
+inline TPipelineRun runOrbPipeline(const std::string& seq, const std::string& camera)
+{
+  graphslam::CSlamContext::TConfig cfg;
+  cfg.frontEnd.extractor.feature_type = features::EFeatureType::ORB;
+  cfg.frontEnd.extractor.max_features = 600;
+  auto source = io::CFrameSource::open(seq, camera);
+  TPipelineRun run;
+  run.sensorSource = source->sensor().source;
+  cfg.frontEnd.rolling_shutter_ms = source->sensor().sensor.frameReadoutMs();
+  cfg.frontEnd.depth_noise = source->sensor().sensor.depth_noise;
+  const auto gt = io::loadTumTrajectory(*source->groundTruthFile());
+  graphslam::CSlamPipeline p(cfg, std::move(source));
+  while (p.step())
+  {
+  }
+  p.finish();
+  run.ate = evaluation::CTrajectoryEvaluator().evaluate(gt, p.trajectory()).ate;
+  return run;
+}
+}  // namespace roislam::testing
