@@ -29,6 +29,7 @@ TSensorDescription unusual()
   d.depth.setIntrinsicParamsFromValues(575.5, 576.25, 314.5, 235.25);
   d.depth_registered = false;
   d.depth_pose_in_colour = mrpt::poses::CPose3D::FromString("[-0.025 0.002 0.001 0.8 -0.5 0.3]");
+  d.estimate_registration = true;
   d.depth_scale = 1000;
   d.rolling_shutter_ms = 12.5;
   d.rolling_shutter_bottom_to_top = true;
@@ -73,6 +74,7 @@ void expectSame(const TSensorDescription& a, const TSensorDescription& b)
   EXPECT_EQ(a.name, b.name);
   expectSameCamera(a.colour, b.colour);
   EXPECT_EQ(a.depth_registered, b.depth_registered);
+  EXPECT_EQ(a.estimate_registration, b.estimate_registration);
   if (!a.depth_registered)
     expectSameCamera(a.depth, b.depth);
   EXPECT_LT(
@@ -108,11 +110,11 @@ TEST(SensorDescription, EveryKeyRoundTrips)
   const std::string ini = d.toIniText();
   // Every documented key is written.
   for (const char* key :
-       {"name", "depth_registered", "depth_pose_in_colour", "depth_scale", "rolling_shutter_ms",
-        "rolling_shutter_direction", "frame_rate", "common_pixel_sigma_px", "keypoint_sigma_px",
-        "keypoint_time_sigma_ms", "depth_noise_model", "depth_noise_a", "depth_noise_b",
-        "depth_noise_z0", "disparity_bf", "disparity_steps_per_px", "disparity_noise_steps",
-        "lateral_sigma_px"})
+       {"name", "depth_registered", "depth_pose_in_colour", "estimate_registration", "depth_scale",
+        "rolling_shutter_ms", "rolling_shutter_direction", "frame_rate", "common_pixel_sigma_px",
+        "keypoint_sigma_px", "keypoint_time_sigma_ms", "depth_noise_model", "depth_noise_a",
+        "depth_noise_b", "depth_noise_z0", "disparity_bf", "disparity_steps_per_px",
+        "disparity_noise_steps", "lateral_sigma_px"})
     EXPECT_NE(ini.find(std::string(key) + " "), std::string::npos) << key;
   EXPECT_NE(ini.find("[DEPTH_CAMERA_PARAMS]"), std::string::npos);
   const TSensorDescription back = reload(ini);
@@ -147,6 +149,8 @@ TEST(SensorDescription, PresetsRoundTripAndCarryTheReadout)
   const TSensorDescription seven = roislam::io::sensorPreset("7scenes");
   expectSame(seven, reload(seven.toIniText()));
   EXPECT_FALSE(seven.depth_registered);
+  EXPECT_TRUE(seven.estimate_registration);  // 7-Scenes never published its calibration
+  EXPECT_FALSE(roislam::io::sensorPreset("fr1").estimate_registration);
   EXPECT_DOUBLE_EQ(seven.depth_scale, 1000);
   EXPECT_DOUBLE_EQ(seven.depth.fx(), 585);
   EXPECT_DOUBLE_EQ(seven.depth.fy(), 585);
@@ -167,6 +171,7 @@ TEST(SensorDescription, BadValuesNameSectionAndKey)
   const std::vector<std::pair<std::string, std::string>> bad = {
       {"name", ""},
       {"depth_registered", "perhaps"},
+      {"estimate_registration", "maybe"},
       {"depth_pose_in_colour", "[1 2 3]"},
       {"depth_pose_in_colour", "nonsense"},
       {"depth_scale", "0"},

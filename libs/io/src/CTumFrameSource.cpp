@@ -2,6 +2,7 @@
 
 #include <mrpt/config/CConfigFileBase.h>
 #include <roislam/common/IniRead.h>
+#include <roislam/io/CDepthColourCalibrator.h>
 #include <roislam/io/CameraAxes.h>
 #include <roislam/io/ObservationConversion.h>
 #include <roislam/io/SevenScenes.h>
@@ -17,6 +18,7 @@
 #include <opencv2/imgcodecs.hpp>
 #include <sstream>
 #include <stdexcept>
+#include <tuple>
 #include <vector>
 
 namespace fs = std::filesystem;
@@ -226,6 +228,35 @@ CTumFrameSource::CTumFrameSource(
     throw std::runtime_error(
         m_dir + ": no colour frame has a depth image within " +
         std::to_string(options.maxTimeDifference) + " s");
+  estimateRegistration();
+}
+
+void CTumFrameSource::estimateRegistration()
+{
+  const TSensorDescription& sensor = m_sensor.sensor;
+  if (sensor.depth_registered || !sensor.estimate_registration)
+    return;
+  if (!(sensor.colour.fx() > 0 && sensor.colour.fy() > 0 && sensor.depth.fx() > 0 &&
+        sensor.depth.fy() > 0))
+  {
+    m_sensor.reason += "; registration not estimated (a negative focal length)";
+    return;
+  }
+  // Frames spread over the whole sequence: the edges of many views, and
+  // motion blur or a colour-depth time offset of one stretch averages out.
+  CDepthColourCalibrator calibrator(sensor);
+  const std::size_t n = std::min(kRegistrationFrames, m_entries.size());
+  for (std::size_t k = 0; k < n; ++k)
+  {
+    const auto [rgb, depth] = readRawFrame(m_entries[k * m_entries.size() / n]);
+    calibrator.addFrame(rgb, depth);
+  }
+  const auto result = calibrator.estimate();
+  m_sensor.reason += "; " + result.summary();
+  if (!result.accepted)
+    return;
+  m_sensor.sensor = result.sensor;
+  m_camera = withPositiveFocalLengths(m_sensor.sensor.colour);
 }
 
 CTumFrameSource::CTumFrameSource(const std::string& dir, const mrpt::img::TCamera& camera)
@@ -252,6 +283,9 @@ void CTumFrameSource::readSevenScenesFolder()
     const double stamp = static_cast<double>(f.number) / sensor.frame_rate;
     m_entries.push_back({stamp, stamp, f.colourFile, f.depthFile});
   }
+  // Before the ground truth: it is turned into the colour camera's poses
+  // through the (estimated) depth pose.
+  estimateRegistration();
   const auto gt = loadSevenScenesGroundTruth(
       frames, sensor.frame_rate,
       sensor.depth_registered ? mrpt::poses::CPose3D() : sensor.depth_pose_in_colour);
@@ -314,6 +348,29 @@ void CTumFrameSource::seek(std::size_t index)
   m_next = index;
 }
 
+std::pair<cv::Mat, cv::Mat> CTumFrameSource::readRawFrame(const TEntry& e) const
+{
+  const TSensorDescription& sensor = m_sensor.sensor;
+  cv::Mat rgb = readColourImage(e.rgbFile, m_camera);
+  cv::Mat raw = readDepthImage(e.depthFile, m_depthCamera);
+  // A camera declared with a negative focal length (ICL-NUIM's fy < 0): the
+  // frames carry the flipped images and m_camera (CameraAxes.h).
+  flipToPositiveFocalLengths(rgb, sensor.colour);
+  flipToPositiveFocalLengths(raw, sensor.depth_registered ? sensor.colour : sensor.depth);
+  // Exact float(raw / scale) per pixel (cv::convertTo scales in float and can
+  // be one ulp off), so rawlog and folder readers agree bit for bit.
+  cv::Mat depth(raw.size(), CV_32FC1);
+  const double scale = m_options.depthScale;
+  for (int r = 0; r < raw.rows; ++r)
+  {
+    const auto* src = raw.ptr<uint16_t>(r);
+    auto* dst = depth.ptr<float>(r);
+    for (int c = 0; c < raw.cols; ++c)
+      dst[c] = src[c] == kNoDepthReading ? 0.0f : static_cast<float>(src[c] / scale);
+  }
+  return {rgb, depth};
+}
+
 std::optional<TRGBDFrame> CTumFrameSource::next()
 {
   if (m_next >= m_entries.size())
@@ -324,23 +381,7 @@ std::optional<TRGBDFrame> CTumFrameSource::next()
   f.timestamp = e.rgbStamp;
   f.depthTimestamp = e.depthStamp;
   const TSensorDescription& sensor = m_sensor.sensor;
-  f.rgb = readColourImage(e.rgbFile, m_camera);
-  cv::Mat raw = readDepthImage(e.depthFile, m_depthCamera);
-  // A camera declared with a negative focal length (ICL-NUIM's fy < 0): the
-  // frames carry the flipped images and m_camera (CameraAxes.h).
-  flipToPositiveFocalLengths(f.rgb, sensor.colour);
-  flipToPositiveFocalLengths(raw, sensor.depth_registered ? sensor.colour : sensor.depth);
-  // Exact float(raw / scale) per pixel (cv::convertTo scales in float and can
-  // be one ulp off), so rawlog and folder readers agree bit for bit.
-  f.depth.create(raw.size(), CV_32FC1);
-  const double scale = m_options.depthScale;
-  for (int r = 0; r < raw.rows; ++r)
-  {
-    const auto* src = raw.ptr<uint16_t>(r);
-    auto* dst = f.depth.ptr<float>(r);
-    for (int c = 0; c < raw.cols; ++c)
-      dst[c] = src[c] == kNoDepthReading ? 0.0f : static_cast<float>(src[c] / scale);
-  }
+  std::tie(f.rgb, f.depth) = readRawFrame(e);
   if (!sensor.depth_registered)
     f.depth = registerDepthToColour(f.depth, m_depthCamera, m_camera, sensor.depth_pose_in_colour);
   f.camera = m_camera;

@@ -264,6 +264,10 @@ TSensorDescription sensorPreset(const std::string& name)
     d.depth_registered = false;
     d.depth = makeCamera("7scenes-depth", 585.0, 585.0, 320.0, 240.0, {0, 0, 0, 0, 0});
     d.depth_pose_in_colour = mrpt::poses::CPose3D(-0.025, 0, 0, 0, 0, 0);
+    // Those are a start: the dataset says its colour and depth cameras were
+    // never calibrated, so the reader estimates the registration from the
+    // frames (CDepthColourCalibrator) and keeps it when well determined.
+    d.estimate_registration = true;
     d.depth_scale = 1000;
   }
   return d;

@@ -91,6 +91,8 @@ void readScalars(
   const std::string pose = common::readString(cfg, s, "depth_pose_in_colour", "");
   if (!pose.empty())
     d.depth_pose_in_colour = parsePose(pose, s, "depth_pose_in_colour");
+  d.estimate_registration =
+      common::readBool(cfg, s, "estimate_registration", d.estimate_registration);
   d.depth_scale = common::readDouble(cfg, s, "depth_scale", d.depth_scale);
   d.rolling_shutter_ms = common::readDouble(cfg, s, "rolling_shutter_ms", d.rolling_shutter_ms);
   const std::string dir = common::readString(
@@ -231,6 +233,7 @@ void TSensorDescription::saveToConfigFile(
   cfg.write(s, "name", name);
   cfg.write(s, "depth_registered", depth_registered);
   cfg.write(s, "depth_pose_in_colour", poseText(depth_pose_in_colour));
+  cfg.write(s, "estimate_registration", estimate_registration);
   const auto w = [&](const char* key, double v) { cfg.write(s, key, exactText(v)); };
   w("depth_scale", depth_scale);
   w("rolling_shutter_ms", rolling_shutter_ms);

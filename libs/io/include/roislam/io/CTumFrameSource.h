@@ -13,7 +13,9 @@
  * Depth readings of 65535 mean "none" (7-Scenes) in every folder.
  * With a sensor description whose depth is not registered (e.g. a 7-Scenes-like
  * rgbd-simul folder), depth PNGs are on the depth camera's grid and next()
- * re-projects them into the colour camera (registerDepthToColour()).
+ * re-projects them into the colour camera (registerDepthToColour()); one
+ * that asks for it (estimate_registration) has its registration estimated
+ * from 40 frames spread over the sequence first (CDepthColourCalibrator).
  *
  * ini section [TumFrameSource] (TOptions):
  *   max_time_difference  double  0.02    s    colour/depth association window
@@ -26,6 +28,7 @@
 #include <roislam/io/CFrameSource.h>
 
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace roislam::io
@@ -113,5 +116,14 @@ class CTumFrameSource : public CFrameSource
 
   /** The frames and ground truth of a 7-Scenes folder (SevenScenes.h). */
   void readSevenScenesFolder();
+  /** Frames read for estimate_registration, evenly over the sequence. */
+  static constexpr std::size_t kRegistrationFrames = 40;
+  /** With estimate_registration (and unregistered depth): estimates the
+   *  registration from the frames (CDepthColourCalibrator), takes it when
+   *  accepted, and adds its summary to the sensor choice's reason. */
+  void estimateRegistration();
+  /** One entry's colour (BGR) and depth (metres, on the depth camera's
+   *  grid, not registered), flipped to positive focal lengths. */
+  std::pair<cv::Mat, cv::Mat> readRawFrame(const TEntry& e) const;
 };
 }  // namespace roislam::io

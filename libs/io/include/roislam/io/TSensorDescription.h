@@ -31,6 +31,14 @@
  *     depth_pose_in_colour       [x y z yaw pitch roll]       [0 0 0 0 0 0]
  *         m, deg: the depth optical frame in the colour optical frame
  *         (MRPT CPose3D text); used when depth_registered = false
+ *     estimate_registration      bool                         false
+ *         true: the colour-depth calibration is not known (7-Scenes
+ *         publishes the depth camera alone). A folder's reader then
+ *         estimates depth_pose_in_colour and the colour fx, fy from the
+ *         sequence's own frames, starting from the values given, and uses
+ *         the estimate when it is well determined (CDepthColourCalibrator);
+ *         the description it reads with then says false. Ignored when
+ *         depth_registered = true
  *     depth_scale                double > 0                   5000
  *         raw depth units per metre (TUM PNG 5000, OpenNI mm 1000)
  *     rolling_shutter_ms         double in [0, 1000/frame_rate]  0
@@ -104,8 +112,11 @@ struct TSensorDescription : public mrpt::config::CLoadableOptions
   bool depth_registered = true;
   mrpt::img::TCamera depth;                   //!< [DEPTH_CAMERA_PARAMS], when !depth_registered
   mrpt::poses::CPose3D depth_pose_in_colour;  //!< depth optical frame in the colour optical frame
-  double depth_scale = 5000;                  //!< raw units per metre
-  double rolling_shutter_ms = 0;              //!< readout of all rows, >= 0
+  /** The calibration between colour and depth is to be estimated from the
+   *  frames (the given one is a start). */
+  bool estimate_registration = false;
+  double depth_scale = 5000;      //!< raw units per metre
+  double rolling_shutter_ms = 0;  //!< readout of all rows, >= 0
   bool rolling_shutter_bottom_to_top = false;
   double frame_rate = 30;             //!< Hz
   double common_pixel_sigma_px = 0;   //!< per-image keypoint shift, 1 sigma per axis

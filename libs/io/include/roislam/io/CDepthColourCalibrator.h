@@ -1,0 +1,135 @@
+/* Estimates where an unregistered depth camera sits beside the colour camera,
+ * and the colour camera's focal lengths, from a sequence's own frames: for a
+ * sensor whose calibration is not known (7-Scenes publishes the depth camera
+ * alone; TSensorDescription's estimate_registration). Called by
+ * CTumFrameSource before it reads the first frame; tests call it directly.
+ *
+ * The measurement: a depth discontinuity (a pixel whose neighbour is much
+ * farther) is an object's silhouette, and the colour image has an edge
+ * there. Each discontinuity pixel is lifted with the depth camera, moved
+ * into the colour camera by depth_pose_in_colour and projected with the
+ * colour intrinsics (and distortion); its distance to the nearest colour
+ * (Canny) edge, read from a distance transform, is the residual. Gauss-Newton
+ * with Huber weights and a truncation minimises it over 8 parameters: the
+ * pose (rotation vector, translation) and fx, fy. The principal point stays
+ * as given: a shift of it and a small rotation move the projections alike,
+ * and a rotation absorbs it (a constant rotation of the colour camera's
+ * frame, which a trajectory's alignment removes). The depth intrinsics are
+ * taken as given: the edges fix the colour camera relative to them.
+ * A weak prior (TOptions::prior_*) keeps poorly seen directions near the
+ * start.
+ *
+ * The estimate replaces the start only when it is well determined and fits
+ * better, and stays plausible (estimate()'s TResult::accepted): the frames split into
+ * TOptions::groups interleaved groups, each estimated alone from the joint
+ * estimate; the spread of the group estimates (their standard deviation
+ * over sqrt(groups)) must stay within TOptions::max_*_sigma, and the mean
+ * truncated edge distance must drop, and no parameter may move more than
+ * TOptions::max_prior_sigmas from the start. Otherwise the start stays, and
+ * TResult::reason says why.
+ *
+ * TOptions (code only; every field has its default):
+ *   max_points_per_frame  3000     discontinuity pixels kept per frame (evenly)
+ *   min_jump_m            0.05 m   a discontinuity: the neighbour is farther by
+ *   min_jump_ratio        0.05     at least max(min_jump_m, ratio x depth)
+ *   truncate_px           8 px     a residual beyond it is an outlier (weight 0)
+ *   huber_px              1.5 px   Huber threshold of the weights
+ *   iterations            30       Gauss-Newton iterations at most
+ *   groups                4        interleaved frame groups for the spread
+ *   prior_translation_m   0.02 m   1-sigma prior on the x, y translation
+ *   prior_translation_z_m 0.002 m  ... and on z (both cameras on one board:
+ *                                  their optical centres at one depth)
+ *   prior_rotation_deg    2 deg    1-sigma prior on each rotation axis
+ *   prior_focal_ratio     0.03     1-sigma prior on fx, fy (relative)
+ *   max_translation_sigma_m  0.002 m    acceptance: spread per axis at most
+ *   max_rotation_sigma_deg   0.1 deg    acceptance: spread per axis at most
+ *   max_focal_sigma_ratio    0.002      acceptance: spread of fx, fy at most
+ *   max_prior_sigmas      3        acceptance: no parameter moved further
+ *                                  from the start (in prior sigmas)
+ *   min_frames            4        frames with discontinuities needed
+ */
+#pragma once
+
+#include <roislam/io/TSensorDescription.h>
+
+#include <array>
+#include <cstddef>
+#include <opencv2/core.hpp>
+#include <string>
+#include <vector>
+
+namespace roislam::io
+{
+class CDepthColourCalibrator
+{
+ public:
+  struct TOptions
+  {
+    std::size_t max_points_per_frame = 3000;
+    double min_jump_m = 0.05;
+    double min_jump_ratio = 0.05;
+    double truncate_px = 8;
+    double huber_px = 1.5;
+    int iterations = 30;
+    int groups = 4;
+    double prior_translation_m = 0.02;
+    double prior_translation_z_m = 0.002;
+    double prior_rotation_deg = 2;
+    double prior_focal_ratio = 0.03;
+    double max_translation_sigma_m = 0.002;
+    double max_rotation_sigma_deg = 0.1;
+    double max_focal_sigma_ratio = 0.002;
+    double max_prior_sigmas = 3;
+    std::size_t min_frames = 4;
+  };
+
+  /** What estimate() found. */
+  struct TResult
+  {
+    /** True when `sensor` holds the estimate; false: the start, unchanged. */
+    bool accepted = false;
+    /** Why it was (not) accepted, one line. */
+    std::string reason;
+    /** The description to read the frames with: the start with the estimated
+     *  depth_pose_in_colour and colour fx, fy (estimate_registration then
+     *  false: done) when accepted, else the start. */
+    TSensorDescription sensor;
+    /** The estimate itself, accepted or not. */
+    mrpt::poses::CPose3D estimatedPose;
+    double estimatedFx = 0, estimatedFy = 0;
+    std::size_t frames = 0, points = 0;
+    /** Mean truncated edge distance (px) at the start and at the estimate. */
+    double distanceStartPx = 0, distanceEstimatePx = 0;
+    /** Spread of the group estimates (standard deviation / sqrt(groups)):
+     *  translation x y z (m), rotation x y z (deg), fx, fy (relative). */
+    std::array<double, 8> sigma{};
+
+    /** One line: accepted or not, the estimate, the distances, the reason. */
+    std::string summary() const;
+  };
+
+  /** `start`: the description to start from; its depth must be unregistered
+   *  and both cameras' focal lengths positive (throws std::invalid_argument). */
+  explicit CDepthColourCalibrator(const TSensorDescription& start);
+  CDepthColourCalibrator(const TSensorDescription& start, const TOptions& options);
+
+  /** Adds one frame: colour CV_8UC3 on the colour camera's grid, depth
+   *  CV_32FC1 metres (0 = none) on the depth camera's grid. Throws
+   *  std::invalid_argument on a wrong type or size. */
+  void addFrame(const cv::Mat& colourBgr, const cv::Mat& depthMetres);
+  /** Frames added that have discontinuities. */
+  std::size_t frames() const { return m_frames.size(); }
+
+  TResult estimate() const;
+
+ private:
+  struct TFrame
+  {
+    std::vector<cv::Point3d> points;  //!< discontinuities, depth optical frame
+    cv::Mat distance, gradX, gradY;   //!< CV_32F: distance to the nearest colour edge
+  };
+  TSensorDescription m_start;
+  TOptions m_options;
+  std::vector<TFrame> m_frames;
+};
+}  // namespace roislam::io

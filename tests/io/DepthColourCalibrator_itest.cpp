@@ -1,0 +1,145 @@
+/* CDepthColourCalibrator on a rendered 7-Scenes-like sequence (ctest fixture
+ * "sevenscenes": the 7scenes preset's cameras, depth not registered), whose
+ * true registration is the preset's: started from it, the estimate stays;
+ * started from a calibration centimetres, tenths of a degree and percents
+ * off, it comes back, and is accepted. */
+#include <gtest/gtest.h>
+#include <mrpt/core/bits_math.h>
+#include <roislam/io/CDepthColourCalibrator.h>
+#include <roislam/io/COpenNI2FrameSource.h>
+#include <roislam/io/CameraPresets.h>
+#include <roislam/io/SevenScenes.h>
+#include <roislam/testing/TestData.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <opencv2/imgcodecs.hpp>
+
+using roislam::io::CDepthColourCalibrator;
+
+namespace
+{
+CDepthColourCalibrator::TResult calibrate(
+    const std::string& seq, const roislam::io::TSensorDescription& start)
+{
+  CDepthColourCalibrator calibrator(start);
+  const auto frames = roislam::io::listSevenScenesFrames(seq);
+  for (std::size_t i = 0; i < frames.size(); i += 3)
+  {
+    const cv::Mat rgb = cv::imread(frames[i].colourFile, cv::IMREAD_COLOR);
+    const cv::Mat raw = cv::imread(frames[i].depthFile, cv::IMREAD_UNCHANGED);
+    cv::Mat depth;
+    raw.convertTo(depth, CV_32F, 1.0 / start.depth_scale);
+    depth.setTo(0, raw == 65535);
+    calibrator.addFrame(rgb, depth);
+  }
+  const auto result = calibrator.estimate();
+  std::printf("%s\n", result.summary().c_str());
+  return result;
+}
+
+/** Translation (m) and rotation (deg) between two poses, colour fx, fy error (relative). */
+void expectNear(
+    const CDepthColourCalibrator::TResult& r, const roislam::io::TSensorDescription& truth)
+{
+  const auto d = r.estimatedPose - truth.depth_pose_in_colour;
+  EXPECT_LT(d.translation().norm(), 0.005);
+  const double angle =
+      mrpt::RAD2DEG(std::acos(std::min(1.0, (d.getRotationMatrix().trace() - 1) / 2)));
+  EXPECT_LT(angle, 0.15);
+  EXPECT_NEAR(r.estimatedFx / truth.colour.fx(), 1.0, 0.004);
+  EXPECT_NEAR(r.estimatedFy / truth.colour.fy(), 1.0, 0.004);
+}
+}  // namespace
+
+TEST(DepthColourCalibrator, StaysAtTheTrueRegistration)
+{
+  ROISLAM_REQUIRE_SYNTHETIC(seq, "sevenscenes");
+  const auto truth = roislam::io::sensorPreset("7scenes");
+  const auto r = calibrate(seq, truth);
+  EXPECT_TRUE(r.accepted) << r.reason;
+  EXPECT_LT(r.distanceEstimatePx, r.distanceStartPx + 0.01);
+  expectNear(r, truth);
+}
+
+TEST(DepthColourCalibrator, FindsTheRegistrationFromAStartThatIsOff)
+{
+  ROISLAM_REQUIRE_SYNTHETIC(seq, "sevenscenes");
+  const auto truth = roislam::io::sensorPreset("7scenes");
+  auto start = truth;
+  start.depth_pose_in_colour = mrpt::poses::CPose3D(
+      -0.035, 0.006, -0.002, mrpt::DEG2RAD(0.6), mrpt::DEG2RAD(-0.5), mrpt::DEG2RAD(0.4));
+  start.colour.setIntrinsicParamsFromValues(535, 515, truth.colour.cx(), truth.colour.cy());
+  const auto r = calibrate(seq, start);
+  EXPECT_TRUE(r.accepted) << r.reason;
+  EXPECT_LT(r.distanceEstimatePx, 0.8 * r.distanceStartPx);
+  expectNear(r, truth);
+  EXPECT_FALSE(r.sensor.estimate_registration);
+}
+
+// The shared Kinect v1 recording (12 frames, depth not registered), from
+// config/sensor-kinect1.ini's factory values: a real camera's edges.
+TEST(DepthColourCalibrator, RealKinectRecording)
+{
+  const std::string oni = roislam::testing::sharedDataDir() + "/oni/kinect1_room_12frames.oni";
+  if (!std::filesystem::is_regular_file(oni))
+    GTEST_SKIP() << oni << " not found (shared data absent)";
+  const auto choice =
+      roislam::io::resolveSensor(roislam::testing::sourceDir() + "/config/sensor-kinect1.ini", ".");
+  CDepthColourCalibrator calibrator(choice.sensor);
+  roislam::io::COpenNI2FrameSource source(oni, choice);
+  while (auto obs = source.nextObservation())
+  {
+    cv::Mat depth(obs->rangeImage.rows(), obs->rangeImage.cols(), CV_32FC1);
+    for (int r = 0; r < depth.rows; ++r)
+      for (int c = 0; c < depth.cols; ++c)
+        depth.at<float>(r, c) = obs->rangeImage(r, c) * obs->rangeUnits;
+    calibrator.addFrame(obs->intensityImage.asCvMat<cv::Mat>(mrpt::img::SHALLOW_COPY), depth);
+  }
+  const auto r = calibrator.estimate();
+  std::printf("%s\n", r.summary().c_str());
+  EXPECT_EQ(r.frames, 12u);
+  // Whatever the edges say, what is used is plausible for a Kinect v1: the
+  // factory values, or an estimate near them.
+  const auto& used = r.sensor;
+  EXPECT_NEAR(used.colour.fx(), 525, 0.05 * 525);
+  EXPECT_NEAR(used.colour.fy(), 525, 0.05 * 525);
+  EXPECT_LT(
+      (used.depth_pose_in_colour - choice.sensor.depth_pose_in_colour).translation().norm(), 0.02);
+  if (!r.accepted)
+  {
+    EXPECT_EQ(used.depth_pose_in_colour, choice.sensor.depth_pose_in_colour);
+    EXPECT_NE(r.reason.find("not used"), std::string::npos) << r.reason;
+  }
+}
+
+// Frames without a depth discontinuity (a flat wall): nothing to measure, the
+// start stays and the reason says so.
+TEST(DepthColourCalibrator, FlatSceneKeepsTheStart)
+{
+  const auto start = roislam::io::sensorPreset("7scenes");
+  CDepthColourCalibrator calibrator(start);
+  for (int i = 0; i < 6; ++i)
+    calibrator.addFrame(
+        cv::Mat(480, 640, CV_8UC3, cv::Scalar(90, 120, 150)),
+        cv::Mat(480, 640, CV_32FC1, cv::Scalar(1.5 + 0.1 * i)));
+  const auto r = calibrator.estimate();
+  EXPECT_FALSE(r.accepted);
+  EXPECT_EQ(r.frames, 0u);
+  EXPECT_NE(r.reason.find("depth edges"), std::string::npos) << r.reason;
+  EXPECT_EQ(r.sensor.depth_pose_in_colour, start.depth_pose_in_colour);
+  EXPECT_TRUE(r.sensor.estimate_registration);
+}
+
+TEST(DepthColourCalibrator, RejectsWrongInput)
+{
+  auto registered = roislam::io::sensorPreset("fr1");
+  EXPECT_THROW(CDepthColourCalibrator{registered}, std::invalid_argument);
+  CDepthColourCalibrator calibrator(roislam::io::sensorPreset("7scenes"));
+  EXPECT_THROW(
+      calibrator.addFrame(cv::Mat(480, 640, CV_8UC1), cv::Mat(480, 640, CV_32FC1)),
+      std::invalid_argument);
+  EXPECT_THROW(
+      calibrator.addFrame(cv::Mat(480, 640, CV_8UC3), cv::Mat(240, 320, CV_32FC1)),
+      std::invalid_argument);
+}
