@@ -271,24 +271,24 @@ CDepthColourCalibrator::TResult CDepthColourCalibrator::estimate() const
 
   const double rot = mrpt::DEG2RAD(m_options.prior_rotation_deg);
   const double trans = m_options.prior_translation_m;
-  auto priorSigmas = [&](double widen)
+  auto priorSigmas = [&]()
   {
     TVec s;
     for (int k = 0; k < 3; ++k)
     {
-      s[k] = widen * rot;
-      s[3 + k] = widen * trans;
+      s[k] = rot;
+      s[3 + k] = trans;
     }
-    s[5] = widen * m_options.prior_translation_z_m;
-    s[6] = widen * m_options.prior_focal_ratio * start.fx;
-    s[7] = widen * m_options.prior_focal_ratio * start.fy;
+    s[5] = m_options.prior_translation_z_m;
+    s[6] = m_options.prior_focal_ratio * start.fx;
+    s[7] = m_options.prior_focal_ratio * start.fy;
     return s;
   };
   const TVec theta0 = start.asVec();
 
-  auto solve = [&](TParams p, const std::vector<std::size_t>& frames, double widen)
+  auto solve = [&](TParams p, const std::vector<std::size_t>& frames)
   {
-    const TVec sig = priorSigmas(widen);
+    const TVec sig = priorSigmas();
     auto priorCost = [&](const TVec& th)
     {
       double c = 0;
@@ -344,15 +344,19 @@ CDepthColourCalibrator::TResult CDepthColourCalibrator::estimate() const
   }
   std::vector<std::size_t> all(m_frames.size());
   std::iota(all.begin(), all.end(), 0);
-  const TParams joint = solve(start, all, 1.0);
+  const TParams joint = solve(start, all);
   res.distanceStartPx = evaluate(start, all, m_options.truncate_px, false).meanDist;
   res.distanceEstimatePx = evaluate(joint, all, m_options.truncate_px, false).meanDist;
   res.estimatedPose = poseOf(joint);
   res.estimatedFx = joint.fx;
   res.estimatedFy = joint.fy;
 
-  // The spread of interleaved groups' estimates, each from the joint one with
-  // a prior ten times wider: a direction the edges do not fix wanders.
+  // The spread of interleaved groups' estimates, each from the joint one
+  // under the same prior: how much the edges of different frames disagree.
+  // (Under a wider prior the depth offset, which the edges hardly tell from
+  // the focal length, wanders by millimetres even where the joint estimate
+  // is right; the prior is what fixes it, and the plausibility test below
+  // what guards it.)
   const int G = std::max(2, m_options.groups);
   std::vector<TVec> groupEst;
   for (int g = 0; g < G; ++g)
@@ -361,7 +365,7 @@ CDepthColourCalibrator::TResult CDepthColourCalibrator::estimate() const
     for (std::size_t i = static_cast<std::size_t>(g); i < m_frames.size(); i += std::size_t(G))
       frames.push_back(i);
     if (!frames.empty())
-      groupEst.push_back(solve(joint, frames, 10.0).asVec());
+      groupEst.push_back(solve(joint, frames).asVec());
   }
   const double n = double(groupEst.size());
   for (int k = 0; k < kParams; ++k)
@@ -387,7 +391,7 @@ CDepthColourCalibrator::TResult CDepthColourCalibrator::estimate() const
   // measurement more likely than a camera that different: a real Kinect
   // recording's edges pull the focal length and the depth offset along the
   // direction they cannot tell apart.
-  const TVec sig = priorSigmas(1.0), change = joint.asVec() - theta0;
+  const TVec sig = priorSigmas(), change = joint.asVec() - theta0;
   static const char* const kNames[kParams] = {
       "rotation x",    "rotation y",    "rotation z", "translation x",
       "translation y", "translation z", "fx",         "fy"};
