@@ -7,6 +7,7 @@
 #include <mrpt/core/bits_math.h>
 #include <roislam/io/CDepthColourCalibrator.h>
 #include <roislam/io/COpenNI2FrameSource.h>
+#include <roislam/io/CTumFrameSource.h>
 #include <roislam/io/CameraPresets.h>
 #include <roislam/io/SevenScenes.h>
 #include <roislam/testing/TestData.h>
@@ -117,7 +118,8 @@ TEST(DepthColourCalibrator, RealKinectRecording)
 // start stays and the reason says so.
 TEST(DepthColourCalibrator, FlatSceneKeepsTheStart)
 {
-  const auto start = roislam::io::sensorPreset("7scenes");
+  auto start = roislam::io::sensorPreset("7scenes");
+  start.estimate_registration = true;
   CDepthColourCalibrator calibrator(start);
   for (int i = 0; i < 6; ++i)
     calibrator.addFrame(
@@ -142,4 +144,28 @@ TEST(DepthColourCalibrator, RejectsWrongInput)
   EXPECT_THROW(
       calibrator.addFrame(cv::Mat(480, 640, CV_8UC3), cv::Mat(240, 320, CV_32FC1)),
       std::invalid_argument);
+}
+
+// The folder reader estimates when the description asks for it, reads the
+// frames with the estimate and says so in the sensor choice's reason.
+TEST(DepthColourCalibrator, FolderReaderUsesTheEstimate)
+{
+  ROISLAM_REQUIRE_SYNTHETIC(seq, "sevenscenes");
+  const auto truth = roislam::io::sensorPreset("7scenes");
+  roislam::io::TSensorChoice choice;
+  choice.sensor = truth;
+  choice.sensor.estimate_registration = true;
+  choice.sensor.colour.setIntrinsicParamsFromValues(535, 515, truth.colour.cx(), truth.colour.cy());
+  choice.source = "test";
+  choice.reason = "a start that is off";
+  roislam::io::CTumFrameSource source(seq, choice, roislam::io::CTumFrameSource::TOptions());
+  const auto& used = source.sensor();
+  EXPECT_NE(used.reason.find("registration estimated"), std::string::npos) << used.reason;
+  EXPECT_FALSE(used.sensor.estimate_registration);
+  EXPECT_NEAR(used.sensor.colour.fx(), 525, 2.1);
+  EXPECT_NEAR(used.sensor.colour.fy(), 525, 2.1);
+  EXPECT_DOUBLE_EQ(source.camera().fx(), used.sensor.colour.fx());
+  const auto f = source.next();
+  ASSERT_TRUE(f);
+  EXPECT_DOUBLE_EQ(f->camera.fx(), used.sensor.colour.fx());
 }
