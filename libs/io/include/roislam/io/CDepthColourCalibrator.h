@@ -1,35 +1,34 @@
 /* Estimates where an unregistered depth camera sits beside the colour camera,
- * and the colour camera's focal lengths, from a sequence's own frames: for a
+ * and the colour camera's intrinsics, from a sequence's own frames: for a
  * sensor whose calibration is not known (7-Scenes publishes the depth camera
  * alone; TSensorDescription's estimate_registration). Called by
  * CTumFrameSource before it reads the first frame; tests call it directly.
  *
  * The measurement: a depth discontinuity (a pixel whose neighbour is much
- * farther) is an object's silhouette, and the colour image has an edge
- * there. Each discontinuity pixel is lifted with the depth camera, moved
- * into the colour camera by depth_pose_in_colour and projected with the
- * colour intrinsics (and distortion); its distance to the nearest colour
- * (Canny) edge, read from a distance transform, is the residual. Gauss-Newton
- * with Huber weights and a truncation minimises it over 8 parameters: the
- * pose (rotation vector, translation) and fx, fy. The principal point stays
- * as given: a shift of it and a small rotation move the projections alike,
- * and a rotation absorbs it (a constant rotation of the colour camera's
- * frame, which a trajectory's alignment removes). The depth intrinsics are
- * taken as given: the edges fix the colour camera relative to them.
- * A weak prior (TOptions::prior_*) keeps poorly seen directions near the
- * start.
+ * farther, across a band of missing readings if need be) is an object's
+ * silhouette, and the colour image has an edge there. Each silhouette point
+ * is lifted with the depth camera, moved into the colour camera by
+ * depth_pose_in_colour and projected with the colour intrinsics (and
+ * distortion); its distance to the nearest colour (Canny) edge, read from a
+ * distance transform, is the residual. Gauss-Newton with Huber weights and a
+ * truncation minimises it over 10 parameters: the pose (rotation vector,
+ * translation), fx, fy, cx, cy. The depth intrinsics are taken as given:
+ * the edges fix the colour camera relative to them. A prior
+ * (TOptions::prior_*) keeps poorly seen directions near the start: the
+ * edges hardly tell the depth offset between the cameras from the focal
+ * length, nor a small rotation from a shift of the principal point.
  *
- * The estimate replaces the start only when it is well determined and fits
- * better, and stays plausible (estimate()'s TResult::accepted): the frames split into
+ * The estimate replaces the start only when it is well determined, fits
+ * better and stays plausible (TResult::accepted): the frames split into
  * TOptions::groups interleaved groups, each estimated alone from the joint
- * estimate; the spread of the group estimates (their standard deviation
- * over sqrt(groups)) must stay within TOptions::max_*_sigma, and the mean
- * truncated edge distance must drop, and no parameter may move more than
- * TOptions::max_prior_sigmas from the start. Otherwise the start stays, and
- * TResult::reason says why.
+ * estimate, and the spread of where they land depth readings in the colour
+ * image must stay within max_spread_px; the mean truncated edge distance
+ * must drop; no parameter may move more than max_prior_sigmas from the
+ * start; and the estimate must differ from the start by more than the
+ * method's own error (min_change_px). Otherwise the start stays, and TResult::reason says why.
  *
  * TOptions (code only; every field has its default):
- *   max_points_per_frame  3000     discontinuity pixels kept per frame (evenly)
+ *   max_points_per_frame  3000     silhouette points kept per frame (evenly)
  *   min_jump_m            0.05 m   a discontinuity: the neighbour is farther by
  *   min_jump_ratio        0.05     at least max(min_jump_m, ratio x depth)
  *   truncate_px           8 px     a residual beyond it is an outlier (weight 0)
@@ -41,9 +40,11 @@
  *                                  their optical centres at one depth)
  *   prior_rotation_deg    2 deg    1-sigma prior on each rotation axis
  *   prior_focal_ratio     0.03     1-sigma prior on fx, fy (relative)
- *   max_translation_sigma_m  0.002 m    acceptance: spread per axis at most
- *   max_rotation_sigma_deg   0.1 deg    acceptance: spread per axis at most
- *   max_focal_sigma_ratio    0.002      acceptance: spread of fx, fy at most
+ *   prior_principal_px    10 px    1-sigma prior on cx, cy
+ *   max_spread_px         0.25 px  acceptance: spread of the groups at most
+ *   min_change_px         1 px     acceptance: the estimate moves depth readings
+ *                                  at least this far from the start (RMS);
+ *                                  closer is within the method's own error
  *   max_prior_sigmas      3        acceptance: no parameter moved further
  *                                  from the start (in prior sigmas)
  *   min_frames            4        frames with discontinuities needed
@@ -52,7 +53,6 @@
 
 #include <roislam/io/TSensorDescription.h>
 
-#include <array>
 #include <cstddef>
 #include <opencv2/core.hpp>
 #include <string>
@@ -76,9 +76,9 @@ class CDepthColourCalibrator
     double prior_translation_z_m = 0.002;
     double prior_rotation_deg = 2;
     double prior_focal_ratio = 0.03;
-    double max_translation_sigma_m = 0.002;
-    double max_rotation_sigma_deg = 0.1;
-    double max_focal_sigma_ratio = 0.002;
+    double prior_principal_px = 10;
+    double max_spread_px = 0.25;
+    double min_change_px = 1.0;
     double max_prior_sigmas = 3;
     std::size_t min_frames = 4;
   };
@@ -96,13 +96,17 @@ class CDepthColourCalibrator
     TSensorDescription sensor;
     /** The estimate itself, accepted or not. */
     mrpt::poses::CPose3D estimatedPose;
-    double estimatedFx = 0, estimatedFy = 0;
+    double estimatedFx = 0, estimatedFy = 0, estimatedCx = 0, estimatedCy = 0;
     std::size_t frames = 0, points = 0;
     /** Mean truncated edge distance (px) at the start and at the estimate. */
     double distanceStartPx = 0, distanceEstimatePx = 0;
-    /** Spread of the group estimates (standard deviation / sqrt(groups)):
-     *  translation x y z (m), rotation x y z (deg), fx, fy (relative). */
-    std::array<double, 8> sigma{};
+    /** Spread of the group estimates where depth readings land in the
+     *  colour image (px; standard deviation / sqrt(groups), RMS over a grid
+     *  of readings at 1, 2 and 4 m). */
+    double spreadPx = 0;
+    /** RMS distance (px) between where the start and the estimate land the
+     *  same readings (the grid of spreadPx). */
+    double changePx = 0;
 
     /** One line: accepted or not, the estimate, the distances, the reason. */
     std::string summary() const;
@@ -122,11 +126,14 @@ class CDepthColourCalibrator
 
   TResult estimate() const;
 
+
  private:
   struct TFrame
   {
-    std::vector<cv::Point3d> points;  //!< discontinuities, depth optical frame
-    cv::Mat distance, gradX, gradY;   //!< CV_32F: distance to the nearest colour edge
+    std::vector<cv::Point3d> points;      //!< silhouettes, depth optical frame
+    cv::Mat nearest;                      //!< CV_32S: index of the nearest colour edge pixel
+    std::vector<cv::Point2d> edgeAt;      //!< each edge's sub-pixel position
+    std::vector<cv::Point2d> edgeNormal;  //!< and its unit gradient direction
   };
   TSensorDescription m_start;
   TOptions m_options;
