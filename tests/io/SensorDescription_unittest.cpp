@@ -149,7 +149,7 @@ TEST(SensorDescription, PresetsRoundTripAndCarryTheReadout)
   const TSensorDescription seven = roislam::io::sensorPreset("7scenes");
   expectSame(seven, reload(seven.toIniText()));
   EXPECT_FALSE(seven.depth_registered);
-  EXPECT_FALSE(seven.estimate_registration);  // opt-in (CameraPresets.cpp)
+  EXPECT_TRUE(seven.estimate_registration);  // 7-Scenes never published its calibration
   EXPECT_FALSE(roislam::io::sensorPreset("fr1").estimate_registration);
   EXPECT_DOUBLE_EQ(seven.depth_scale, 1000);
   EXPECT_DOUBLE_EQ(seven.depth.fx(), 585);

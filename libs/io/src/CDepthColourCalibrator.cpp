@@ -173,7 +173,10 @@ void CDepthColourCalibrator::addFrame(const cv::Mat& colourBgr, const cv::Mat& d
         float far = 0;
         int k = 0;
         while (!(far > 0) && k <= kMaxGap)
-          far = at(r + ++k * dr, c + k * dcol);
+        {
+          ++k;
+          far = at(r + k * dr, c + k * dcol);
+        }
         if (!(far > 0 && far - z > jump))
           continue;
         const double u = c + 0.5 * k * dcol, v = r + 0.5 * k * dr;
@@ -410,6 +413,18 @@ CDepthColourCalibrator::TResult CDepthColourCalibrator::estimate() const
   const TParams joint = solve(start, all);
   res.distanceStartPx = evaluate(start, all, m_options.truncate_px, false).meanDist;
   res.distanceEstimatePx = evaluate(joint, all, m_options.truncate_px, false).meanDist;
+  // The other reading of the same data: depth already on the colour grid
+  // (the depth camera's pixels taken as the colour camera's).
+  const auto& dcam = m_start.depth;
+  if (dcam.ncols == cc.ncols && dcam.nrows == cc.nrows)
+  {
+    TParams registered;
+    registered.fx = dcam.fx();
+    registered.fy = dcam.fy();
+    registered.cx = dcam.cx();
+    registered.cy = dcam.cy();
+    res.distanceRegisteredPx = evaluate(registered, all, m_options.truncate_px, false).meanDist;
+  }
   res.estimatedPose = poseOf(joint);
   res.estimatedFx = joint.fx;
   res.estimatedFy = joint.fy;
@@ -438,7 +453,6 @@ CDepthColourCalibrator::TResult CDepthColourCalibrator::estimate() const
   }
   // Reference readings: a grid over the depth image at 1, 2 and 4 m.
   std::vector<cv::Point3d> ref;
-  const auto& dcam = m_start.depth;
   for (double z : {1.0, 2.0, 4.0})
     for (int i = 0; i < 8; ++i)
       for (int j = 0; j < 6; ++j)
@@ -475,11 +489,22 @@ CDepthColourCalibrator::TResult CDepthColourCalibrator::estimate() const
     res.changePx = std::sqrt(d2 / double(ref.size()));
   }
 
-  char why[200] = "";
+  char why[300] = "";
   // Far outside what is known of the camera (the prior) is a failure of the
   // measurement more likely than a camera that different: a real Kinect
   // recording's edges pull the focal length and the depth offset along the
   // direction they cannot tell apart.
+  // A description that says "not registered" of depth that is (a recording
+  // whose registration flag was lost, say) gives a start far off, which an
+  // estimate may chase into a wrong corner; the data tells it.
+  if (res.distanceRegisteredPx > 0 &&
+      res.distanceRegisteredPx < m_options.registered_ratio * res.distanceStartPx &&
+      res.distanceRegisteredPx < res.distanceEstimatePx)
+    std::snprintf(
+        why, sizeof(why),
+        "the depth fits the colour better as it is, as if registered already (%.2f px against "
+        "%.2f at the start, %.2f estimated): is depth_registered = false right?",
+        res.distanceRegisteredPx, res.distanceStartPx, res.distanceEstimatePx);
   const TVec sig = priorSigmas(), change = joint.asVec() - theta0;
   static const char* const kNames[kParams] = {"rotation x",
                                               "rotation y",
@@ -501,9 +526,10 @@ CDepthColourCalibrator::TResult CDepthColourCalibrator::estimate() const
         why, sizeof(why), "not well determined: spread %.2f px > %.2f", res.spreadPx,
         m_options.max_spread_px);
   // The method's own error: on renders whose cameras are known, the
-  // estimate lands depth readings 0.4-0.6 px from where the true cameras do
-  // (a render's edges, its rolling shutter), and a SLAM run pays for half a
-  // pixel (README). An estimate that close to the start is not worth it.
+  // estimate lands depth readings 0.29-0.34 px from where the true cameras
+  // do (a render's edges, its rolling shutter), and a SLAM run pays for
+  // that much (README: a principal point 1.5 px off costs 1.83 -> 2.47 mm).
+  // An estimate that close to the start is not worth taking.
   if (!*why && res.changePx < m_options.min_change_px)
     std::snprintf(
         why, sizeof(why), "within %.2f px of the start (< %.2f): the start kept", res.changePx,

@@ -42,9 +42,13 @@
  *   prior_focal_ratio     0.03     1-sigma prior on fx, fy (relative)
  *   prior_principal_px    10 px    1-sigma prior on cx, cy
  *   max_spread_px         0.25 px  acceptance: spread of the groups at most
- *   min_change_px         1 px     acceptance: the estimate moves depth readings
+ *   min_change_px         0.75 px  acceptance: the estimate moves depth readings
  *                                  at least this far from the start (RMS);
  *                                  closer is within the method's own error
+ *   registered_ratio      0.8      rejection: the depth read as registered
+ *                                  already fits better than this times the
+ *                                  start, and better than the estimate (the
+ *                                  description is wrong; the reason says so)
  *   max_prior_sigmas      3        acceptance: no parameter moved further
  *                                  from the start (in prior sigmas)
  *   min_frames            4        frames with discontinuities needed
@@ -78,7 +82,8 @@ class CDepthColourCalibrator
     double prior_focal_ratio = 0.03;
     double prior_principal_px = 10;
     double max_spread_px = 0.25;
-    double min_change_px = 1.0;
+    double min_change_px = 0.75;
+    double registered_ratio = 0.8;
     double max_prior_sigmas = 3;
     std::size_t min_frames = 4;
   };
@@ -100,6 +105,9 @@ class CDepthColourCalibrator
     std::size_t frames = 0, points = 0;
     /** Mean truncated edge distance (px) at the start and at the estimate. */
     double distanceStartPx = 0, distanceEstimatePx = 0;
+    /** The same, reading the depth as registered already (the depth
+     *  camera's pixels as the colour camera's; 0 when the grids differ). */
+    double distanceRegisteredPx = 0;
     /** Spread of the group estimates where depth readings land in the
      *  colour image (px; standard deviation / sqrt(groups), RMS over a grid
      *  of readings at 1, 2 and 4 m). */
@@ -125,7 +133,6 @@ class CDepthColourCalibrator
   std::size_t frames() const { return m_frames.size(); }
 
   TResult estimate() const;
-
 
  private:
   struct TFrame

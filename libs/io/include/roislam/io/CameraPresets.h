@@ -31,8 +31,9 @@ mrpt::img::TCamera cameraPreset(const std::string& name);
  *  the Kinect depth noise (icl: ICL-NUIM's simulated disparity noise), and a
  *  25 ms top-to-bottom readout for the Kinects fr1/fr2/fr3/7scenes (measured
  *  on fr1), none for icl and ros. 7scenes: depth unregistered (the
- *  dataset's depth camera, 585 px; a Kinect v1's factory extrinsics), in
- *  millimetres. Throws std::invalid_argument for another name. */
+ *  dataset's depth camera, 585 px; a Kinect v1's factory extrinsics as the
+ *  start of an estimate: estimate_registration), in millimetres. Throws
+ *  std::invalid_argument for another name. */
 TSensorDescription sensorPreset(const std::string& name);
 
 /** A description file: an ini with [SensorDescription] (TSensorDescription.h),
