@@ -156,6 +156,30 @@ TEST(DepthColourCalibrator, RealKinectRecording)
   EXPECT_NE(r.reason.find("as if registered already"), std::string::npos) << r.reason;
 }
 
+// The recording reader runs the same estimate when the description asks for
+// it, says what it found, and still plays all 12 frames.
+TEST(DepthColourCalibrator, RecordingReaderReportsTheEstimate)
+{
+  const std::string oni = roislam::testing::sharedDataDir() + "/oni/kinect1_room_12frames.oni";
+  if (!std::filesystem::is_regular_file(oni))
+    GTEST_SKIP() << oni << " not found (shared data absent)";
+  auto choice =
+      roislam::io::resolveSensor(roislam::testing::sourceDir() + "/config/sensor-kinect1.ini", ".");
+  const auto factory = choice.sensor;
+  choice.sensor.estimate_registration = true;
+  roislam::io::COpenNI2FrameSource source(oni, choice);
+  const auto& used = source.sensor();
+  EXPECT_NE(used.reason.find("as if registered already"), std::string::npos) << used.reason;
+  EXPECT_EQ(used.sensor.depth_pose_in_colour, factory.depth_pose_in_colour);
+  std::size_t frames = 0;
+  while (auto f = source.next())
+  {
+    EXPECT_EQ(f->index, frames);
+    ++frames;
+  }
+  EXPECT_EQ(frames, 12u);
+}
+
 // Frames without a depth discontinuity (a flat wall): nothing to measure, the
 // start stays and the reason says so.
 TEST(DepthColourCalibrator, FlatSceneKeepsTheStart)

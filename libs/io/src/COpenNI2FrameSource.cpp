@@ -2,6 +2,7 @@
 
 #include <OpenNI.h>
 #include <mrpt/img/CImage.h>
+#include <roislam/io/CDepthColourCalibrator.h>
 #include <roislam/io/CameraPresets.h>
 #include <roislam/io/ObservationConversion.h>
 
@@ -119,6 +120,47 @@ COpenNI2FrameSource::COpenNI2FrameSource(
     dev.setImageRegistrationMode(
         m_sensor.sensor.depth_registered ? openni::IMAGE_REGISTRATION_DEPTH_TO_COLOR
                                          : openni::IMAGE_REGISTRATION_OFF);
+  if (!m_sensor.sensor.depth_registered && m_sensor.sensor.estimate_registration)
+    estimateRegistration();
+}
+
+void COpenNI2FrameSource::estimateRegistration()
+{
+  const auto& sensor = m_sensor.sensor;
+  if (m_live)
+  {
+    m_sensor.reason += "; registration not estimated (a live device: record it first)";
+    return;
+  }
+  if (!(sensor.colour.fx() > 0 && sensor.colour.fy() > 0 && sensor.depth.fx() > 0 &&
+        sensor.depth.fy() > 0))
+  {
+    m_sensor.reason += "; registration not estimated (a negative focal length)";
+    return;
+  }
+  // A recording plays in order: frames evenly over its first
+  // kRegistrationScan, then it plays again from the start.
+  CDepthColourCalibrator calibrator(sensor);
+  const std::size_t scan = std::min(m_count, kRegistrationScan);
+  const std::size_t step = std::max<std::size_t>(1, scan / kRegistrationFrames);
+  for (std::size_t i = 0; i < scan; ++i)
+  {
+    const auto obs = nextObservation();
+    if (!obs)
+      break;
+    if (i % step != 0)
+      continue;
+    cv::Mat depth(obs->rangeImage.rows(), obs->rangeImage.cols(), CV_32FC1);
+    for (int r = 0; r < depth.rows; ++r)
+      for (int c = 0; c < depth.cols; ++c)
+        depth.at<float>(r, c) = obs->rangeImage(r, c) * obs->rangeUnits;
+    calibrator.addFrame(obs->intensityImage.asCvMat<cv::Mat>(mrpt::img::SHALLOW_COPY), depth);
+  }
+  rewind();
+  const auto result = calibrator.estimate();
+  m_sensor.reason += "; " + result.summary();
+  if (result.accepted)
+    m_sensor.sensor = result.sensor;
 }
 
 COpenNI2FrameSource::~COpenNI2FrameSource() = default;

@@ -22,6 +22,9 @@
  * streams. Timestamps: OpenNI2's, in seconds (a recording starts near 0).
  * Two sources playing one recording at the same time disturb OpenNI2's file
  * driver (frames time out): read a recording with one source at a time.
+ * A description with estimate_registration has a recording's registration
+ * estimated from its own frames first (CDepthColourCalibrator), as a
+ * folder's; not a live device's.
  * Errors (no device, unreadable recording, a description that does not fit
  * the streams) throw std::runtime_error naming the input in one line.
  */
@@ -66,6 +69,13 @@ class COpenNI2FrameSource : public CFrameSource
  private:
   struct TStreams;
   void openDevice();
+  /** With estimate_registration (and unregistered depth), for a recording:
+   *  estimates the registration from up to kRegistrationFrames frames of its
+   *  first kRegistrationScan (CDepthColourCalibrator), takes it when
+   *  accepted, adds its summary to the sensor choice's reason, and rewinds. */
+  void estimateRegistration();
+  static constexpr std::size_t kRegistrationFrames = 40;
+  static constexpr std::size_t kRegistrationScan = 400;
   TSensorChoice describe(const std::optional<TSensorChoice>& given) const;
 
   std::string m_input;
