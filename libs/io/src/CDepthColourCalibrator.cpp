@@ -15,8 +15,10 @@ namespace roislam::io
 {
 namespace
 {
-// Rotation vector, translation, fx, fy, cx, cy: cv::projectPoints' Jacobian columns.
-constexpr int kParams = 10;
+// Rotation vector, translation, fx, fy, cx, cy (cv::projectPoints' Jacobian
+// columns), and the silhouettes' outward offset.
+constexpr int kProjectionParams = 10;
+constexpr int kParams = 11;
 using TVec = cv::Vec<double, kParams>;
 using TMat = cv::Matx<double, kParams, kParams>;
 
@@ -24,10 +26,11 @@ struct TParams
 {
   cv::Vec3d rvec, tvec;
   double fx = 0, fy = 0, cx = 0, cy = 0;
+  double silhouette = 0;  //!< px, outwards (from the near surface to the far one)
 
   TVec asVec() const
   {
-    return {rvec[0], rvec[1], rvec[2], tvec[0], tvec[1], tvec[2], fx, fy, cx, cy};
+    return {rvec[0], rvec[1], rvec[2], tvec[0], tvec[1], tvec[2], fx, fy, cx, cy, silhouette};
   }
   static TParams fromVec(const TVec& v)
   {
@@ -38,6 +41,7 @@ struct TParams
     p.fy = v[7];
     p.cx = v[8];
     p.cy = v[9];
+    p.silhouette = v[10];
     return p;
   }
 };
@@ -153,6 +157,7 @@ void CDepthColourCalibrator::addFrame(const cv::Mat& colourBgr, const cv::Mat& d
   // near surface (its neighbour on the other side reads about the same).
   constexpr int kMaxGap = 8;
   std::vector<cv::Point3d> points;
+  std::vector<cv::Point2d> outward;
   const double ifx = 1.0 / dc.fx(), ify = 1.0 / dc.fy();
   const auto at = [&](int r, int c)
   { return r >= 0 && c >= 0 && r < depth.rows && c < depth.cols ? depth.at<float>(r, c) : 0.0f; };
@@ -181,6 +186,7 @@ void CDepthColourCalibrator::addFrame(const cv::Mat& colourBgr, const cv::Mat& d
           continue;
         const double u = c + 0.5 * k * dcol, v = r + 0.5 * k * dr;
         points.emplace_back((u - dc.cx()) * ifx * z, (v - dc.cy()) * ify * z, z);
+        outward.emplace_back(dcol, dr);
       }
     }
   }
@@ -190,7 +196,10 @@ void CDepthColourCalibrator::addFrame(const cv::Mat& colourBgr, const cv::Mat& d
   const std::size_t keep = std::max<std::size_t>(m_options.max_points_per_frame, 1);
   const double step = std::max(1.0, double(points.size()) / double(keep));
   for (double i = 0; i < double(points.size()); i += step)
+  {
     f.points.push_back(points[static_cast<std::size_t>(i)]);
+    f.outward.push_back(outward[static_cast<std::size_t>(i)]);
+  }
 
   // Each edge pixel's sub-pixel place: the peak of a parabola through the
   // gradient magnitude across the edge. Canny marks one pixel of the two a
@@ -295,7 +304,11 @@ CDepthColourCalibrator::TResult CDepthColourCalibrator::estimate() const
       for (std::size_t i = 0; i < img.size(); ++i)
       {
         ++e.points;
-        const double u = img[i].x, v = img[i].y;
+        // A depth camera's silhouettes may sit off the true one, outwards (a
+        // structured-light camera's correlation window widens the near
+        // surface) or inwards; one offset for all, estimated alongside.
+        const double u = img[i].x + p.silhouette * f.outward[i].x,
+                     v = img[i].y + p.silhouette * f.outward[i].y;
         const int edge = u >= 0 && v >= 0 && u < maxU && v < maxV
                              ? f.nearest.at<int>(int(std::lround(v)), int(std::lround(u)))
                              : -1;
@@ -320,8 +333,9 @@ CDepthColourCalibrator::TResult CDepthColourCalibrator::estimate() const
         const double* ju = jac.ptr<double>(static_cast<int>(2 * i));
         const double* jv = jac.ptr<double>(static_cast<int>(2 * i + 1));
         TVec J;
-        for (int k = 0; k < kParams; ++k)
+        for (int k = 0; k < kProjectionParams; ++k)
           J[k] = n.x * ju[k] + n.y * jv[k];
+        J[kProjectionParams] = n.dot(f.outward[i]);
         for (int a = 0; a < kParams; ++a)
         {
           e.g[a] += w * J[a] * r;
@@ -348,6 +362,7 @@ CDepthColourCalibrator::TResult CDepthColourCalibrator::estimate() const
     s[6] = m_options.prior_focal_ratio * start.fx;
     s[7] = m_options.prior_focal_ratio * start.fy;
     s[8] = s[9] = m_options.prior_principal_px;
+    s[10] = m_options.prior_silhouette_px;
     return s;
   };
   const TVec theta0 = start.asVec();
@@ -431,6 +446,7 @@ CDepthColourCalibrator::TResult CDepthColourCalibrator::estimate() const
 
   res.estimatedCx = joint.cx;
   res.estimatedCy = joint.cy;
+  res.silhouetteOffsetPx = joint.silhouette;
 
   // The spread of interleaved groups' estimates, each from the joint one
   // under the same prior: how much the edges of different frames disagree,
@@ -494,33 +510,38 @@ CDepthColourCalibrator::TResult CDepthColourCalibrator::estimate() const
   // measurement more likely than a camera that different: a real Kinect
   // recording's edges pull the focal length and the depth offset along the
   // direction they cannot tell apart.
-  // A description that says "not registered" of depth that is (a recording
-  // whose registration flag was lost, say) gives a start far off, which an
-  // estimate may chase into a wrong corner; the data tells it.
-  if (res.distanceRegisteredPx > 0 &&
-      res.distanceRegisteredPx < m_options.registered_ratio * res.distanceStartPx &&
-      res.distanceRegisteredPx < res.distanceEstimatePx)
-    std::snprintf(
-        why, sizeof(why),
-        "the depth fits the colour better as it is, as if registered already (%.2f px against "
-        "%.2f at the start, %.2f estimated): is depth_registered = false right?",
-        res.distanceRegisteredPx, res.distanceStartPx, res.distanceEstimatePx);
   const TVec sig = priorSigmas(), change = joint.asVec() - theta0;
-  static const char* const kNames[kParams] = {"rotation x",
-                                              "rotation y",
-                                              "rotation z",
-                                              "translation x",
-                                              "translation y",
-                                              "translation z",
-                                              "fx",
-                                              "fy",
-                                              "cx",
-                                              "cy"};
+  static const char* const kNames[kParams] = {
+      "rotation x",
+      "rotation y",
+      "rotation z",
+      "translation x",
+      "translation y",
+      "translation z",
+      "fx",
+      "fy",
+      "cx",
+      "cy",
+      "silhouette offset"};
   for (int k = 0; k < kParams && !*why; ++k)
     if (std::abs(change[k]) > m_options.max_prior_sigmas * sig[k])
       std::snprintf(
           why, sizeof(why), "%s moved %.1f prior sigmas (> %.1f): implausible", kNames[k],
           std::abs(change[k]) / sig[k], m_options.max_prior_sigmas);
+  // A description that says "not registered" of depth that is (a recording
+  // whose registration flag was lost, say) gives a start far off, which an
+  // estimate may chase into a wrong corner; the data tells it: the depth
+  // read as registered fits better than the start, and better than a
+  // plausible estimate.
+  const bool implausible = *why != 0;
+  if (res.distanceRegisteredPx > 0 &&
+      res.distanceRegisteredPx < m_options.registered_ratio * res.distanceStartPx &&
+      (implausible || res.distanceRegisteredPx < res.distanceEstimatePx))
+    std::snprintf(
+        why, sizeof(why),
+        "the depth fits the colour better as it is, as if registered already (%.2f px against "
+        "%.2f at the start): is depth_registered = false right?",
+        res.distanceRegisteredPx, res.distanceStartPx);
   if (!*why && res.spreadPx > m_options.max_spread_px)
     std::snprintf(
         why, sizeof(why), "not well determined: spread %.2f px > %.2f", res.spreadPx,
@@ -557,12 +578,13 @@ std::string CDepthColourCalibrator::TResult::summary() const
       text, sizeof(text),
       "%s from %zu frames (%zu depth-edge points): depth pose in colour [%.4f %.4f %.4f m %.2f "
       "%.2f "
-      "%.2f deg], colour fx %.1f fy %.1f cx %.1f cy %.1f; edge distance %.2f -> %.2f px, spread "
+      "%.2f deg], colour fx %.1f fy %.1f cx %.1f cy %.1f, silhouettes %+.2f px; edge distance "
+      "%.2f -> %.2f px, spread "
       "%.2f px, %.2f px from the start: %s",
       accepted ? "registration estimated" : "registration estimate not used", frames, points, p.x(),
       p.y(), p.z(), mrpt::RAD2DEG(p.yaw()), mrpt::RAD2DEG(p.pitch()), mrpt::RAD2DEG(p.roll()),
-      estimatedFx, estimatedFy, estimatedCx, estimatedCy, distanceStartPx, distanceEstimatePx,
-      spreadPx, changePx, reason.c_str());
+      estimatedFx, estimatedFy, estimatedCx, estimatedCy, silhouetteOffsetPx, distanceStartPx,
+      distanceEstimatePx, spreadPx, changePx, reason.c_str());
   return text;
 }
 }  // namespace roislam::io

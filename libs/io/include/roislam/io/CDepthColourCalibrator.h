@@ -81,6 +81,7 @@ class CDepthColourCalibrator
     double prior_rotation_deg = 2;
     double prior_focal_ratio = 0.03;
     double prior_principal_px = 10;
+    double prior_silhouette_px = 2;
     double max_spread_px = 0.25;
     double min_change_px = 0.75;
     double registered_ratio = 0.8;
@@ -102,6 +103,8 @@ class CDepthColourCalibrator
     /** The estimate itself, accepted or not. */
     mrpt::poses::CPose3D estimatedPose;
     double estimatedFx = 0, estimatedFy = 0, estimatedCx = 0, estimatedCy = 0;
+    /** The depth silhouettes' offset from the colour edges, outwards (px). */
+    double silhouetteOffsetPx = 0;
     std::size_t frames = 0, points = 0;
     /** Mean truncated edge distance (px) at the start and at the estimate. */
     double distanceStartPx = 0, distanceEstimatePx = 0;
@@ -138,6 +141,7 @@ class CDepthColourCalibrator
   struct TFrame
   {
     std::vector<cv::Point3d> points;      //!< silhouettes, depth optical frame
+    std::vector<cv::Point2d> outward;     //!< each one's direction to the far side (px)
     cv::Mat nearest;                      //!< CV_32S: index of the nearest colour edge pixel
     std::vector<cv::Point2d> edgeAt;      //!< each edge's sub-pixel position
     std::vector<cv::Point2d> edgeNormal;  //!< and its unit gradient direction
