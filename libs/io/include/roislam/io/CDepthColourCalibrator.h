@@ -2,21 +2,24 @@
  * and the colour camera's intrinsics, from a sequence's own frames: for a
  * sensor whose calibration is not known (7-Scenes publishes the depth camera
  * alone; TSensorDescription's estimate_registration). Called by
- * CTumFrameSource before it reads the first frame; tests call it directly.
+ * CTumFrameSource and COpenNI2FrameSource (recordings) before the first
+ * frame; tests call it directly.
  *
  * The measurement: a depth discontinuity (a pixel whose neighbour is much
  * farther, across a band of missing readings if need be) is an object's
  * silhouette, and the colour image has an edge there. Each silhouette point
  * is lifted with the depth camera, moved into the colour camera by
  * depth_pose_in_colour and projected with the colour intrinsics (and
- * distortion); its distance to the nearest colour (Canny) edge, read from a
- * distance transform, is the residual. Gauss-Newton with Huber weights and a
- * truncation minimises it over 10 parameters: the pose (rotation vector,
- * translation), fx, fy, cx, cy. The depth intrinsics are taken as given:
- * the edges fix the colour camera relative to them. A prior
- * (TOptions::prior_*) keeps poorly seen directions near the start: the
- * edges hardly tell the depth offset between the cameras from the focal
- * length, nor a small rotation from a shift of the principal point.
+ * distortion); the residual is its distance, across the edge, to the
+ * nearest colour (Canny) edge at that edge's sub-pixel place. Gauss-Newton
+ * with Huber weights and a truncation minimises it over 11 parameters: the
+ * pose (rotation vector, translation), fx, fy, cx, cy, and one offset of
+ * all silhouettes outwards (a structured-light camera widens near
+ * surfaces). The depth intrinsics are taken as given: the edges fix the
+ * colour camera relative to them. A prior (TOptions::prior_*) keeps poorly
+ * seen directions near the start: the edges hardly tell the depth offset
+ * between the cameras from the focal length, nor a small rotation from a
+ * shift of the principal point.
  *
  * The estimate replaces the start only when it is well determined, fits
  * better and stays plausible (TResult::accepted): the frames split into
@@ -24,8 +27,11 @@
  * estimate, and the spread of where they land depth readings in the colour
  * image must stay within max_spread_px; the mean truncated edge distance
  * must drop; no parameter may move more than max_prior_sigmas from the
- * start; and the estimate must differ from the start by more than the
- * method's own error (min_change_px). Otherwise the start stays, and TResult::reason says why.
+ * start; the estimate must differ from the start by more than the method's
+ * own error (min_change_px); and the depth read as registered already must
+ * not fit better (registered_ratio: a description that calls registered
+ * depth unregistered). Otherwise the start stays, and TResult::reason says
+ * why.
  *
  * TOptions (code only; every field has its default):
  *   max_points_per_frame  3000     silhouette points kept per frame (evenly)
@@ -41,14 +47,15 @@
  *   prior_rotation_deg    2 deg    1-sigma prior on each rotation axis
  *   prior_focal_ratio     0.03     1-sigma prior on fx, fy (relative)
  *   prior_principal_px    10 px    1-sigma prior on cx, cy
+ *   prior_silhouette_px   2 px     1-sigma prior on the silhouettes' offset
  *   max_spread_px         0.25 px  acceptance: spread of the groups at most
  *   min_change_px         0.75 px  acceptance: the estimate moves depth readings
  *                                  at least this far from the start (RMS);
  *                                  closer is within the method's own error
  *   registered_ratio      0.8      rejection: the depth read as registered
  *                                  already fits better than this times the
- *                                  start, and better than the estimate (the
- *                                  description is wrong; the reason says so)
+ *                                  start, and better than a plausible
+ *                                  estimate (the reason says so)
  *   max_prior_sigmas      3        acceptance: no parameter moved further
  *                                  from the start (in prior sigmas)
  *   min_frames            4        frames with discontinuities needed

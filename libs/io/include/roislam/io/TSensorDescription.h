@@ -33,12 +33,13 @@
  *         (MRPT CPose3D text); used when depth_registered = false
  *     estimate_registration      bool                         false
  *         true: the colour-depth calibration is not known (7-Scenes
- *         publishes the depth camera alone). A folder's reader then
- *         estimates depth_pose_in_colour and the colour fx, fy from the
- *         sequence's own frames, starting from the values given, and uses
- *         the estimate when it is well determined (CDepthColourCalibrator);
- *         the description it reads with then says false. Ignored when
- *         depth_registered = true
+ *         publishes the depth camera alone). A folder's or a recording's
+ *         reader then estimates depth_pose_in_colour and the colour fx,
+ *         fy, cx, cy from the sequence's own frames, starting from the
+ *         values given, and uses the estimate when it is well determined
+ *         and differs from them (CDepthColourCalibrator); the description
+ *         it reads with then says false. Ignored when depth_registered =
+ *         true and for live devices
  *     depth_scale                double > 0                   5000
  *         raw depth units per metre (TUM PNG 5000, OpenNI mm 1000)
  *     rolling_shutter_ms         double in [0, 1000/frame_rate]  0
