@@ -204,6 +204,11 @@ TEST(DepthColourCalibrator, RejectsWrongInput)
 {
   auto registered = roislam::io::sensorPreset("fr1");
   EXPECT_THROW(CDepthColourCalibrator{registered}, std::invalid_argument);
+  auto flipped = roislam::io::sensorPreset("7scenes");
+  EXPECT_EQ(CDepthColourCalibrator::whyNotEstimable(flipped), "");
+  flipped.colour.setIntrinsicParamsFromValues(525, -525, 319.5, 239.5);
+  EXPECT_EQ(CDepthColourCalibrator::whyNotEstimable(flipped), "a negative focal length");
+  EXPECT_THROW(CDepthColourCalibrator{flipped}, std::invalid_argument);
   CDepthColourCalibrator calibrator(roislam::io::sensorPreset("7scenes"));
   EXPECT_THROW(
       calibrator.addFrame(cv::Mat(480, 640, CV_8UC1), cv::Mat(480, 640, CV_32FC1)),

@@ -126,16 +126,25 @@ CDepthColourCalibrator::CDepthColourCalibrator(const TSensorDescription& start)
 {
 }
 
+std::string CDepthColourCalibrator::whyNotEstimable(const TSensorDescription& s)
+{
+  if (s.depth_registered)
+    return "the depth is registered already";
+  for (const auto* c : {&s.colour, &s.depth})
+    if (!(c->fx() > 0) || !(c->fy() > 0))
+      return "a negative focal length";
+  for (const auto* c : {&s.colour, &s.depth})
+    if (c->ncols < 8 || c->nrows < 8)
+      return "a camera without a size";
+  return "";
+}
+
 CDepthColourCalibrator::CDepthColourCalibrator(
     const TSensorDescription& start, const TOptions& options)
     : m_start(start), m_options(options)
 {
-  if (start.depth_registered)
-    throw std::invalid_argument("CDepthColourCalibrator: the depth is registered already");
-  for (const auto* c : {&start.colour, &start.depth})
-    if (!(c->fx() > 0) || !(c->fy() > 0) || c->ncols < 8 || c->nrows < 8)
-      throw std::invalid_argument(
-          "CDepthColourCalibrator: the cameras need positive focal lengths and a size");
+  if (const std::string why = whyNotEstimable(start); !why.empty())
+    throw std::invalid_argument("CDepthColourCalibrator: " + why);
 }
 
 void CDepthColourCalibrator::addFrame(const cv::Mat& colourBgr, const cv::Mat& depth)
@@ -573,7 +582,7 @@ CDepthColourCalibrator::TResult CDepthColourCalibrator::estimate() const
 std::string CDepthColourCalibrator::TResult::summary() const
 {
   const auto& p = estimatedPose;
-  char text[400];
+  char text[800];
   std::snprintf(
       text, sizeof(text),
       "%s from %zu frames (%zu depth-edge points): depth pose in colour [%.4f %.4f %.4f m %.2f "

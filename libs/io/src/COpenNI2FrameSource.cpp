@@ -132,10 +132,9 @@ void COpenNI2FrameSource::estimateRegistration()
     m_sensor.reason += "; registration not estimated (a live device: record it first)";
     return;
   }
-  if (!(sensor.colour.fx() > 0 && sensor.colour.fy() > 0 && sensor.depth.fx() > 0 &&
-        sensor.depth.fy() > 0))
+  if (const std::string why = CDepthColourCalibrator::whyNotEstimable(sensor); !why.empty())
   {
-    m_sensor.reason += "; registration not estimated (a negative focal length)";
+    m_sensor.reason += "; registration not estimated (" + why + ")";
     return;
   }
   // A recording plays in order: frames evenly over its first

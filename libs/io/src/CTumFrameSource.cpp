@@ -236,10 +236,9 @@ void CTumFrameSource::estimateRegistration()
   const TSensorDescription& sensor = m_sensor.sensor;
   if (sensor.depth_registered || !sensor.estimate_registration)
     return;
-  if (!(sensor.colour.fx() > 0 && sensor.colour.fy() > 0 && sensor.depth.fx() > 0 &&
-        sensor.depth.fy() > 0))
+  if (const std::string why = CDepthColourCalibrator::whyNotEstimable(sensor); !why.empty())
   {
-    m_sensor.reason += "; registration not estimated (a negative focal length)";
+    m_sensor.reason += "; registration not estimated (" + why + ")";
     return;
   }
   // Frames spread evenly over the whole sequence: the edges of many views,

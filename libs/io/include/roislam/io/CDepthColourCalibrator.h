@@ -130,8 +130,12 @@ class CDepthColourCalibrator
     std::string summary() const;
   };
 
-  /** `start`: the description to start from; its depth must be unregistered
-   *  and both cameras' focal lengths positive (throws std::invalid_argument). */
+  /** Why `sensor` cannot be a start ("" when it can): registered depth, a
+   *  negative focal length (a flipped axis) or a camera without a size. */
+  static std::string whyNotEstimable(const TSensorDescription& sensor);
+
+  /** `start`: the description to start from (whyNotEstimable() empty,
+   *  else throws std::invalid_argument). */
   explicit CDepthColourCalibrator(const TSensorDescription& start);
   CDepthColourCalibrator(const TSensorDescription& start, const TOptions& options);
 
