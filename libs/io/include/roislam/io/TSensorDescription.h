@@ -39,7 +39,8 @@
  *         values given, and uses the estimate when it is well determined
  *         and differs from them (CDepthColourCalibrator); the description
  *         it reads with then says false. Ignored when depth_registered =
- *         true and for live devices
+ *         true, for live devices and by the rawlog reader (tum2rawlog
+ *         writes a rawlog with the description it read with)
  *     depth_scale                double > 0                   5000
  *         raw depth units per metre (TUM PNG 5000, OpenNI mm 1000)
  *     rolling_shutter_ms         double in [0, 1000/frame_rate]  0
