@@ -92,32 +92,43 @@ double huberCost(double d, double k)
   return d <= k ? 0.5 * d * d : k * (d - 0.5 * k);
 }
 
+/** A colour image's Canny edges and the Sobel gradients they come from. */
+struct TColourEdges
+{
+  cv::Mat edges;      //!< CV_8U, 255 on an edge
+  cv::Mat dx, dy;     //!< CV_16S
+  cv::Mat magnitude;  //!< CV_32F, |(dx, dy)|
+};
+
 /** Canny edges with thresholds from the image's own gradient statistics:
  *  the strongest 10 % of gradients start an edge, half that continues it
  *  (a fixed threshold would find no edge in a dim scene, clutter in a
- *  bright one). Also returns the Sobel gradients (CV_16S). */
-cv::Mat colourEdges(const cv::Mat& bgr, cv::Mat& dx, cv::Mat& dy)
+ *  bright one). */
+TColourEdges colourEdges(const cv::Mat& bgr)
 {
+  TColourEdges out;
+  cv::Mat& dx = out.dx;
+  cv::Mat& dy = out.dy;
   cv::Mat gray;
   cv::cvtColor(bgr, gray, cv::COLOR_BGR2GRAY);
   cv::GaussianBlur(gray, gray, cv::Size(3, 3), 0);
   cv::Sobel(gray, dx, CV_16S, 1, 0, 3);
   cv::Sobel(gray, dy, CV_16S, 0, 1, 3);
-  std::vector<float> mags;
-  mags.reserve(static_cast<std::size_t>(gray.total()));
+  out.magnitude.create(gray.size(), CV_32F);
   for (int r = 0; r < gray.rows; ++r)
   {
     const auto* px = dx.ptr<int16_t>(r);
     const auto* py = dy.ptr<int16_t>(r);
+    auto* m = out.magnitude.ptr<float>(r);
     for (int c = 0; c < gray.cols; ++c)
-      mags.push_back(std::hypot(float(px[c]), float(py[c])));
+      m[c] = std::hypot(float(px[c]), float(py[c]));
   }
+  std::vector<float> mags(out.magnitude.begin<float>(), out.magnitude.end<float>());
   const auto nth = mags.begin() + static_cast<std::ptrdiff_t>(0.9 * double(mags.size()));
   std::nth_element(mags.begin(), nth, mags.end());
   const double high = std::max(double(*nth), 40.0);
-  cv::Mat edges;
-  cv::Canny(dx, dy, edges, 0.5 * high, high, true);
-  return edges;
+  cv::Canny(dx, dy, out.edges, 0.5 * high, high, true);
+  return out;
 }
 }  // namespace
 
@@ -216,12 +227,8 @@ void CDepthColourCalibrator::addFrame(const cv::Mat& colourBgr, const cv::Mat& d
   // towards the left and the top), and a render's edges are such steps:
   // read at pixel centres, every edge sat half a pixel up and left, which
   // moved the estimated principal point by as much.
-  cv::Mat dx, dy;
-  const cv::Mat edges = colourEdges(colourBgr, dx, dy);
-  cv::Mat mag(dx.size(), CV_32F);
-  for (int r = 0; r < mag.rows; ++r)
-    for (int c = 0; c < mag.cols; ++c)
-      mag.at<float>(r, c) = std::hypot(float(dx.at<int16_t>(r, c)), float(dy.at<int16_t>(r, c)));
+  const TColourEdges colour = colourEdges(colourBgr);
+  const cv::Mat &edges = colour.edges, &dx = colour.dx, &dy = colour.dy, &mag = colour.magnitude;
   cv::Mat notEdge, distance, labels;
   cv::bitwise_not(edges, notEdge);
   cv::distanceTransform(
