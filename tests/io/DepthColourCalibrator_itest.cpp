@@ -11,6 +11,7 @@
 #include <roislam/io/COpenNI2FrameSource.h>
 #include <roislam/io/CTumFrameSource.h>
 #include <roislam/io/CameraPresets.h>
+#include <roislam/io/ObservationConversion.h>
 #include <roislam/io/SevenScenes.h>
 #include <roislam/testing/TestData.h>
 
@@ -129,11 +130,9 @@ TEST(DepthColourCalibrator, RealKinectRecording)
   roislam::io::COpenNI2FrameSource source(oni, choice);
   while (auto obs = source.nextObservation())
   {
-    cv::Mat depth(obs->rangeImage.rows(), obs->rangeImage.cols(), CV_32FC1);
-    for (int r = 0; r < depth.rows; ++r)
-      for (int c = 0; c < depth.cols; ++c)
-        depth.at<float>(r, c) = obs->rangeImage(r, c) * obs->rangeUnits;
-    calibrator.addFrame(obs->intensityImage.asCvMat<cv::Mat>(mrpt::img::SHALLOW_COPY), depth);
+    calibrator.addFrame(
+        obs->intensityImage.asCvMat<cv::Mat>(mrpt::img::SHALLOW_COPY),
+        roislam::io::depthMetresOnDepthGrid(*obs, oni));
   }
   const auto r = calibrator.estimate();
   std::printf("%s\n", r.summary().c_str());

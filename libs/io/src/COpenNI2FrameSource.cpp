@@ -149,11 +149,9 @@ void COpenNI2FrameSource::estimateRegistration()
       break;
     if (i % step != 0)
       continue;
-    cv::Mat depth(obs->rangeImage.rows(), obs->rangeImage.cols(), CV_32FC1);
-    for (int r = 0; r < depth.rows; ++r)
-      for (int c = 0; c < depth.cols; ++c)
-        depth.at<float>(r, c) = obs->rangeImage(r, c) * obs->rangeUnits;
-    calibrator.addFrame(obs->intensityImage.asCvMat<cv::Mat>(mrpt::img::SHALLOW_COPY), depth);
+    calibrator.addFrame(
+        obs->intensityImage.asCvMat<cv::Mat>(mrpt::img::SHALLOW_COPY),
+        depthMetresOnDepthGrid(*obs, m_input + ": frame " + std::to_string(i)));
   }
   rewind();
   const auto result = calibrator.estimate();

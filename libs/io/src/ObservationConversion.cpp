@@ -243,8 +243,9 @@ cv::Mat colourImage(const CObservation3DRangeScan& obs, const std::string& conte
   return rgb;
 }
 
-// Depth in metres on the depth camera's pixel grid (not yet flipped).
-cv::Mat depthMetres(const CObservation3DRangeScan& obs, const std::string& context)
+}  // namespace
+
+cv::Mat depthMetresOnDepthGrid(const CObservation3DRangeScan& obs, const std::string& context)
 {
   const auto& dc = obs.cameraParams;
   const auto& R = obs.rangeImage;
@@ -277,7 +278,6 @@ cv::Mat depthMetres(const CObservation3DRangeScan& obs, const std::string& conte
   }
   return depth;
 }
-}  // namespace
 
 TRGBDFrame observationToFrame(const CObservation3DRangeScan& obs, const std::string& context)
 {
@@ -290,7 +290,7 @@ TRGBDFrame observationToFrame(const CObservation3DRangeScan& obs, const std::str
   f.depthTimestamp = f.timestamp;
   f.camera = withPositiveFocalLengths(cc);
   f.rgb = colourImage(obs, context);
-  cv::Mat depth = depthMetres(obs, context);
+  cv::Mat depth = depthMetresOnDepthGrid(obs, context);
 
   flipToPositiveFocalLengths(f.rgb, cc);
   flipToPositiveFocalLengths(depth, dc);

@@ -65,6 +65,15 @@ cv::Mat registerDepthToColour(
 mrpt::obs::CObservation3DRangeScan::Ptr frameToObservation(
     const TRGBDFrame& frame, float rangeUnits = 1.0f / 5000);
 
+/** An observation's depth in metres on the depth camera's own grid (not
+ *  registered, not flipped): rangeUnits honoured, ranges turned into depth
+ *  when !range_is_depth. What observationToFrame() registers; the
+ *  registration estimate (CDepthColourCalibrator) takes it as it is.
+ *  Throws std::runtime_error "<context>: ..." on an empty or mis-sized
+ *  range image or rangeUnits <= 0. */
+cv::Mat depthMetresOnDepthGrid(
+    const mrpt::obs::CObservation3DRangeScan& obs, const std::string& context);
+
 /** Converts a loaded observation (call obs.load() first for external depth) to
  *  a frame: BGR colour, depth in metres (rangeUnits honoured, ranges converted
  *  to depth when !range_is_depth, depth re-projected into the colour camera
