@@ -8,8 +8,9 @@
 #include <cstdio>
 #include <numeric>
 #include <opencv2/calib3d.hpp>
-#include <opencv2/imgproc.hpp>
 #include <stdexcept>
+
+#include "DepthColourEdges.h"
 
 namespace roislam::io
 {
@@ -22,12 +23,50 @@ constexpr int kParams = 11;
 using TVec = cv::Vec<double, kParams>;
 using TMat = cv::Matx<double, kParams, kParams>;
 
-struct TParams
+double huberCost(double d, double k)
+{
+  return d <= k ? 0.5 * d * d : k * (d - 0.5 * k);
+}
+}  // namespace
+
+struct CDepthColourCalibrator::TParams
 {
   cv::Vec3d rvec, tvec;
   double fx = 0, fy = 0, cx = 0, cy = 0;
   double silhouette = 0;  //!< px, outwards (from the near surface to the far one)
 
+  /** The values a description holds (no silhouette offset). */
+  static TParams of(const TSensorDescription& s)
+  {
+    const auto H = s.depth_pose_in_colour.getHomogeneousMatrixVal<mrpt::math::CMatrixDouble44>();
+    cv::Matx33d R;
+    for (int r = 0; r < 3; ++r)
+      for (int c = 0; c < 3; ++c)
+        R(r, c) = H(r, c);
+    TParams p;
+    cv::Rodrigues(R, p.rvec);
+    p.tvec = {H(0, 3), H(1, 3), H(2, 3)};
+    p.fx = s.colour.fx();
+    p.fy = s.colour.fy();
+    p.cx = s.colour.cx();
+    p.cy = s.colour.cy();
+    return p;
+  }
+  mrpt::poses::CPose3D pose() const
+  {
+    cv::Matx33d R;
+    cv::Rodrigues(rvec, R);
+    mrpt::math::CMatrixDouble44 H;
+    H.setIdentity();
+    for (int r = 0; r < 3; ++r)
+    {
+      for (int c = 0; c < 3; ++c)
+        H(r, c) = R(r, c);
+      H(r, 3) = tvec[r];
+    }
+    return mrpt::poses::CPose3D(H);
+  }
+  cv::Matx33d K() const { return {fx, 0, cx, 0, fy, cy, 0, 0, 1}; }
   TVec asVec() const
   {
     return {rvec[0], rvec[1], rvec[2], tvec[0], tvec[1], tvec[2], fx, fy, cx, cy, silhouette};
@@ -46,89 +85,33 @@ struct TParams
   }
 };
 
-TParams paramsOf(const TSensorDescription& s)
+struct CDepthColourCalibrator::TEvaluation
 {
-  const auto H = s.depth_pose_in_colour.getHomogeneousMatrixVal<mrpt::math::CMatrixDouble44>();
-  cv::Matx33d R;
-  for (int r = 0; r < 3; ++r)
-    for (int c = 0; c < 3; ++c)
-      R(r, c) = H(r, c);
-  TParams p;
-  cv::Rodrigues(R, p.rvec);
-  p.tvec = {H(0, 3), H(1, 3), H(2, 3)};
-  p.fx = s.colour.fx();
-  p.fy = s.colour.fy();
-  p.cx = s.colour.cx();
-  p.cy = s.colour.cy();
-  return p;
-}
-
-mrpt::poses::CPose3D poseOf(const TParams& p)
-{
-  cv::Matx33d R;
-  cv::Rodrigues(p.rvec, R);
-  mrpt::math::CMatrixDouble44 H;
-  H.setIdentity();
-  for (int r = 0; r < 3; ++r)
-  {
-    for (int c = 0; c < 3; ++c)
-      H(r, c) = R(r, c);
-    H(r, 3) = p.tvec[r];
-  }
-  return mrpt::poses::CPose3D(H);
-}
-
-float bilinear(const cv::Mat& m, double u, double v)
-{
-  const int x = static_cast<int>(u), y = static_cast<int>(v);
-  const float a = static_cast<float>(u - x), b = static_cast<float>(v - y);
-  const float* r0 = m.ptr<float>(y);
-  const float* r1 = m.ptr<float>(y + 1);
-  return (1 - b) * ((1 - a) * r0[x] + a * r0[x + 1]) + b * ((1 - a) * r1[x] + a * r1[x + 1]);
-}
-
-double huberCost(double d, double k)
-{
-  return d <= k ? 0.5 * d * d : k * (d - 0.5 * k);
-}
-
-/** A colour image's Canny edges and the Sobel gradients they come from. */
-struct TColourEdges
-{
-  cv::Mat edges;      //!< CV_8U, 255 on an edge
-  cv::Mat dx, dy;     //!< CV_16S
-  cv::Mat magnitude;  //!< CV_32F, |(dx, dy)|
+  double cost = 0;      //!< robust cost, without the prior
+  double meanDist = 0;  //!< mean truncated distance, px
+  std::size_t points = 0;
+  TMat H;
+  TVec g;
 };
 
-/** Canny edges with thresholds from the image's own gradient statistics:
- *  the strongest 10 % of gradients start an edge, half that continues it
- *  (a fixed threshold would find no edge in a dim scene, clutter in a
- *  bright one). */
-TColourEdges colourEdges(const cv::Mat& bgr)
+namespace
 {
-  TColourEdges out;
-  cv::Mat& dx = out.dx;
-  cv::Mat& dy = out.dy;
-  cv::Mat gray;
-  cv::cvtColor(bgr, gray, cv::COLOR_BGR2GRAY);
-  cv::GaussianBlur(gray, gray, cv::Size(3, 3), 0);
-  cv::Sobel(gray, dx, CV_16S, 1, 0, 3);
-  cv::Sobel(gray, dy, CV_16S, 0, 1, 3);
-  out.magnitude.create(gray.size(), CV_32F);
-  for (int r = 0; r < gray.rows; ++r)
+/** The prior's 1-sigma per value, around the start (whose fx, fy scale the
+ *  focal lengths' share). */
+TVec priorSigmas(const CDepthColourCalibrator::TOptions& o, double fx, double fy)
+{
+  TVec s;
+  for (int k = 0; k < 3; ++k)
   {
-    const auto* px = dx.ptr<int16_t>(r);
-    const auto* py = dy.ptr<int16_t>(r);
-    auto* m = out.magnitude.ptr<float>(r);
-    for (int c = 0; c < gray.cols; ++c)
-      m[c] = std::hypot(float(px[c]), float(py[c]));
+    s[k] = mrpt::DEG2RAD(o.prior_rotation_deg);
+    s[3 + k] = o.prior_translation_m;
   }
-  std::vector<float> mags(out.magnitude.begin<float>(), out.magnitude.end<float>());
-  const auto nth = mags.begin() + static_cast<std::ptrdiff_t>(0.9 * double(mags.size()));
-  std::nth_element(mags.begin(), nth, mags.end());
-  const double high = std::max(double(*nth), 40.0);
-  cv::Canny(dx, dy, out.edges, 0.5 * high, high, true);
-  return out;
+  s[5] = o.prior_translation_z_m;
+  s[6] = o.prior_focal_ratio * fx;
+  s[7] = o.prior_focal_ratio * fy;
+  s[8] = s[9] = o.prior_principal_px;
+  s[10] = o.prior_silhouette_px;
+  return s;
 }
 }  // namespace
 
@@ -156,6 +139,20 @@ CDepthColourCalibrator::CDepthColourCalibrator(
 {
   if (const std::string why = whyNotEstimable(start); !why.empty())
     throw std::invalid_argument("CDepthColourCalibrator: " + why);
+  const auto& cc = start.colour;
+  m_colourDistortion.create(1, static_cast<int>(cc.dist.size()), CV_64F);
+  for (std::size_t i = 0; i < cc.dist.size(); ++i)
+    m_colourDistortion.at<double>(0, static_cast<int>(i)) = cc.dist[i];
+  // Reference readings: a grid over the depth image at 1, 2 and 4 m.
+  const auto& dcam = start.depth;
+  for (double z : {1.0, 2.0, 4.0})
+    for (int i = 0; i < 8; ++i)
+      for (int j = 0; j < 6; ++j)
+      {
+        const double u = (i + 0.5) * dcam.ncols / 8.0, v = (j + 0.5) * dcam.nrows / 6.0;
+        m_reference.emplace_back(
+            (u - dcam.cx()) / dcam.fx() * z, (v - dcam.cy()) / dcam.fy() * z, z);
+      }
 }
 
 void CDepthColourCalibrator::addFrame(const cv::Mat& colourBgr, const cv::Mat& depth)
@@ -170,341 +167,162 @@ void CDepthColourCalibrator::addFrame(const cv::Mat& colourBgr, const cv::Mat& d
     throw std::invalid_argument(
         "CDepthColourCalibrator: depth must be CV_32FC1 of the depth camera's size");
 
-  // Silhouettes: the nearer side of a jump between two valid readings. Depth
-  // cameras leave a band of no readings along a jump (the projector's
-  // shadow, pixels that mix both surfaces), so the farther reading is looked
-  // for across up to kMaxGap missing pixels; the pixel itself must be on the
-  // near surface (its neighbour on the other side reads about the same).
-  constexpr int kMaxGap = 8;
-  std::vector<cv::Point3d> points;
-  std::vector<cv::Point2d> outward;
-  const double ifx = 1.0 / dc.fx(), ify = 1.0 / dc.fy();
-  const auto at = [&](int r, int c)
-  { return r >= 0 && c >= 0 && r < depth.rows && c < depth.cols ? depth.at<float>(r, c) : 0.0f; };
-  for (int r = 1; r + 1 < depth.rows; ++r)
-  {
-    const float* row = depth.ptr<float>(r);
-    for (int c = 1; c + 1 < depth.cols; ++c)
-    {
-      const float z = row[c];
-      if (!(z > 0))
-        continue;
-      const double jump = std::max(m_options.min_jump_m, m_options.min_jump_ratio * z);
-      for (const auto& [dr, dcol] : {std::pair(0, 1), {0, -1}, {1, 0}, {-1, 0}})
-      {
-        const float back = depth.at<float>(r - dr, c - dcol);
-        if (!(back > 0) || std::abs(back - z) > 0.5 * jump)
-          continue;
-        float far = 0;
-        int k = 0;
-        while (!(far > 0) && k <= kMaxGap)
-        {
-          ++k;
-          far = at(r + k * dr, c + k * dcol);
-        }
-        if (!(far > 0 && far - z > jump))
-          continue;
-        const double u = c + 0.5 * k * dcol, v = r + 0.5 * k * dr;
-        points.emplace_back((u - dc.cx()) * ifx * z, (v - dc.cy()) * ify * z, z);
-        outward.emplace_back(dcol, dr);
-      }
-    }
-  }
-  if (points.empty())
+  auto silhouettes = detail::findSilhouettes(
+      depth, dc, m_options.min_jump_m, m_options.min_jump_ratio, m_options.max_points_per_frame);
+  if (silhouettes.points.empty())
     return;
-  TFrame f;
-  const std::size_t keep = std::max<std::size_t>(m_options.max_points_per_frame, 1);
-  const double step = std::max(1.0, double(points.size()) / double(keep));
-  for (double i = 0; i < double(points.size()); i += step)
-  {
-    f.points.push_back(points[static_cast<std::size_t>(i)]);
-    f.outward.push_back(outward[static_cast<std::size_t>(i)]);
-  }
-
-  // Each edge pixel's sub-pixel place: the peak of a parabola through the
-  // gradient magnitude across the edge. Canny marks one pixel of the two a
-  // step lies between (OpenCV's non-maximum suppression breaks a tie
-  // towards the left and the top), and a render's edges are such steps:
-  // read at pixel centres, every edge sat half a pixel up and left, which
-  // moved the estimated principal point by as much.
-  const TColourEdges colour = colourEdges(colourBgr);
-  const cv::Mat &edges = colour.edges, &dx = colour.dx, &dy = colour.dy, &mag = colour.magnitude;
-  cv::Mat notEdge, distance, labels;
-  cv::bitwise_not(edges, notEdge);
-  cv::distanceTransform(
-      notEdge, distance, labels, cv::DIST_L2, cv::DIST_MASK_5, cv::DIST_LABEL_PIXEL);
-  std::vector<int> labelToEdge;
-  for (int r = 1; r + 1 < edges.rows; ++r)
-    for (int c = 1; c + 1 < edges.cols; ++c)
-    {
-      if (!edges.at<uchar>(r, c))
-        continue;
-      const double m0 = mag.at<float>(r, c);
-      const cv::Point2d n(dx.at<int16_t>(r, c) / m0, dy.at<int16_t>(r, c) / m0);
-      double offset = 0;
-      if (c >= 2 && r >= 2 && c + 2 < edges.cols && r + 2 < edges.rows)
-      {
-        const double mMinus = bilinear(mag, c - n.x, r - n.y);
-        const double mPlus = bilinear(mag, c + n.x, r + n.y);
-        const double curvature = mMinus - 2 * m0 + mPlus;
-        if (curvature < 0)
-          offset = std::clamp(0.5 * (mMinus - mPlus) / curvature, -0.5, 0.5);
-      }
-      const int label = labels.at<int>(r, c);
-      if (label >= static_cast<int>(labelToEdge.size()))
-        labelToEdge.resize(static_cast<std::size_t>(label) + 1, -1);
-      labelToEdge[static_cast<std::size_t>(label)] = static_cast<int>(f.edgeAt.size());
-      f.edgeAt.emplace_back(c + offset * n.x, r + offset * n.y);
-      f.edgeNormal.push_back(n);
-    }
-  // Labels to edge indices (-1: an edge on the border, not used).
-  f.nearest.create(labels.size(), CV_32S);
-  for (int r = 0; r < labels.rows; ++r)
-    for (int c = 0; c < labels.cols; ++c)
-    {
-      const int label = labels.at<int>(r, c);
-      f.nearest.at<int>(r, c) = label >= 0 && label < static_cast<int>(labelToEdge.size())
-                                    ? labelToEdge[std::size_t(label)]
-                                    : -1;
-    }
-  m_frames.push_back(std::move(f));
+  auto edges = detail::colourEdgeField(colourBgr);
+  m_frames.push_back(
+      {std::move(silhouettes.points), std::move(silhouettes.outward), std::move(edges.nearest),
+       std::move(edges.at), std::move(edges.normal)});
 }
 
-namespace
+CDepthColourCalibrator::TEvaluation CDepthColourCalibrator::evaluate(
+    const TParams& p, const std::vector<std::size_t>& frames, double truncate,
+    bool withJacobian) const
 {
-struct TEvaluation
-{
-  double cost = 0;      //!< robust cost, without the prior
-  double meanDist = 0;  //!< mean truncated distance, px
-  std::size_t points = 0;
-  TMat H;
-  TVec g;
-};
-}  // namespace
-
-CDepthColourCalibrator::TResult CDepthColourCalibrator::estimate() const
-{
-  TResult res;
-  res.sensor = m_start;
-  res.frames = m_frames.size();
-  for (const auto& f : m_frames)
-    res.points += f.points.size();
-  const TParams start = paramsOf(m_start);
-  res.estimatedPose = m_start.depth_pose_in_colour;
-  res.estimatedFx = start.fx;
-  res.estimatedFy = start.fy;
-  res.estimatedCx = start.cx;
-  res.estimatedCy = start.cy;
-
-  const auto& cc = m_start.colour;
-  cv::Mat dist(1, static_cast<int>(cc.dist.size()), CV_64F);
-  for (std::size_t i = 0; i < cc.dist.size(); ++i)
-    dist.at<double>(0, static_cast<int>(i)) = cc.dist[i];
-
-  auto evaluate = [&](const TParams& p, const std::vector<std::size_t>& frames, double truncate,
-                      bool withJacobian)
+  TEvaluation e;
+  const cv::Matx33d K = p.K();
+  double sumDist = 0;
+  std::vector<cv::Point2d> img;
+  cv::Mat jac;
+  for (const std::size_t fi : frames)
   {
-    TEvaluation e;
-    const cv::Matx33d K(p.fx, 0, p.cx, 0, p.fy, p.cy, 0, 0, 1);
-    double sumDist = 0;
-    std::vector<cv::Point2d> img;
-    cv::Mat jac;
-    for (const std::size_t fi : frames)
+    const TFrame& f = m_frames[fi];
+    if (withJacobian)
+      cv::projectPoints(f.points, p.rvec, p.tvec, K, m_colourDistortion, img, jac);
+    else
+      cv::projectPoints(f.points, p.rvec, p.tvec, K, m_colourDistortion, img);
+    const double maxU = f.nearest.cols - 1, maxV = f.nearest.rows - 1;
+    for (std::size_t i = 0; i < img.size(); ++i)
     {
-      const TFrame& f = m_frames[fi];
-      if (withJacobian)
-        cv::projectPoints(f.points, p.rvec, p.tvec, K, dist, img, jac);
-      else
-        cv::projectPoints(f.points, p.rvec, p.tvec, K, dist, img);
-      const double maxU = f.nearest.cols - 1, maxV = f.nearest.rows - 1;
-      for (std::size_t i = 0; i < img.size(); ++i)
+      ++e.points;
+      // A depth camera's silhouettes may sit off the true one, outwards (a
+      // structured-light camera's correlation window widens the near
+      // surface) or inwards; one offset for all, estimated alongside.
+      const double u = img[i].x + p.silhouette * f.outward[i].x,
+                   v = img[i].y + p.silhouette * f.outward[i].y;
+      const int edge = u >= 0 && v >= 0 && u < maxU && v < maxV
+                           ? f.nearest.at<int>(int(std::lround(v)), int(std::lround(u)))
+                           : -1;
+      const cv::Point2d off =
+          edge >= 0 ? cv::Point2d(u, v) - f.edgeAt[std::size_t(edge)] : cv::Point2d();
+      const double d = edge >= 0 ? std::hypot(off.x, off.y) : truncate;
+      if (d >= truncate)
       {
-        ++e.points;
-        // A depth camera's silhouettes may sit off the true one, outwards (a
-        // structured-light camera's correlation window widens the near
-        // surface) or inwards; one offset for all, estimated alongside.
-        const double u = img[i].x + p.silhouette * f.outward[i].x,
-                     v = img[i].y + p.silhouette * f.outward[i].y;
-        const int edge = u >= 0 && v >= 0 && u < maxU && v < maxV
-                             ? f.nearest.at<int>(int(std::lround(v)), int(std::lround(u)))
-                             : -1;
-        const cv::Point2d off =
-            edge >= 0 ? cv::Point2d(u, v) - f.edgeAt[std::size_t(edge)] : cv::Point2d();
-        const double d = edge >= 0 ? std::hypot(off.x, off.y) : truncate;
-        if (d >= truncate)
-        {
-          sumDist += truncate;
-          e.cost += huberCost(truncate, m_options.huber_px);
-          continue;
-        }
-        // Point to line: the offset across the edge (along it, the edge
-        // continues and says nothing).
-        const cv::Point2d n = f.edgeNormal[std::size_t(edge)];
-        const double r = n.dot(off), ar = std::abs(r);
-        sumDist += d;
-        e.cost += huberCost(ar, m_options.huber_px);
-        if (!withJacobian)
-          continue;
-        const double w = ar <= m_options.huber_px ? 1.0 : m_options.huber_px / ar;
-        const double* ju = jac.ptr<double>(static_cast<int>(2 * i));
-        const double* jv = jac.ptr<double>(static_cast<int>(2 * i + 1));
-        TVec J;
-        for (int k = 0; k < kProjectionParams; ++k)
-          J[k] = n.x * ju[k] + n.y * jv[k];
-        J[kProjectionParams] = n.dot(f.outward[i]);
-        for (int a = 0; a < kParams; ++a)
-        {
-          e.g[a] += w * J[a] * r;
-          for (int b = 0; b < kParams; ++b)
-            e.H(a, b) += w * J[a] * J[b];
-        }
+        sumDist += truncate;
+        e.cost += huberCost(truncate, m_options.huber_px);
+        continue;
+      }
+      // Point to line: the offset across the edge (along it, the edge
+      // continues and says nothing).
+      const cv::Point2d n = f.edgeNormal[std::size_t(edge)];
+      const double r = n.dot(off), ar = std::abs(r);
+      sumDist += d;
+      e.cost += huberCost(ar, m_options.huber_px);
+      if (!withJacobian)
+        continue;
+      const double w = ar <= m_options.huber_px ? 1.0 : m_options.huber_px / ar;
+      const double* ju = jac.ptr<double>(static_cast<int>(2 * i));
+      const double* jv = jac.ptr<double>(static_cast<int>(2 * i + 1));
+      TVec J;
+      for (int k = 0; k < kProjectionParams; ++k)
+        J[k] = n.x * ju[k] + n.y * jv[k];
+      J[kProjectionParams] = n.dot(f.outward[i]);
+      for (int a = 0; a < kParams; ++a)
+      {
+        e.g[a] += w * J[a] * r;
+        for (int b = 0; b < kParams; ++b)
+          e.H(a, b) += w * J[a] * J[b];
       }
     }
-    e.meanDist = e.points ? sumDist / double(e.points) : 0;
-    return e;
-  };
-
-  const double rot = mrpt::DEG2RAD(m_options.prior_rotation_deg);
-  const double trans = m_options.prior_translation_m;
-  auto priorSigmas = [&]()
-  {
-    TVec s;
-    for (int k = 0; k < 3; ++k)
-    {
-      s[k] = rot;
-      s[3 + k] = trans;
-    }
-    s[5] = m_options.prior_translation_z_m;
-    s[6] = m_options.prior_focal_ratio * start.fx;
-    s[7] = m_options.prior_focal_ratio * start.fy;
-    s[8] = s[9] = m_options.prior_principal_px;
-    s[10] = m_options.prior_silhouette_px;
-    return s;
-  };
-  const TVec theta0 = start.asVec();
-
-  auto solve = [&](TParams p, const std::vector<std::size_t>& frames)
-  {
-    const TVec sig = priorSigmas();
-    auto priorCost = [&](const TVec& th)
-    {
-      double c = 0;
-      for (int k = 0; k < kParams; ++k)
-        c += 0.5 * std::pow((th[k] - theta0[k]) / sig[k], 2);
-      return c;
-    };
-    for (int it = 0; it < m_options.iterations; ++it)
-    {
-      // Wide truncation first: the start may be several pixels off.
-      const double truncate =
-          it < m_options.iterations / 3 ? 2 * m_options.truncate_px : m_options.truncate_px;
-      TEvaluation e = evaluate(p, frames, truncate, true);
-      const TVec th = p.asVec();
-      for (int k = 0; k < kParams; ++k)
-      {
-        e.H(k, k) += 1.0 / (sig[k] * sig[k]);
-        e.g[k] += (th[k] - theta0[k]) / (sig[k] * sig[k]);
-      }
-      TVec delta;
-      if (!cv::solve(e.H, -e.g, delta, cv::DECOMP_CHOLESKY))
-        break;
-      const double before = e.cost + priorCost(th);
-      bool improved = false;
-      for (double scale = 1; scale > 1e-3; scale *= 0.5)
-      {
-        const TVec cand = th + scale * delta;
-        const TParams q = TParams::fromVec(cand);
-        if (evaluate(q, frames, truncate, false).cost + priorCost(cand) < before)
-        {
-          p = q;
-          improved = true;
-          delta *= scale;
-          break;
-        }
-      }
-      if (!improved)
-        break;
-      const bool small = std::abs(delta[0]) + std::abs(delta[1]) + std::abs(delta[2]) < 1e-6 &&
-                         std::abs(delta[3]) + std::abs(delta[4]) + std::abs(delta[5]) < 1e-6 &&
-                         std::abs(delta[6]) + std::abs(delta[7]) < 1e-3;
-      if (small)
-        break;
-    }
-    return p;
-  };
-
-  if (m_frames.size() < m_options.min_frames)
-  {
-    res.reason = "only " + std::to_string(m_frames.size()) + " frame(s) with depth edges (" +
-                 std::to_string(m_options.min_frames) + " needed)";
-    return res;
   }
-  std::vector<std::size_t> all(m_frames.size());
-  std::iota(all.begin(), all.end(), 0);
-  const TParams joint = solve(start, all);
-  res.distanceStartPx = evaluate(start, all, m_options.truncate_px, false).meanDist;
-  res.distanceEstimatePx = evaluate(joint, all, m_options.truncate_px, false).meanDist;
-  // The other reading of the same data: depth already on the colour grid
-  // (the depth camera's pixels taken as the colour camera's).
-  const auto& dcam = m_start.depth;
-  if (dcam.ncols == cc.ncols && dcam.nrows == cc.nrows)
+  e.meanDist = e.points ? sumDist / double(e.points) : 0;
+  return e;
+}
+
+CDepthColourCalibrator::TParams CDepthColourCalibrator::solve(
+    TParams p, const std::vector<std::size_t>& frames) const
+{
+  const TParams start = TParams::of(m_start);
+  const TVec theta0 = start.asVec(), sig = priorSigmas(m_options, start.fx, start.fy);
+  auto priorCost = [&](const TVec& th)
   {
-    TParams registered;
-    registered.fx = dcam.fx();
-    registered.fy = dcam.fy();
-    registered.cx = dcam.cx();
-    registered.cy = dcam.cy();
-    res.distanceRegisteredPx = evaluate(registered, all, m_options.truncate_px, false).meanDist;
+    double c = 0;
+    for (int k = 0; k < kParams; ++k)
+      c += 0.5 * std::pow((th[k] - theta0[k]) / sig[k], 2);
+    return c;
+  };
+  for (int it = 0; it < m_options.iterations; ++it)
+  {
+    // Wide truncation first: the start may be several pixels off.
+    const double truncate =
+        it < m_options.iterations / 3 ? 2 * m_options.truncate_px : m_options.truncate_px;
+    TEvaluation e = evaluate(p, frames, truncate, true);
+    const TVec th = p.asVec();
+    for (int k = 0; k < kParams; ++k)
+    {
+      e.H(k, k) += 1.0 / (sig[k] * sig[k]);
+      e.g[k] += (th[k] - theta0[k]) / (sig[k] * sig[k]);
+    }
+    TVec delta;
+    if (!cv::solve(e.H, -e.g, delta, cv::DECOMP_CHOLESKY))
+      break;
+    const double before = e.cost + priorCost(th);
+    bool improved = false;
+    for (double scale = 1; scale > 1e-3; scale *= 0.5)
+    {
+      const TVec cand = th + scale * delta;
+      const TParams q = TParams::fromVec(cand);
+      if (evaluate(q, frames, truncate, false).cost + priorCost(cand) < before)
+      {
+        p = q;
+        improved = true;
+        delta *= scale;
+        break;
+      }
+    }
+    if (!improved)
+      break;
+    const bool small = std::abs(delta[0]) + std::abs(delta[1]) + std::abs(delta[2]) < 1e-6 &&
+                       std::abs(delta[3]) + std::abs(delta[4]) + std::abs(delta[5]) < 1e-6 &&
+                       std::abs(delta[6]) + std::abs(delta[7]) < 1e-3;
+    if (small)
+      break;
   }
-  res.estimatedPose = poseOf(joint);
-  res.estimatedFx = joint.fx;
-  res.estimatedFy = joint.fy;
+  return p;
+}
 
-  res.estimatedCx = joint.cx;
-  res.estimatedCy = joint.cy;
-  res.silhouetteOffsetPx = joint.silhouette;
+std::vector<cv::Point2d> CDepthColourCalibrator::projectReference(const TParams& p) const
+{
+  std::vector<cv::Point2d> out;
+  cv::projectPoints(m_reference, p.rvec, p.tvec, p.K(), m_colourDistortion, out);
+  return out;
+}
 
-  // The spread of interleaved groups' estimates, each from the joint one
-  // under the same prior: how much the edges of different frames disagree,
-  // measured where it matters, in where depth readings land in the colour
-  // image. A rotation and a shift of the principal point move the
-  // projections nearly alike, so each alone may wander while the
-  // registration is well determined. (Under a wider prior the depth offset,
-  // which the edges hardly tell from the focal length, wanders by
-  // millimetres even where the joint estimate is right; the prior fixes it,
-  // and the plausibility test below guards it.)
+double CDepthColourCalibrator::groupSpreadPx(const TParams& joint) const
+{
+  // Each interleaved group is estimated alone from the joint estimate,
+  // under the same prior; the spread is measured where it matters, in where
+  // depth readings land in the colour image. A rotation and a shift of the
+  // principal point move the projections nearly alike, so each alone may
+  // wander while the registration is well determined. (Under a wider prior
+  // the depth offset, which the edges hardly tell from the focal length,
+  // wanders by millimetres even where the joint estimate is right; the
+  // prior fixes it, and the plausibility test of whyNotUsed() guards it.)
   const int G = std::max(2, m_options.groups);
-  std::vector<TParams> groupEst;
+  std::vector<std::vector<cv::Point2d>> proj;
   for (int g = 0; g < G; ++g)
   {
     std::vector<std::size_t> frames;
     for (std::size_t i = static_cast<std::size_t>(g); i < m_frames.size(); i += std::size_t(G))
       frames.push_back(i);
     if (!frames.empty())
-      groupEst.push_back(solve(joint, frames));
+      proj.push_back(projectReference(solve(joint, frames)));
   }
-  // Reference readings: a grid over the depth image at 1, 2 and 4 m.
-  std::vector<cv::Point3d> ref;
-  for (double z : {1.0, 2.0, 4.0})
-    for (int i = 0; i < 8; ++i)
-      for (int j = 0; j < 6; ++j)
-      {
-        const double u = (i + 0.5) * dcam.ncols / 8.0, v = (j + 0.5) * dcam.nrows / 6.0;
-        ref.emplace_back((u - dcam.cx()) / dcam.fx() * z, (v - dcam.cy()) / dcam.fy() * z, z);
-      }
-  const auto project = [&](const TParams& p)
-  {
-    std::vector<cv::Point2d> out;
-    cv::projectPoints(
-        ref, p.rvec, p.tvec, cv::Matx33d(p.fx, 0, p.cx, 0, p.fy, p.cy, 0, 0, 1), dist, out);
-    return out;
-  };
-  std::vector<std::vector<cv::Point2d>> proj;
-  for (const auto& p : groupEst)
-    proj.push_back(project(p));
   const double n = double(proj.size());
   double sq = 0;
-  for (std::size_t k = 0; k < ref.size(); ++k)
+  for (std::size_t k = 0; k < m_reference.size(); ++k)
   {
     cv::Point2d mean(0, 0);
     for (const auto& pr : proj)
@@ -512,21 +330,19 @@ CDepthColourCalibrator::TResult CDepthColourCalibrator::estimate() const
     for (const auto& pr : proj)
       sq += (pr[k] - mean).dot(pr[k] - mean);
   }
-  res.spreadPx = std::sqrt(sq / (double(ref.size()) * std::max(1.0, n - 1)) / n);
-  {
-    const auto a = project(start), b = project(joint);
-    double d2 = 0;
-    for (std::size_t k = 0; k < ref.size(); ++k)
-      d2 += (a[k] - b[k]).dot(a[k] - b[k]);
-    res.changePx = std::sqrt(d2 / double(ref.size()));
-  }
+  return std::sqrt(sq / (double(m_reference.size()) * std::max(1.0, n - 1)) / n);
+}
 
+std::string CDepthColourCalibrator::whyNotUsed(const TResult& res, const TParams& joint) const
+{
   char why[300] = "";
   // Far outside what is known of the camera (the prior) is a failure of the
   // measurement more likely than a camera that different: a real Kinect
   // recording's edges pull the focal length and the depth offset along the
   // direction they cannot tell apart.
-  const TVec sig = priorSigmas(), change = joint.asVec() - theta0;
+  const TParams start = TParams::of(m_start);
+  const TVec sig = priorSigmas(m_options, start.fx, start.fy),
+             change = joint.asVec() - start.asVec();
   static const char* const kNames[kParams] = {
       "rotation x",
       "rotation y",
@@ -573,9 +389,68 @@ CDepthColourCalibrator::TResult CDepthColourCalibrator::estimate() const
         m_options.min_change_px);
   if (!*why && !(res.distanceEstimatePx < res.distanceStartPx))
     std::snprintf(why, sizeof(why), "the edges fit no better than at the start");
-  if (*why)
+  return why;
+}
+
+CDepthColourCalibrator::TResult CDepthColourCalibrator::estimate() const
+{
+  TResult res;
+  res.sensor = m_start;
+  res.frames = m_frames.size();
+  for (const auto& f : m_frames)
+    res.points += f.points.size();
+  // The values reported: the start's until there is an estimate.
+  const auto report = [&res](const TParams& p)
   {
-    res.reason = std::string("not used: ") + why;
+    res.estimatedPose = p.pose();
+    res.estimatedFx = p.fx;
+    res.estimatedFy = p.fy;
+    res.estimatedCx = p.cx;
+    res.estimatedCy = p.cy;
+    res.silhouetteOffsetPx = p.silhouette;
+  };
+  const TParams start = TParams::of(m_start);
+  report(start);
+  res.estimatedPose = m_start.depth_pose_in_colour;  // exactly, not through a rotation vector
+  if (m_frames.size() < m_options.min_frames)
+  {
+    res.reason = "only " + std::to_string(m_frames.size()) + " frame(s) with depth edges (" +
+                 std::to_string(m_options.min_frames) + " needed)";
+    return res;
+  }
+
+  std::vector<std::size_t> all(m_frames.size());
+  std::iota(all.begin(), all.end(), 0);
+  const TParams joint = solve(start, all);
+  report(joint);
+
+  res.distanceStartPx = evaluate(start, all, m_options.truncate_px, false).meanDist;
+  res.distanceEstimatePx = evaluate(joint, all, m_options.truncate_px, false).meanDist;
+  // The other reading of the same data: depth already on the colour grid
+  // (the depth camera's pixels taken as the colour camera's).
+  const auto& cc = m_start.colour;
+  const auto& dcam = m_start.depth;
+  if (dcam.ncols == cc.ncols && dcam.nrows == cc.nrows)
+  {
+    TParams registered;
+    registered.fx = dcam.fx();
+    registered.fy = dcam.fy();
+    registered.cx = dcam.cx();
+    registered.cy = dcam.cy();
+    res.distanceRegisteredPx = evaluate(registered, all, m_options.truncate_px, false).meanDist;
+  }
+  res.spreadPx = groupSpreadPx(joint);
+  {
+    const auto a = projectReference(start), b = projectReference(joint);
+    double d2 = 0;
+    for (std::size_t k = 0; k < m_reference.size(); ++k)
+      d2 += (a[k] - b[k]).dot(a[k] - b[k]);
+    res.changePx = std::sqrt(d2 / double(m_reference.size()));
+  }
+
+  if (const std::string why = whyNotUsed(res, joint); !why.empty())
+  {
+    res.reason = "not used: " + why;
     return res;
   }
   res.accepted = true;

@@ -157,8 +157,28 @@ class CDepthColourCalibrator
     std::vector<cv::Point2d> edgeAt;      //!< each edge's sub-pixel position
     std::vector<cv::Point2d> edgeNormal;  //!< and its unit gradient direction
   };
+  struct TParams;      //!< the 11 values estimated (defined in the .cpp)
+  struct TEvaluation;  //!< how some frames fit some values
+
+  /** The fit of `frames` at `p`: robust cost, mean truncated edge distance
+   *  and, withJacobian, the normal equations (without the prior). */
+  TEvaluation evaluate(
+      const TParams& p, const std::vector<std::size_t>& frames, double truncate,
+      bool withJacobian) const;
+  /** Gauss-Newton from `p` over `frames`, under the prior around the start. */
+  TParams solve(TParams p, const std::vector<std::size_t>& frames) const;
+  /** Where `p` lands the reference readings in the colour image. */
+  std::vector<cv::Point2d> projectReference(const TParams& p) const;
+  /** TResult::spreadPx of the interleaved frame groups, each from `joint`. */
+  double groupSpreadPx(const TParams& joint) const;
+  /** Why the estimate `joint` (its figures in `res`) is not to be used;
+   *  "" when it is. */
+  std::string whyNotUsed(const TResult& res, const TParams& joint) const;
+
   TSensorDescription m_start;
   TOptions m_options;
+  cv::Mat m_colourDistortion;            //!< m_start.colour's, as OpenCV takes it
+  std::vector<cv::Point3d> m_reference;  //!< a grid over the depth image at 1, 2, 4 m
   std::vector<TFrame> m_frames;
 };
 }  // namespace roislam::io
