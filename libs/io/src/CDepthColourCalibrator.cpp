@@ -17,9 +17,15 @@ namespace roislam::io
 namespace
 {
 // Rotation vector, translation, fx, fy, cx, cy (cv::projectPoints' Jacobian
-// columns), and the silhouettes' outward offset.
+// columns, then the distortion's: k1, k2 first), the colour camera's k1, k2,
+// and the silhouettes' outward offset.
 constexpr int kProjectionParams = 10;
-constexpr int kParams = 11;
+constexpr int kDistortionParams = 5;
+// k1, k2, p1, p2, k3: OpenCV's order in its distortion vector (and its
+// Jacobian's columns after the first kProjectionParams).
+constexpr int kDistortionIndex[kDistortionParams] = {0, 1, 2, 3, 4};
+constexpr int kSilhouette = kProjectionParams + kDistortionParams;
+constexpr int kParams = kSilhouette + 1;
 using TVec = cv::Vec<double, kParams>;
 using TMat = cv::Matx<double, kParams, kParams>;
 
@@ -33,6 +39,9 @@ struct CDepthColourCalibrator::TParams
 {
   cv::Vec3d rvec, tvec;
   double fx = 0, fy = 0, cx = 0, cy = 0;
+  /** The colour camera's distortion, as OpenCV takes it (k1, k2 estimated,
+   *  the rest the start's); none read as registered already. */
+  cv::Mat dist = cv::Mat::zeros(1, 8, CV_64F);
   double silhouette = 0;  //!< px, outwards (from the near surface to the far one)
 
   /** The values a description holds (no silhouette offset). */
@@ -50,6 +59,8 @@ struct CDepthColourCalibrator::TParams
     p.fy = s.colour.fy();
     p.cx = s.colour.cx();
     p.cy = s.colour.cy();
+    for (std::size_t i = 0; i < s.colour.dist.size() && i < 8; ++i)
+      p.dist.at<double>(0, int(i)) = s.colour.dist[i];
     return p;
   }
   mrpt::poses::CPose3D pose() const
@@ -69,18 +80,30 @@ struct CDepthColourCalibrator::TParams
   cv::Matx33d K() const { return {fx, 0, cx, 0, fy, cy, 0, 0, 1}; }
   TVec asVec() const
   {
-    return {rvec[0], rvec[1], rvec[2], tvec[0], tvec[1], tvec[2], fx, fy, cx, cy, silhouette};
+    TVec v;
+    const double values[kProjectionParams] = {rvec[0], rvec[1], rvec[2], tvec[0], tvec[1],
+                                              tvec[2], fx,      fy,      cx,      cy};
+    for (int k = 0; k < kProjectionParams; ++k)
+      v[k] = values[k];
+    for (int j = 0; j < kDistortionParams; ++j)
+      v[kProjectionParams + j] = dist.at<double>(kDistortionIndex[j]);
+    v[kSilhouette] = silhouette;
+    return v;
   }
-  static TParams fromVec(const TVec& v)
+  /** v's values, the distortion beyond k1, k2 from `like`. */
+  static TParams fromVec(const TVec& v, const TParams& like)
   {
     TParams p;
+    p.dist = like.dist.clone();
+    for (int j = 0; j < kDistortionParams; ++j)
+      p.dist.at<double>(kDistortionIndex[j]) = v[kProjectionParams + j];
     p.rvec = {v[0], v[1], v[2]};
     p.tvec = {v[3], v[4], v[5]};
     p.fx = v[6];
     p.fy = v[7];
     p.cx = v[8];
     p.cy = v[9];
-    p.silhouette = v[10];
+    p.silhouette = v[kSilhouette];
     return p;
   }
 };
@@ -110,7 +133,11 @@ TVec priorSigmas(const CDepthColourCalibrator::TOptions& o, double fx, double fy
   s[6] = o.prior_focal_ratio * fx;
   s[7] = o.prior_focal_ratio * fy;
   s[8] = s[9] = o.prior_principal_px;
-  s[10] = o.prior_silhouette_px;
+  s[10] = o.prior_k1;
+  s[11] = o.prior_k2;
+  s[12] = s[13] = o.prior_tangential;
+  s[14] = o.prior_k3;
+  s[kSilhouette] = o.prior_silhouette_px;
   return s;
 }
 }  // namespace
@@ -139,10 +166,11 @@ CDepthColourCalibrator::CDepthColourCalibrator(
 {
   if (const std::string why = whyNotEstimable(start); !why.empty())
     throw std::invalid_argument("CDepthColourCalibrator: " + why);
-  const auto& cc = start.colour;
-  m_colourDistortion.create(1, static_cast<int>(cc.dist.size()), CV_64F);
-  for (std::size_t i = 0; i < cc.dist.size(); ++i)
-    m_colourDistortion.at<double>(0, static_cast<int>(i)) = cc.dist[i];
+  // k1, k2 come before p1, p2 and k3 in the parameters: these counts are the
+  // models OpenCV's order allows (radial, then decentring, then k3).
+  const int terms = options.distortion_terms;
+  if (terms != 0 && terms != 2 && terms != 4 && terms != 5)
+    throw std::invalid_argument("CDepthColourCalibrator: distortion_terms must be 0, 2, 4 or 5");
   // Reference readings: a grid over the depth image at 1, 2 and 4 m.
   const auto& dcam = start.depth;
   for (double z : {1.0, 2.0, 4.0})
@@ -190,9 +218,9 @@ CDepthColourCalibrator::TEvaluation CDepthColourCalibrator::evaluate(
   {
     const TFrame& f = m_frames[fi];
     if (withJacobian)
-      cv::projectPoints(f.points, p.rvec, p.tvec, K, m_colourDistortion, img, jac);
+      cv::projectPoints(f.points, p.rvec, p.tvec, K, p.dist, img, jac);
     else
-      cv::projectPoints(f.points, p.rvec, p.tvec, K, m_colourDistortion, img);
+      cv::projectPoints(f.points, p.rvec, p.tvec, K, p.dist, img);
     const double maxU = f.nearest.cols - 1, maxV = f.nearest.rows - 1;
     for (std::size_t i = 0; i < img.size(); ++i)
     {
@@ -228,7 +256,12 @@ CDepthColourCalibrator::TEvaluation CDepthColourCalibrator::evaluate(
       TVec J;
       for (int k = 0; k < kProjectionParams; ++k)
         J[k] = n.x * ju[k] + n.y * jv[k];
-      J[kProjectionParams] = n.dot(f.outward[i]);
+      for (int j = 0; j < kDistortionParams; ++j)
+      {
+        const int col = kProjectionParams + kDistortionIndex[j];
+        J[kProjectionParams + j] = n.x * ju[col] + n.y * jv[col];
+      }
+      J[kSilhouette] = n.dot(f.outward[i]);
       for (int a = 0; a < kParams; ++a)
       {
         e.g[a] += w * J[a] * r;
@@ -246,6 +279,10 @@ CDepthColourCalibrator::TParams CDepthColourCalibrator::solve(
 {
   const TParams start = TParams::of(m_start);
   const TVec theta0 = start.asVec(), sig = priorSigmas(m_options, start.fx, start.fy);
+  // Distortion held at the start's: its columns and prior dropped.
+  // Distortion terms beyond distortion_terms held at the start's: their
+  // rows of the normal equations replaced by "no change".
+  const int terms = m_options.distortion_terms;
   auto priorCost = [&](const TVec& th)
   {
     double c = 0;
@@ -265,6 +302,13 @@ CDepthColourCalibrator::TParams CDepthColourCalibrator::solve(
       e.H(k, k) += 1.0 / (sig[k] * sig[k]);
       e.g[k] += (th[k] - theta0[k]) / (sig[k] * sig[k]);
     }
+    for (int k = kProjectionParams + std::clamp(terms, 0, kDistortionParams); k < kSilhouette; ++k)
+    {
+      for (int j = 0; j < kParams; ++j)
+        e.H(k, j) = e.H(j, k) = 0;
+      e.H(k, k) = 1;
+      e.g[k] = 0;
+    }
     TVec delta;
     if (!cv::solve(e.H, -e.g, delta, cv::DECOMP_CHOLESKY))
       break;
@@ -273,7 +317,7 @@ CDepthColourCalibrator::TParams CDepthColourCalibrator::solve(
     for (double scale = 1; scale > 1e-3; scale *= 0.5)
     {
       const TVec cand = th + scale * delta;
-      const TParams q = TParams::fromVec(cand);
+      const TParams q = TParams::fromVec(cand, start);
       if (evaluate(q, frames, truncate, false).cost + priorCost(cand) < before)
       {
         p = q;
@@ -296,7 +340,7 @@ CDepthColourCalibrator::TParams CDepthColourCalibrator::solve(
 std::vector<cv::Point2d> CDepthColourCalibrator::projectReference(const TParams& p) const
 {
   std::vector<cv::Point2d> out;
-  cv::projectPoints(m_reference, p.rvec, p.tvec, p.K(), m_colourDistortion, out);
+  cv::projectPoints(m_reference, p.rvec, p.tvec, p.K(), p.dist, out);
   return out;
 }
 
@@ -333,6 +377,44 @@ double CDepthColourCalibrator::groupSpreadPx(const TParams& joint) const
   return std::sqrt(sq / (double(m_reference.size()) * std::max(1.0, n - 1)) / n);
 }
 
+std::string CDepthColourCalibrator::whereDistortionFolds(const TParams& p) const
+{
+  // Along rays from the principal point, the distorted radius must grow
+  // until the image's border is reached: a polynomial fitted to where the
+  // edges are may turn back beyond them, and an image point would then have
+  // two rays (undistortion would pick one at random).
+  const auto& cc = m_start.colour;
+  const auto& d = p.dist;
+  const double k1 = d.at<double>(0), k2 = d.at<double>(1), q1 = d.at<double>(2),
+               q2 = d.at<double>(3), k3 = d.at<double>(4);
+  const auto distort = [&](double x, double y)
+  {
+    const double r2 = x * x + y * y, radial = 1 + r2 * (k1 + r2 * (k2 + r2 * k3));
+    return cv::Point2d(
+        p.fx * (x * radial + 2 * q1 * x * y + q2 * (r2 + 2 * x * x)) + p.cx,
+        p.fy * (y * radial + q1 * (r2 + 2 * y * y) + 2 * q2 * x * y) + p.cy);
+  };
+  const cv::Point2d pp(p.cx, p.cy);
+  for (int a = 0; a < 72; ++a)
+  {
+    const double th = a * CV_PI / 36, cx = std::cos(th), cy = std::sin(th);
+    double last = 0;
+    bool out = false;
+    for (double r = 0.005; r < 3 && !out; r += 0.005)
+    {
+      const cv::Point2d q = distort(r * cx / p.fx * p.fy, r * cy);
+      const double along = (q - pp).dot(cv::Point2d(cx, cy));
+      if (!(along > last))
+        return "folds back inside the image";
+      last = along;
+      out = q.x < 0 || q.y < 0 || q.x > cc.ncols - 1 || q.y > cc.nrows - 1;
+    }
+    if (!out)
+      return "never reaches the image's border";
+  }
+  return "";
+}
+
 std::string CDepthColourCalibrator::whyNotUsed(const TResult& res, const TParams& joint) const
 {
   char why[300] = "";
@@ -354,7 +436,15 @@ std::string CDepthColourCalibrator::whyNotUsed(const TResult& res, const TParams
       "fy",
       "cx",
       "cy",
+      "k1",
+      "k2",
+      "p1",
+      "p2",
+      "k3",
       "silhouette offset"};
+  // A lens that is no lens first (it says most about the estimate).
+  if (const std::string fold = whereDistortionFolds(joint); !fold.empty())
+    std::snprintf(why, sizeof(why), "the estimated lens %s: implausible", fold.c_str());
   for (int k = 0; k < kParams && !*why; ++k)
     if (std::abs(change[k]) > m_options.max_prior_sigmas * sig[k])
       std::snprintf(
@@ -407,6 +497,11 @@ CDepthColourCalibrator::TResult CDepthColourCalibrator::estimate() const
     res.estimatedFy = p.fy;
     res.estimatedCx = p.cx;
     res.estimatedCy = p.cy;
+    res.estimatedK1 = p.dist.at<double>(0);
+    res.estimatedK2 = p.dist.at<double>(1);
+    res.estimatedP1 = p.dist.at<double>(2);
+    res.estimatedP2 = p.dist.at<double>(3);
+    res.estimatedK3 = p.dist.at<double>(4);
     res.silhouetteOffsetPx = p.silhouette;
   };
   const TParams start = TParams::of(m_start);
@@ -457,6 +552,13 @@ CDepthColourCalibrator::TResult CDepthColourCalibrator::estimate() const
   res.reason = "well determined";
   res.sensor.depth_pose_in_colour = res.estimatedPose;
   res.sensor.colour.setIntrinsicParamsFromValues(joint.fx, joint.fy, joint.cx, joint.cy);
+  for (int j = 0; j < kDistortionParams; ++j)
+    res.sensor.colour.dist[std::size_t(kDistortionIndex[j])] =
+        joint.dist.at<double>(kDistortionIndex[j]);
+  if (std::any_of(
+          res.sensor.colour.dist.begin(), res.sensor.colour.dist.end(),
+          [](double d) { return d != 0; }))
+    res.sensor.colour.distortion = mrpt::img::DistortionModel::plumb_bob;
   res.sensor.estimate_registration = false;
   return res;
 }
@@ -469,13 +571,16 @@ std::string CDepthColourCalibrator::TResult::summary() const
       text, sizeof(text),
       "%s from %zu frames (%zu depth-edge points): depth pose in colour [%.4f %.4f %.4f m %.2f "
       "%.2f "
-      "%.2f deg], colour fx %.1f fy %.1f cx %.1f cy %.1f, silhouettes %+.2f px; edge distance "
+      "%.2f deg], colour fx %.1f fy %.1f cx %.1f cy %.1f k1 %.3f k2 %.3f p1 %.4f p2 %.4f k3 %.3f, "
+      "silhouettes %+.2f px; "
+      "edge distance "
       "%.2f -> %.2f px, spread "
       "%.2f px, %.2f px from the start: %s",
       accepted ? "registration estimated" : "registration estimate not used", frames, points, p.x(),
       p.y(), p.z(), mrpt::RAD2DEG(p.yaw()), mrpt::RAD2DEG(p.pitch()), mrpt::RAD2DEG(p.roll()),
-      estimatedFx, estimatedFy, estimatedCx, estimatedCy, silhouetteOffsetPx, distanceStartPx,
-      distanceEstimatePx, spreadPx, changePx, reason.c_str());
+      estimatedFx, estimatedFy, estimatedCx, estimatedCy, estimatedK1, estimatedK2, estimatedP1,
+      estimatedP2, estimatedK3, silhouetteOffsetPx, distanceStartPx, distanceEstimatePx, spreadPx,
+      changePx, reason.c_str());
   return text;
 }
 }  // namespace roislam::io

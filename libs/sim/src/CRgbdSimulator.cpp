@@ -12,9 +12,11 @@
 #include <cmath>
 #include <cstdlib>
 #include <opencv2/imgproc.hpp>
+#include <optional>
 #include <stdexcept>
 #include <vector>
 
+#include "LensDistortion.h"
 #include "roislam/io/TumAccelerometer.h"
 #include "roislam/sim/CDisparityNoiseModel.h"
 #include "roislam/sim/CKinectNoiseModel.h"
@@ -112,6 +114,10 @@ struct CRgbdSimulator::Impl
 {
   mrpt::opengl::COpenGLScene::Ptr glScene;
   std::unique_ptr<mrpt::opengl::CFBORender> fbo;
+  detail::TDistortion dist{};  //!< colour_dist
+  /** Where the distorted colour image finds its content (made at the first
+   *  render; none without distortion). */
+  std::optional<detail::TDistortionMap> lens;
 };
 
 CRgbdSimulator::CRgbdSimulator(const TOptions& options)
@@ -123,6 +129,7 @@ CRgbdSimulator::CRgbdSimulator(const TOptions& options)
       m_path(pathParams(options), (options.frames - 1) / options.fps),
       m_impl(std::make_unique<Impl>())
 {
+  m_impl->dist = *detail::parseDistortion(m_opts.colourDist);  // validated
 }
 
 CRgbdSimulator::~CRgbdSimulator()
@@ -145,6 +152,9 @@ mrpt::img::TCamera CRgbdSimulator::camera() const
   c.cx(m_opts.cx);
   c.cy(m_opts.cy);
   c.dist.fill(0);
+  std::copy(m_impl->dist.begin(), m_impl->dist.end(), c.dist.begin());
+  if (!detail::isZero(m_impl->dist))
+    c.distortion = mrpt::img::DistortionModel::plumb_bob;
   c.cameraName = "rgbd-simul";
   return c;
 }
@@ -154,6 +164,8 @@ mrpt::img::TCamera CRgbdSimulator::depthCamera() const
   if (m_opts.depthRegistered)
     return camera();
   mrpt::img::TCamera c = camera();
+  c.dist.fill(0);
+  c.distortion = mrpt::img::DistortionModel::none;
   c.fx(m_opts.depthFx);
   c.fy(m_opts.depthFy);
   c.cx(m_opts.depthCx);
@@ -261,9 +273,18 @@ struct CRgbdSimulator::TBands
   mrpt::math::CMatrixFloat depthSS;  //!< supersampled depth, m
 };
 
+double CRgbdSimulator::readoutRow(double renderRow) const
+{
+  if (!m_impl->lens)
+    return renderRow;
+  // The render's row at the principal point's column, through the lens.
+  const double yUndistorted = (renderRow - m_opts.cy) / (m_opts.fy / m_impl->lens->zoom);
+  return m_opts.fy * detail::distortNormalised(m_impl->dist, {0, yUndistorted}).y + m_opts.cy;
+}
+
 CRgbdSimulator::TBands CRgbdSimulator::renderBands(
     std::size_t i, const mrpt::poses::CPose3D& offset, double fx, double fy, double cx, double cy,
-    double dt, bool exposed)
+    double dt, bool exposed, bool colourLens)
 {
   const unsigned ss = m_opts.supersampling;
   const unsigned W = m_opts.width, H = m_opts.height;
@@ -281,7 +302,8 @@ CRgbdSimulator::TBands CRgbdSimulator::renderBands(
   {
     // Row y is read at t + (y / H - 0.5) * readout: the middle row at the
     // frame's stamp, where the ground truth is.
-    const double yMid = r0 + (bandRows - 1) / 2.0;
+    const double yMid =
+        colourLens ? readoutRow(r0 + (bandRows - 1) / 2.0) : r0 + (bandRows - 1) / 2.0;
     const double t = tFrame + (yMid / H - 0.5) * m_opts.rollingShutterMs * 1e-3;
     const mrpt::img::TCamera pinhole = bandPinhole(fx, fy, cx, cy, ss, W, bandRows, r0);
     const unsigned rows = std::min(bandRows, H - r0) * ss;
@@ -409,27 +431,45 @@ CRgbdSimulator::TFrame CRgbdSimulator::renderFrame(std::size_t i)
   }
   const bool shifted = shiftX != 0 || shiftY != 0;
   f.colourShiftPx = {shiftX, shiftY};
+  // A distorted colour image: a pinhole render (zoomed out if the lens sees
+  // more) resampled through the lens, supersampled, then averaged down.
+  const bool lens = !detail::isZero(m_impl->dist);
+  if (lens && !m_impl->lens)
+    m_impl->lens = detail::makeDistortionMap(
+        m_impl->dist, W, H, m_opts.fx, m_opts.fy, m_opts.cx, m_opts.cy, ss);
+  const double zoom = lens ? m_impl->lens->zoom : 1.0;
   TBands colour = renderBands(
-      i, mrpt::poses::CPose3D(), m_opts.fx, m_opts.fy, m_opts.cx + shiftX, m_opts.cy + shiftY, 0,
-      true);
-  if (ss == 1)
-    f.rgb = colour.rgbSS;
+      i, mrpt::poses::CPose3D(), m_opts.fx / zoom, m_opts.fy / zoom, m_opts.cx + shiftX,
+      m_opts.cy + shiftY, 0, true, lens);
+  cv::Mat rgbSS;
+  if (lens)
+    cv::remap(
+        colour.rgbSS, rgbSS, m_impl->lens->ssMapX, m_impl->lens->ssMapY, cv::INTER_LINEAR,
+        cv::BORDER_REPLICATE);
   else
-    cv::resize(colour.rgbSS, f.rgb, cv::Size(W, H), 0, 0, cv::INTER_AREA);
+    rgbSS = colour.rgbSS;
+  if (ss == 1)
+    f.rgb = rgbSS;
+  else
+    cv::resize(rgbSS, f.rgb, cv::Size(W, H), 0, 0, cv::INTER_AREA);
   // Unregistered depth: its own camera, rendered from where it sits on the
   // sensor, at the same row times (its rows read out with the colour's).
   // Depth stamped apart from colour, or the colour shifted: rendered on its
   // own.
   const double dt = m_opts.depthTimeOffset;
-  const TBands depth = m_opts.depthRegistered
-                           ? (dt == 0 && !shifted ? std::move(colour)
-                                                  : renderBands(
-                                                        i, mrpt::poses::CPose3D(), m_opts.fx,
-                                                        m_opts.fy, m_opts.cx, m_opts.cy, dt))
-                           : renderBands(
-                                 i, depthPoseInColour(), m_opts.depthFx, m_opts.depthFy,
-                                 m_opts.depthCx, m_opts.depthCy, dt);
-  f.depth = depthAtPixelCentres(depth.depthSS, ss, W, H);
+  const TBands depth =
+      m_opts.depthRegistered
+          ? (dt == 0 && !shifted ? std::move(colour)
+                                 : renderBands(
+                                       i, mrpt::poses::CPose3D(), m_opts.fx / zoom,
+                                       m_opts.fy / zoom, m_opts.cx, m_opts.cy, dt, false, lens))
+          : renderBands(
+                i, depthPoseInColour(), m_opts.depthFx, m_opts.depthFy, m_opts.depthCx,
+                m_opts.depthCy, dt);
+  // Registered depth lies on the (distorted) colour grid.
+  f.depth = lens && m_opts.depthRegistered
+                ? detail::depthAtCentres(depth.depthSS, ss, m_impl->lens->centres)
+                : depthAtPixelCentres(depth.depthSS, ss, W, H);
   corrupt(f, i);
   return f;
 }

@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "LensDistortion.h"
 #include "roislam/sim/CRgbdSimulator.h"
 
 namespace roislam::sim
@@ -150,6 +151,21 @@ void validateColourCamera(const TOptions& o, const TKeyError& fail)
   if (o.height < 16 || o.height > 4096)
     fail("height", "must be in [16, 4096]");
   validatePinhole(o, "", o.fx, o.fy, o.cx, o.cy, fail);
+  const auto dist = detail::parseDistortion(o.colourDist);
+  if (!dist)
+    fail("colour_dist", "'" + o.colourDist + "' is not [k1 k2 p1 p2 k3]");
+  if (detail::isZero(*dist))
+    return;
+  if (o.commonShiftPx > 0)
+    fail("colour_dist", "a distorted colour image cannot take common_shift_px as well");
+  try
+  {
+    detail::makeDistortionMap(*dist, o.width, o.height, o.fx, o.fy, o.cx, o.cy, 1);
+  }
+  catch (const std::invalid_argument& e)
+  {
+    fail("colour_dist", e.what());
+  }
 }
 
 void validateDepthNoise(const TOptions& o, const TKeyError& fail)
@@ -242,6 +258,7 @@ void CRgbdSimulator::TOptions::loadFromConfigFile(
   r.get("fy", fy);
   r.get("cx", cx);
   r.get("cy", cy);
+  r.get("colour_dist", colourDist);
   r.get("min_depth", minDepth);
   r.get("max_depth", maxDepth);
   r.get("depth_noise_a", depthNoiseA);
@@ -297,6 +314,7 @@ void CRgbdSimulator::TOptions::saveToConfigFile(
   wd("fy", fy);
   wd("cx", cx);
   wd("cy", cy);
+  w("colour_dist", colourDist);
   wd("min_depth", minDepth);
   wd("max_depth", maxDepth);
   wd("depth_noise_a", depthNoiseA);

@@ -12,10 +12,15 @@
  * depth_pose_in_colour and projected with the colour intrinsics (and
  * distortion); the residual is its distance, across the edge, to the
  * nearest colour (Canny) edge at that edge's sub-pixel place. Gauss-Newton
- * with Huber weights and a truncation minimises it over 11 parameters: the
- * pose (rotation vector, translation), fx, fy, cx, cy, and one offset of
- * all silhouettes outwards (a structured-light camera widens near
- * surfaces). The depth intrinsics are taken as given: the edges fix the
+ * with Huber weights and a truncation minimises it over the pose (rotation
+ * vector, translation), fx, fy, cx, cy, the colour lens's first
+ * distortion_terms coefficients (OpenCV's k1, k2, p1, p2, k3; the rest held
+ * at the start's), and one offset of all silhouettes outwards (a
+ * structured-light camera widens near surfaces). A real lens matters: behind
+ * the TUM fr1 Kinect's colour lens (up to 22 px at the corners), a pinhole
+ * fit drags the focal length and the depth offset along the direction the
+ * edges cannot tell apart, and is rejected as implausible (README "An
+ * unknown colour-depth calibration"). The depth intrinsics are taken as given: the edges fix the
  * colour camera relative to them. A prior (TOptions::prior_*) keeps poorly
  * seen directions near the start: the edges hardly tell the depth offset
  * between the cameras from the focal length, nor a small rotation from a
@@ -26,12 +31,12 @@
  * TOptions::groups interleaved groups, each estimated alone from the joint
  * estimate, and the spread of where they land depth readings in the colour
  * image must stay within max_spread_px; the mean truncated edge distance
- * must drop; no parameter may move more than max_prior_sigmas from the
- * start; the estimate must differ from the start by more than the method's
- * own error (min_change_px); and the depth read as registered already must
- * not fit better (registered_ratio: a description that calls registered
- * depth unregistered). Otherwise the start stays, and TResult::reason says
- * why.
+ * must drop; the estimated lens must map the image one to one (its
+ * distorted radius growing along every ray out to the border); no
+ * parameter may move more than max_prior_sigmas from the start; the estimate must differ from the
+ * start by more than the method's own error (min_change_px); and the depth read as registered
+ * already must not fit better (registered_ratio: a description that calls registered depth
+ * unregistered). Otherwise the start stays, and TResult::reason says why.
  *
  * TOptions (code only; every field has its default):
  *   max_points_per_frame  3000     silhouette points kept per frame (evenly)
@@ -48,6 +53,11 @@
  *   prior_focal_ratio     0.03     1-sigma prior on fx, fy (relative)
  *   prior_principal_px    10 px    1-sigma prior on cx, cy
  *   prior_silhouette_px   2 px     1-sigma prior on the silhouettes' offset
+ *   distortion_terms      5        colour distortion terms estimated: 0 (none),
+ *                                  2 (k1, k2), 4 (and p1, p2) or 5 (and k3)
+ *   prior_k1, prior_k2, prior_k3   0.25, 1, 1   1-sigma priors on the radial
+ *   prior_tangential      0.01     and tangential coefficients (wide: a Kinect
+ *                                  v1 lens reads k1 0.26, k2 -0.95, k3 1.16)
  *   max_spread_px         0.25 px  acceptance: spread of the groups at most
  *   min_change_px         0.75 px  acceptance: the estimate moves depth readings
  *                                  at least this far from the start (RMS);
@@ -89,6 +99,11 @@ class CDepthColourCalibrator
     double prior_focal_ratio = 0.03;
     double prior_principal_px = 10;
     double prior_silhouette_px = 2;
+    int distortion_terms = 5;
+    double prior_k1 = 0.25;
+    double prior_k2 = 1.0;
+    double prior_k3 = 1.0;
+    double prior_tangential = 0.01;
     double max_spread_px = 0.25;
     double min_change_px = 0.75;
     double registered_ratio = 0.8;
@@ -110,6 +125,8 @@ class CDepthColourCalibrator
     /** The estimate itself, accepted or not. */
     mrpt::poses::CPose3D estimatedPose;
     double estimatedFx = 0, estimatedFy = 0, estimatedCx = 0, estimatedCy = 0;
+    /** The colour camera's radial distortion (OpenCV's k1, k2). */
+    double estimatedK1 = 0, estimatedK2 = 0, estimatedP1 = 0, estimatedP2 = 0, estimatedK3 = 0;
     /** The depth silhouettes' offset from the colour edges, outwards (px). */
     double silhouetteOffsetPx = 0;
     std::size_t frames = 0, points = 0;
@@ -157,7 +174,7 @@ class CDepthColourCalibrator
     std::vector<cv::Point2d> edgeAt;      //!< each edge's sub-pixel position
     std::vector<cv::Point2d> edgeNormal;  //!< and its unit gradient direction
   };
-  struct TParams;      //!< the 11 values estimated (defined in the .cpp)
+  struct TParams;  //!< the 16 values estimated (some distortion terms held) (defined in the .cpp)
   struct TEvaluation;  //!< how some frames fit some values
 
   /** The fit of `frames` at `p`: robust cost, mean truncated edge distance
@@ -171,13 +188,15 @@ class CDepthColourCalibrator
   std::vector<cv::Point2d> projectReference(const TParams& p) const;
   /** TResult::spreadPx of the interleaved frame groups, each from `joint`. */
   double groupSpreadPx(const TParams& joint) const;
+  /** "" when p's colour distortion maps the image one to one, else what
+   *  is wrong with it. */
+  std::string whereDistortionFolds(const TParams& p) const;
   /** Why the estimate `joint` (its figures in `res`) is not to be used;
    *  "" when it is. */
   std::string whyNotUsed(const TResult& res, const TParams& joint) const;
 
   TSensorDescription m_start;
   TOptions m_options;
-  cv::Mat m_colourDistortion;            //!< m_start.colour's, as OpenCV takes it
   std::vector<cv::Point3d> m_reference;  //!< a grid over the depth image at 1, 2, 4 m
   std::vector<TFrame> m_frames;
 };

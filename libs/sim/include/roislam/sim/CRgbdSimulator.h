@@ -62,7 +62,17 @@
  *                      frame's keypoints, which camera.ini records as
  *                      common_pixel_sigma_px
  *   width, height      image size, px                                 [640, 480]
- *   fx, fy, cx, cy     pinhole intrinsics, px (no distortion)         [517.3 516.5 318.6 255.3]
+ *   fx, fy, cx, cy     pinhole intrinsics, px                         [517.3 516.5 318.6 255.3]
+ *   colour_dist        colour lens distortion [k1 k2 p1 p2 k3] (OpenCV's [0 0 0 0 0]
+ *                      model, as TCamera's dist; camera.ini records it).
+ *                      The distorted image is resampled from a pinhole
+ *                      render (zoomed out about the principal point when
+ *                      the lens sees more); a rolling shutter's band time
+ *                      follows the distorted row at the principal point's
+ *                      column. Registered depth is distorted alike (on the
+ *                      colour grid); an unregistered depth camera has none.
+ *                      Must map the image one to one; not with
+ *                      common_shift_px
  *   min_depth          no reading below, m                            [0.4]
  *   max_depth          no reading beyond, m (<= 13.1, PNG range)      [4.0]
  *   noise_model        kinect | disparity                             [kinect]
@@ -142,6 +152,7 @@ class CRgbdSimulator : public mrpt::system::COutputLogger
     double commonShiftPx = 0.0;
     unsigned width = 640, height = 480;
     double fx = 517.3, fy = 516.5, cx = 318.6, cy = 255.3;
+    std::string colourDist = "[0 0 0 0 0]";
     double minDepth = 0.4, maxDepth = 4.0;
     double depthNoiseA = 0.0012, depthNoiseB = 0.0019, depthNoiseZ0 = 0.4;
     double edgeJumpRatio = 0.03;
@@ -247,10 +258,14 @@ class CRgbdSimulator : public mrpt::system::COutputLogger
    *  fx, fy, cx, cy (output pixels), supersampled; dt seconds after the
    *  frame's colour time (the depth's depth_time_offset). With exposed, the
    *  colour is exposed over exposure_ms (motion blur; the depth stays the
-   *  band time's). */
+   *  band time's). colourLens: the colour pinhole of a distorted colour
+   *  image (its rows' times through readoutRow()). */
   TBands renderBands(
       std::size_t i, const mrpt::poses::CPose3D& offset, double fx, double fy, double cx, double cy,
-      double dt = 0, bool exposed = false);
+      double dt = 0, bool exposed = false, bool colourLens = false);
+  /** The output row whose readout time a render row of the colour pinhole
+   *  has (itself unless the colour is distorted). */
+  double readoutRow(double renderRow) const;
   /** Range limits and the options' noise model on a rendered frame. */
   void corrupt(TFrame& f, std::size_t i) const;
   TOptions m_opts;
