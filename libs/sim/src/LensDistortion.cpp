@@ -31,18 +31,6 @@ std::optional<TDistortion> parseDistortion(const std::string& text)
   return d;
 }
 
-std::string distortionText(const TDistortion& d)
-{
-  std::string s = "[";
-  for (std::size_t i = 0; i < d.size(); ++i)
-  {
-    char buf[32];
-    std::snprintf(buf, sizeof(buf), "%.17g", d[i]);
-    s += (i ? " " : "") + std::string(buf);
-  }
-  return s + "]";
-}
-
 bool isZero(const TDistortion& d)
 {
   return std::all_of(d.begin(), d.end(), [](double v) { return v == 0; });

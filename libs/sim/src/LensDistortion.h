@@ -22,9 +22,6 @@ using TDistortion = std::array<double, 5>;
  *  nothing when it is not numbers. */
 std::optional<TDistortion> parseDistortion(const std::string& text);
 
-/** "[k1 k2 p1 p2 k3]" with every digit (parseDistortion reads it back exactly). */
-std::string distortionText(const TDistortion& d);
-
 bool isZero(const TDistortion& d);
 
 /** Normalised undistorted (x, y) -> normalised distorted, OpenCV's model. */
