@@ -384,6 +384,39 @@ void CRgbdSimulator::corrupt(TFrame& f, std::size_t i) const
   kinect.corruptColour(f.rgb, rng);
 }
 
+const detail::TDistortionMap& CRgbdSimulator::lensMap() const
+{
+  if (!m_impl->lens)
+    m_impl->lens = detail::makeDistortionMap(
+        m_impl->dist, m_opts.width, m_opts.height, m_opts.fx, m_opts.fy, m_opts.cx, m_opts.cy,
+        m_opts.supersampling);
+  return *m_impl->lens;
+}
+
+CRgbdSimulator::TBands CRgbdSimulator::renderColour(
+    std::size_t i, double shiftX, double shiftY, cv::Mat& rgb)
+{
+  // A distorted colour image: a pinhole render (zoomed out if the lens sees
+  // more) resampled through the lens, supersampled, then averaged down.
+  const bool lens = !detail::isZero(m_impl->dist);
+  const double zoom = lens ? lensMap().zoom : 1.0;
+  TBands colour = renderBands(
+      i, mrpt::poses::CPose3D(), m_opts.fx / zoom, m_opts.fy / zoom, m_opts.cx + shiftX,
+      m_opts.cy + shiftY, 0, true, lens);
+  cv::Mat rgbSS;
+  if (lens)
+    cv::remap(
+        colour.rgbSS, rgbSS, lensMap().ssMapX, lensMap().ssMapY, cv::INTER_LINEAR,
+        cv::BORDER_REPLICATE);
+  else
+    rgbSS = colour.rgbSS;
+  if (m_opts.supersampling == 1)
+    rgb = rgbSS;
+  else
+    cv::resize(rgbSS, rgb, cv::Size(m_opts.width, m_opts.height), 0, 0, cv::INTER_AREA);
+  return colour;
+}
+
 CRgbdSimulator::TFrame CRgbdSimulator::renderFrame(std::size_t i)
 {
   if (i >= m_opts.frames)
@@ -431,27 +464,9 @@ CRgbdSimulator::TFrame CRgbdSimulator::renderFrame(std::size_t i)
   }
   const bool shifted = shiftX != 0 || shiftY != 0;
   f.colourShiftPx = {shiftX, shiftY};
-  // A distorted colour image: a pinhole render (zoomed out if the lens sees
-  // more) resampled through the lens, supersampled, then averaged down.
   const bool lens = !detail::isZero(m_impl->dist);
-  if (lens && !m_impl->lens)
-    m_impl->lens = detail::makeDistortionMap(
-        m_impl->dist, W, H, m_opts.fx, m_opts.fy, m_opts.cx, m_opts.cy, ss);
-  const double zoom = lens ? m_impl->lens->zoom : 1.0;
-  TBands colour = renderBands(
-      i, mrpt::poses::CPose3D(), m_opts.fx / zoom, m_opts.fy / zoom, m_opts.cx + shiftX,
-      m_opts.cy + shiftY, 0, true, lens);
-  cv::Mat rgbSS;
-  if (lens)
-    cv::remap(
-        colour.rgbSS, rgbSS, m_impl->lens->ssMapX, m_impl->lens->ssMapY, cv::INTER_LINEAR,
-        cv::BORDER_REPLICATE);
-  else
-    rgbSS = colour.rgbSS;
-  if (ss == 1)
-    f.rgb = rgbSS;
-  else
-    cv::resize(rgbSS, f.rgb, cv::Size(W, H), 0, 0, cv::INTER_AREA);
+  const double zoom = lens ? lensMap().zoom : 1.0;
+  TBands colour = renderColour(i, shiftX, shiftY, f.rgb);
   // Unregistered depth: its own camera, rendered from where it sits on the
   // sensor, at the same row times (its rows read out with the colour's).
   // Depth stamped apart from colour, or the colour shifted: rendered on its
@@ -468,7 +483,7 @@ CRgbdSimulator::TFrame CRgbdSimulator::renderFrame(std::size_t i)
                 m_opts.depthCy, dt);
   // Registered depth lies on the (distorted) colour grid.
   f.depth = lens && m_opts.depthRegistered
-                ? detail::depthAtCentres(depth.depthSS, ss, m_impl->lens->centres)
+                ? detail::depthAtCentres(depth.depthSS, ss, lensMap().centres)
                 : depthAtPixelCentres(depth.depthSS, ss, W, H);
   corrupt(f, i);
   return f;

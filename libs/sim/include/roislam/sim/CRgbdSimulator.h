@@ -132,6 +132,11 @@
 
 namespace roislam::sim
 {
+namespace detail
+{
+struct TDistortionMap;
+}
+
 class CRgbdSimulator : public mrpt::system::COutputLogger
 {
  public:
@@ -263,6 +268,12 @@ class CRgbdSimulator : public mrpt::system::COutputLogger
   TBands renderBands(
       std::size_t i, const mrpt::poses::CPose3D& offset, double fx, double fy, double cx, double cy,
       double dt = 0, bool exposed = false, bool colourLens = false);
+  /** The frame's colour image into rgb (CV_8UC3, through the lens if
+   *  any; shifted by common_shift_px), and its bands (the registered depth's
+   *  when the stamps agree). */
+  TBands renderColour(std::size_t i, double shiftX, double shiftY, cv::Mat& rgb);
+  /** Where the distorted colour image finds its content (made once). */
+  const detail::TDistortionMap& lensMap() const;
   /** The output row whose readout time a render row of the colour pinhole
    *  has (itself unless the colour is distorted). */
   double readoutRow(double renderRow) const;
