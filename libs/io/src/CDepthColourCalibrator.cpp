@@ -16,14 +16,12 @@ namespace roislam::io
 {
 namespace
 {
-// Rotation vector, translation, fx, fy, cx, cy (cv::projectPoints' Jacobian
-// columns, then the distortion's: k1, k2 first), the colour camera's k1, k2,
-// and the silhouettes' outward offset.
+// Rotation vector, translation, fx, fy, cx, cy, then the colour lens's k1,
+// k2, p1, p2, k3 (cv::projectPoints' Jacobian columns, in its order: the
+// lens's are its distortion vector's first five), and the silhouettes'
+// outward offset.
 constexpr int kProjectionParams = 10;
 constexpr int kDistortionParams = 5;
-// k1, k2, p1, p2, k3: OpenCV's order in its distortion vector (and its
-// Jacobian's columns after the first kProjectionParams).
-constexpr int kDistortionIndex[kDistortionParams] = {0, 1, 2, 3, 4};
 constexpr int kSilhouette = kProjectionParams + kDistortionParams;
 constexpr int kParams = kSilhouette + 1;
 using TVec = cv::Vec<double, kParams>;
@@ -39,8 +37,9 @@ struct CDepthColourCalibrator::TParams
 {
   cv::Vec3d rvec, tvec;
   double fx = 0, fy = 0, cx = 0, cy = 0;
-  /** The colour camera's distortion, as OpenCV takes it (k1, k2 estimated,
-   *  the rest the start's); none read as registered already. */
+  /** The colour camera's distortion, as OpenCV takes it (the first
+   *  kDistortionParams estimated, the rest the start's); none read as
+   *  registered already. */
   cv::Mat dist = cv::Mat::zeros(1, 8, CV_64F);
   double silhouette = 0;  //!< px, outwards (from the near surface to the far one)
 
@@ -86,17 +85,17 @@ struct CDepthColourCalibrator::TParams
     for (int k = 0; k < kProjectionParams; ++k)
       v[k] = values[k];
     for (int j = 0; j < kDistortionParams; ++j)
-      v[kProjectionParams + j] = dist.at<double>(kDistortionIndex[j]);
+      v[kProjectionParams + j] = dist.at<double>(j);
     v[kSilhouette] = silhouette;
     return v;
   }
-  /** v's values, the distortion beyond k1, k2 from `like`. */
+  /** v's values, the distortion beyond its first kDistortionParams from `like`. */
   static TParams fromVec(const TVec& v, const TParams& like)
   {
     TParams p;
     p.dist = like.dist.clone();
     for (int j = 0; j < kDistortionParams; ++j)
-      p.dist.at<double>(kDistortionIndex[j]) = v[kProjectionParams + j];
+      p.dist.at<double>(j) = v[kProjectionParams + j];
     p.rvec = {v[0], v[1], v[2]};
     p.tvec = {v[3], v[4], v[5]};
     p.fx = v[6];
@@ -254,13 +253,8 @@ CDepthColourCalibrator::TEvaluation CDepthColourCalibrator::evaluate(
       const double* ju = jac.ptr<double>(static_cast<int>(2 * i));
       const double* jv = jac.ptr<double>(static_cast<int>(2 * i + 1));
       TVec J;
-      for (int k = 0; k < kProjectionParams; ++k)
+      for (int k = 0; k < kSilhouette; ++k)
         J[k] = n.x * ju[k] + n.y * jv[k];
-      for (int j = 0; j < kDistortionParams; ++j)
-      {
-        const int col = kProjectionParams + kDistortionIndex[j];
-        J[kProjectionParams + j] = n.x * ju[col] + n.y * jv[col];
-      }
       J[kSilhouette] = n.dot(f.outward[i]);
       for (int a = 0; a < kParams; ++a)
       {
@@ -279,7 +273,6 @@ CDepthColourCalibrator::TParams CDepthColourCalibrator::solve(
 {
   const TParams start = TParams::of(m_start);
   const TVec theta0 = start.asVec(), sig = priorSigmas(m_options, start.fx, start.fy);
-  // Distortion held at the start's: its columns and prior dropped.
   // Distortion terms beyond distortion_terms held at the start's: their
   // rows of the normal equations replaced by "no change".
   const int terms = m_options.distortion_terms;
@@ -302,7 +295,7 @@ CDepthColourCalibrator::TParams CDepthColourCalibrator::solve(
       e.H(k, k) += 1.0 / (sig[k] * sig[k]);
       e.g[k] += (th[k] - theta0[k]) / (sig[k] * sig[k]);
     }
-    for (int k = kProjectionParams + std::clamp(terms, 0, kDistortionParams); k < kSilhouette; ++k)
+    for (int k = kProjectionParams + terms; k < kSilhouette; ++k)
     {
       for (int j = 0; j < kParams; ++j)
         e.H(k, j) = e.H(j, k) = 0;
@@ -384,25 +377,21 @@ std::string CDepthColourCalibrator::whereDistortionFolds(const TParams& p) const
   // edges are may turn back beyond them, and an image point would then have
   // two rays (undistortion would pick one at random).
   const auto& cc = m_start.colour;
-  const auto& d = p.dist;
-  const double k1 = d.at<double>(0), k2 = d.at<double>(1), q1 = d.at<double>(2),
-               q2 = d.at<double>(3), k3 = d.at<double>(4);
-  const auto distort = [&](double x, double y)
-  {
-    const double r2 = x * x + y * y, radial = 1 + r2 * (k1 + r2 * (k2 + r2 * k3));
-    return cv::Point2d(
-        p.fx * (x * radial + 2 * q1 * x * y + q2 * (r2 + 2 * x * x)) + p.cx,
-        p.fy * (y * radial + q1 * (r2 + 2 * y * y) + 2 * q2 * x * y) + p.cy);
-  };
   const cv::Point2d pp(p.cx, p.cy);
+  std::vector<cv::Point3d> ray;
+  std::vector<cv::Point2d> px;
   for (int a = 0; a < 72; ++a)
   {
     const double th = a * CV_PI / 36, cx = std::cos(th), cy = std::sin(th);
+    ray.clear();
+    for (double r = 0.005; r < 3; r += 0.005)
+      ray.emplace_back(r * cx / p.fx * p.fy, r * cy, 1.0);
+    cv::projectPoints(ray, cv::Vec3d(), cv::Vec3d(), p.K(), p.dist, px);
     double last = 0;
     bool out = false;
-    for (double r = 0.005; r < 3 && !out; r += 0.005)
+    for (std::size_t i = 0; i < px.size() && !out; ++i)
     {
-      const cv::Point2d q = distort(r * cx / p.fx * p.fy, r * cy);
+      const cv::Point2d q = px[i];
       const double along = (q - pp).dot(cv::Point2d(cx, cy));
       if (!(along > last))
         return "folds back inside the image";
@@ -553,8 +542,7 @@ CDepthColourCalibrator::TResult CDepthColourCalibrator::estimate() const
   res.sensor.depth_pose_in_colour = res.estimatedPose;
   res.sensor.colour.setIntrinsicParamsFromValues(joint.fx, joint.fy, joint.cx, joint.cy);
   for (int j = 0; j < kDistortionParams; ++j)
-    res.sensor.colour.dist[std::size_t(kDistortionIndex[j])] =
-        joint.dist.at<double>(kDistortionIndex[j]);
+    res.sensor.colour.dist[std::size_t(j)] = joint.dist.at<double>(j);
   if (std::any_of(
           res.sensor.colour.dist.begin(), res.sensor.colour.dist.end(),
           [](double d) { return d != 0; }))

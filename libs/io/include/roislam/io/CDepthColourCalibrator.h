@@ -125,7 +125,7 @@ class CDepthColourCalibrator
     /** The estimate itself, accepted or not. */
     mrpt::poses::CPose3D estimatedPose;
     double estimatedFx = 0, estimatedFy = 0, estimatedCx = 0, estimatedCy = 0;
-    /** The colour camera's radial distortion (OpenCV's k1, k2). */
+    /** The colour lens (OpenCV's k1, k2, p1, p2, k3). */
     double estimatedK1 = 0, estimatedK2 = 0, estimatedP1 = 0, estimatedP2 = 0, estimatedK3 = 0;
     /** The depth silhouettes' offset from the colour edges, outwards (px). */
     double silhouetteOffsetPx = 0;
@@ -174,7 +174,7 @@ class CDepthColourCalibrator
     std::vector<cv::Point2d> edgeAt;      //!< each edge's sub-pixel position
     std::vector<cv::Point2d> edgeNormal;  //!< and its unit gradient direction
   };
-  struct TParams;  //!< the 16 values estimated (some distortion terms held) (defined in the .cpp)
+  struct TParams;      //!< the values estimated (defined in the .cpp)
   struct TEvaluation;  //!< how some frames fit some values
 
   /** The fit of `frames` at `p`: robust cost, mean truncated edge distance
