@@ -16,6 +16,21 @@
 
 #include "PipelineRuns.h"
 
+namespace
+{
+/** The ORB pipeline's ATE (m) on seq read with `description` (written to a
+ *  camera file of its own). */
+double ateReadWith(const std::string& seq, const roislam::io::TSensorDescription& description)
+{
+  const std::string dir = roislam::testing::makeTempDir("seven_scenes_itest");
+  const std::string file = dir + "/description.ini";
+  std::ofstream(file) << description.toIniText();
+  const double ate = roislam::testing::runOrbPipeline(seq, file).ate.rmse;
+  std::filesystem::remove_all(dir);
+  return ate;
+}
+}  // namespace
+
 TEST(SevenScenes, UnregisteredDepthInItsOwnLayoutIsTrackedWithinACentimetre)
 {
   ROISLAM_REQUIRE_SYNTHETIC(seq, "sevenscenes");
@@ -25,11 +40,7 @@ TEST(SevenScenes, UnregisteredDepthInItsOwnLayoutIsTrackedWithinACentimetre)
 
   auto asIs = roislam::io::sensorPreset("7scenes");
   asIs.depth_registered = true;
-  const std::string dir = roislam::testing::makeTempDir("seven_scenes_itest");
-  const std::string file = dir + "/as-is.ini";
-  std::ofstream(file) << asIs.toIniText();
-  const double unregistered = roislam::testing::runOrbPipeline(seq, file).ate.rmse;
-  std::filesystem::remove_all(dir);
+  const double unregistered = ateReadWith(seq, asIs);
   std::printf(
       "7-Scenes layout, ORB: ATE %.4f m with the depth registered, %.4f m read as it is\n",
       registered, unregistered);
@@ -48,11 +59,7 @@ TEST(SevenScenes, AnUnknownColourLensIsEstimatedAndPays)
 
   auto asIs = roislam::io::sensorPreset("7scenes");
   asIs.estimate_registration = false;
-  const std::string dir = roislam::testing::makeTempDir("seven_scenes_lens_itest");
-  const std::string file = dir + "/as-is.ini";
-  std::ofstream(file) << asIs.toIniText();
-  const double pinhole = roislam::testing::runOrbPipeline(seq, file).ate.rmse;
-  std::filesystem::remove_all(dir);
+  const double pinhole = ateReadWith(seq, asIs);
   std::printf(
       "7-Scenes layout behind a lens, ORB: ATE %.4f m with the lens estimated, %.4f m without\n",
       estimated.ate.rmse, pinhole);
