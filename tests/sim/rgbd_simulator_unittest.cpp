@@ -134,6 +134,31 @@ TEST(RgbdSimulator, TexturedDepthMatchesGeometryExactly)
   }
 }
 
+TEST(RgbdSimulator, FurnishedDepthMatchesGeometryExactly)
+{
+  cv::Mat bareDepth;
+  {
+    // One rendering simulator per thread at a time.
+    CRgbdSimulator bare(opts("textured", false));
+    bareDepth = bare.renderFrame(0).depth;
+  }
+  auto o = opts("textured", false);
+  o.furniture = true;
+  CRgbdSimulator sim(o);
+  for (std::size_t i : {0, 6})
+  {
+    const auto f = sim.renderFrame(i);
+    const auto r = checkDepth(sim, f);
+    EXPECT_GT(r.compared, 3000) << "frame " << i;
+    EXPECT_GE(r.depthOk, r.compared * 0.995) << "frame " << i;
+    EXPECT_GE(r.surfaceOk, r.compared * 0.995) << "frame " << i;
+  }
+  // The furniture is in view and nearer than the bare room there.
+  const cv::Mat depth = sim.renderFrame(0).depth;
+  const cv::Mat nearer = depth < bareDepth - 0.05F;
+  EXPECT_GT(cv::countNonZero(nearer), 0.1 * depth.total());
+}
+
 TEST(RgbdSimulator, RollingShutterRowsSeeTheScenesFromTheirOwnTime)
 {
   auto o = opts("textured", false);
@@ -401,9 +426,11 @@ TEST(RgbdSimulator, OptionsLoadValidateAndRoundTrip)
   cfg.write("RgbdSimulator", "common_shift_px", "0.4");
   cfg.write("RgbdSimulator", "exposure_ms", "12.5");
   cfg.write("RgbdSimulator", "exposure_samples", "5");
+  cfg.write("RgbdSimulator", "furniture", "true");
   CRgbdSimulator::TOptions o;
   o.loadFromConfigFile(cfg, "RgbdSimulator");
   EXPECT_EQ(o.scene, "featureless");
+  EXPECT_TRUE(o.furniture);
   EXPECT_EQ(o.frames, 12u);
   EXPECT_FALSE(o.noise);
   EXPECT_DOUBLE_EQ(o.maxDepth, 3.5);
@@ -414,6 +441,7 @@ TEST(RgbdSimulator, OptionsLoadValidateAndRoundTrip)
   CRgbdSimulator::TOptions back;
   back.loadFromConfigFile(saved, "S");
   EXPECT_EQ(back.scene, o.scene);
+  EXPECT_TRUE(back.furniture);
   EXPECT_EQ(back.frames, o.frames);
   EXPECT_DOUBLE_EQ(back.baseTimestamp, o.baseTimestamp);
   EXPECT_DOUBLE_EQ(back.cx, o.cx);
@@ -443,6 +471,7 @@ TEST(RgbdSimulator, OptionsLoadValidateAndRoundTrip)
   expectError("frames", "1");
   expectError("frames", "-5");
   expectError("scene", "kitchen");
+  expectError("furniture", "maybe");
   expectError("max_depth", "20");
   expectError("fps", "0");
   expectError("noise", "maybe");

@@ -118,3 +118,74 @@ TEST(SceneModel, RejectsAbsurdTextureDensity)
   EXPECT_THROW(
       CSceneModel::build(CSceneModel::TSceneType::Textured, 1, 1.0), std::invalid_argument);
 }
+
+TEST(SceneModel, FurnitureAddsSurfacesAndLeavesTheRoomAsItWas)
+{
+  const auto bare = CSceneModel::build(CSceneModel::TSceneType::Textured, 3, 200.0);
+  const auto furnished = CSceneModel::build(CSceneModel::TSceneType::Textured, 3, 200.0, true);
+  ASSERT_GT(furnished.rects().size(), bare.rects().size() + 50);
+  // The bare room's faces come first, textures and all (drawn before the furniture's).
+  for (std::size_t i = 0; i < bare.rects().size(); ++i)
+  {
+    const auto& a = bare.rects()[i];
+    const auto& b = furnished.rects()[i];
+    EXPECT_EQ(a.name, b.name);
+    EXPECT_EQ(a.pose, b.pose) << a.name;
+    EXPECT_EQ(cv::norm(a.texture, b.texture, cv::NORM_INF), 0.0) << a.name;
+  }
+  // Every added face lies inside the room and is textured; some are tilted
+  // (normals neither horizontal nor vertical): the point of furnishing.
+  int tilted = 0;
+  for (std::size_t i = bare.rects().size(); i < furnished.rects().size(); ++i)
+  {
+    const auto& r = furnished.rects()[i];
+    EXPECT_GT(r.pose.x(), bare.roomMin().x) << r.name;
+    EXPECT_LT(r.pose.x(), bare.roomMax().x) << r.name;
+    EXPECT_GT(r.pose.y(), bare.roomMin().y) << r.name;
+    EXPECT_LT(r.pose.y(), bare.roomMax().y) << r.name;
+    EXPECT_GE(r.pose.z(), 0.0) << r.name;
+    cv::Mat mean, sd;
+    cv::meanStdDev(r.texture, mean, sd);
+    EXPECT_GT(cv::norm(sd), 3.0) << r.name;
+    const auto R = r.pose.getRotationMatrix();
+    const double nz = std::abs(R(2, 2));
+    tilted += nz > 0.1 && nz < 0.9;
+  }
+  EXPECT_GE(tilted, 3);
+  // From the camera path's start, looking down at the room, furniture is hit.
+  const auto pose = lookingAlongX(0.1, 0.0, 1.35, 30.0);
+  const auto cam = fr1Like();
+  int onFurniture = 0, hits = 0;
+  for (int v = 10; v < 480; v += 20)
+    for (int u = 10; u < 640; u += 20)
+    {
+      const auto R = pose.getRotationMatrix();
+      const double dc[3] = {(u - cam.cx()) / cam.fx(), (v - cam.cy()) / cam.fy(), 1.0};
+      mrpt::math::TVector3D dir(0, 0, 0);
+      for (int k = 0; k < 3; ++k)
+      {
+        dir.x += R(0, k) * dc[k];
+        dir.y += R(1, k) * dc[k];
+        dir.z += R(2, k) * dc[k];
+      }
+      const auto hit = furnished.raycast({pose.x(), pose.y(), pose.z()}, dir);
+      ASSERT_TRUE(hit.has_value());
+      ++hits;
+      onFurniture += hit->rect >= bare.rects().size();
+      EXPECT_LT(furnished.distanceToSurface(hit->point), 1e-9);
+    }
+  EXPECT_GT(onFurniture, hits / 10);
+}
+
+TEST(SceneModel, FeaturelessFurnitureIsUniformToo)
+{
+  const auto m = CSceneModel::build(CSceneModel::TSceneType::Featureless, 1, 200.0, true);
+  const auto bare = CSceneModel::build(CSceneModel::TSceneType::Featureless, 1, 200.0);
+  ASSERT_GT(m.rects().size(), bare.rects().size());
+  for (const auto& r : m.rects())
+  {
+    cv::Mat mean, sd;
+    cv::meanStdDev(r.texture, mean, sd);
+    EXPECT_EQ(cv::norm(sd), 0.0) << r.name;
+  }
+}

@@ -125,7 +125,7 @@ CRgbdSimulator::CRgbdSimulator(const TOptions& options)
       m_opts(validated(options)),
       m_scene(CSceneModel::build(
           CSceneModel::sceneTypeFromString(options.scene), options.textureSeed,
-          options.texelsPerMetre)),
+          options.texelsPerMetre, options.furniture)),
       m_path(pathParams(options), (options.frames - 1) / options.fps),
       m_impl(std::make_unique<Impl>())
 {

@@ -240,6 +240,7 @@ void CRgbdSimulator::TOptions::loadFromConfigFile(
 {
   CKeyReader r(cfg, section);
   r.get("scene", scene);
+  r.get("furniture", furniture);
   r.get("layout", layout);
   r.get("frames", frames);
   r.get("seed", seed);
@@ -296,6 +297,7 @@ void CRgbdSimulator::TOptions::saveToConfigFile(
   auto w = [&](const char* k, const std::string& v) { cfg.write(section, k, v); };
   auto wd = [&](const char* k, double v) { w(k, fmtDouble(v)); };
   w("scene", scene);
+  w("furniture", furniture ? "true" : "false");
   w("layout", layout);
   w("frames", std::to_string(frames));
   w("seed", std::to_string(seed));

@@ -31,6 +31,9 @@
  *
  * Ini section [RgbdSimulator] (every key optional; defaults in brackets):
  *   scene              textured | featureless                         [textured]
+ *   furniture          furnish the room (bool): chairs, a table, a    [false]
+ *                      shelf, a cabinet, more desk objects and tilted
+ *                      panels (CSceneModel); textured or plain with scene
  *   layout             tum | 7scenes (output layout, above)           [tum]
  *   frames             number of frames, >= 2                         [90]
  *   seed               noise seed (uint32)                            [1]
@@ -143,6 +146,7 @@ class CRgbdSimulator : public mrpt::system::COutputLogger
   struct TOptions : public mrpt::config::CLoadableOptions
   {
     std::string scene = "textured";
+    bool furniture = false;
     std::string layout = "tum";
     unsigned frames = 90;
     uint32_t seed = 1;

@@ -8,7 +8,10 @@
  * x = roomMax().x; the camera path of CCameraPath looks roughly along +X.
  * Scene types: "textured" (procedural text pages, posters, checkerboards,
  * noise; see ProceduralTextures.h) and "featureless" (every face a uniform
- * white, shaded per face only, the dissertation's failure case).
+ * white, shaded per face only, the dissertation's failure case). Either can
+ * be furnished: more surfaces at many orientations, as in ICL-NUIM's living
+ * room, where dense depth registration (ICP) is far better constrained than
+ * in the bare room.
  */
 #pragma once
 
@@ -58,9 +61,13 @@ class CSceneModel
 
   /** Builds the room. textureSeed drives every procedural texture (the
    *  geometry is fixed); texelsPerMetre is the texture density of the walls
-   *  and floor (desk objects get 2.5x that). */
+   *  and floor (desk objects get 2.5x that). furnished adds furniture
+   *  (chairs, a low table, a shelf, a cabinet, more desk objects, panels
+   *  leaning on the walls), painted as the scene type says; the rest of the
+   *  room, its textures included, stays as without it. */
   static CSceneModel build(
-      TSceneType type, uint32_t textureSeed = 1, double texelsPerMetre = 600.0);
+      TSceneType type, uint32_t textureSeed = 1, double texelsPerMetre = 600.0,
+      bool furnished = false);
 
   const std::vector<TTexturedRect>& rects() const { return m_rects; }
   /** Axis-aligned bounds of the room interior (walls, floor and ceiling). */
