@@ -1,8 +1,8 @@
 /* rgbd-simul: renders a synthetic indoor RGB-D sequence with exact ground truth
  * and writes it in the TUM benchmark layout (see roislam::sim::CRgbdSimulator).
  *
- *   rgbd-simul --output DIR [--scene textured|featureless] [--frames N]
- *              [--seed S] [--no-noise] [--config FILE] [--overwrite]
+ *   rgbd-simul --output DIR [--scene textured|featureless] [--furniture]
+ *              [--frames N] [--seed S] [--no-noise] [--config FILE] [--overwrite]
  *
  * --config reads section [RgbdSimulator] of an ini file; command-line options
  * given explicitly override it.
@@ -22,11 +22,12 @@ int main(int argc, char** argv)
   CLI::App app{"Synthetic RGB-D sequences (TUM layout) with ground truth"};
   std::string output, config, scene = "textured";
   unsigned frames = 90, seed = 1;
-  bool noNoise = false;
+  bool noNoise = false, furniture = false;
   bool overwrite = false;
   app.add_option("--output,-o", output, "Output folder (absent or empty)")->required();
   app.add_flag("--overwrite", overwrite, "Replace an earlier output of rgbd-simul in --output");
   auto* optScene = app.add_option("--scene", scene, "textured | featureless");
+  app.add_flag("--furniture", furniture, "Furnish the room (chairs, a table, a shelf, ...)");
   auto* optFrames = app.add_option("--frames", frames, "Number of frames (>= 2)");
   auto* optSeed = app.add_option("--seed", seed, "Noise seed");
   app.add_flag("--no-noise", noNoise, "Perfect depth and colour (range limits still apply)");
@@ -55,6 +56,8 @@ int main(int argc, char** argv)
       opts.seed = seed;
     if (noNoise)
       opts.noise = false;
+    if (furniture)
+      opts.furniture = true;
 
     roislam::sim::CRgbdSimulator sim(opts);
     std::cerr << "rgbd-simul: rendering " << opts.frames << " frames of the '" << opts.scene

@@ -695,6 +695,7 @@ TEST(RgbdOdometry, OptionsIniRoundTripAndErrors)
   o.icp_refine_sigma_m = 0.02;
   o.icp_fusion = "weak";
   o.icp_min_share = 0.25;
+  o.icp_colour_check = false;
   o.icp_probe_interval = 7;
   o.icp_converged_step_sigma = 0.25;
   o.feature_resolution = "auto";
@@ -718,6 +719,7 @@ TEST(RgbdOdometry, OptionsIniRoundTripAndErrors)
   EXPECT_DOUBLE_EQ(l.icp_refine_sigma_m, 0.02);
   EXPECT_EQ(l.icp_fusion, "weak");
   EXPECT_DOUBLE_EQ(l.icp_min_share, 0.25);
+  EXPECT_FALSE(l.icp_colour_check);
   EXPECT_EQ(l.icp_probe_interval, 7);
   EXPECT_DOUBLE_EQ(l.icp_converged_step_sigma, 0.25);
   EXPECT_EQ(l.feature_resolution, "auto");

@@ -85,6 +85,7 @@ void CRgbdOdometry::TImpl::useCamera(const mrpt::img::TCamera& cam, const TOptio
   ip.maxDepth = o.max_depth_m;
   icp = std::make_unique<detail::CDepthIcp>(ip, cam);
   icpMaps.clear();
+  photoKeyframes.clear();
   haveCamera = true;
 }
 
@@ -144,6 +145,7 @@ void CRgbdOdometry::reset()
   m_keyframes.clear();
   m_stats = TStats();
   m_impl->icpMaps.clear();
+  m_impl->photoKeyframes.clear();
   m_impl->flowPyramids.clear();
   m_impl->haveLast = false;
   m_impl->velocity = mrpt::poses::CPose3D();
@@ -289,6 +291,8 @@ TFrameResult CRgbdOdometry::finish(TFrameWork& w)
   m_stats.describedFractionSum += res.work.describedFraction(res.imageSize);
   if (res.icpRefined)
     ++m_stats.icpRefined;
+  if (res.icpOverruledFeatures)
+    ++m_stats.icpOverruledFeatures;
   res.bridged = w.bridged;
   if (w.bridged)
     ++m_stats.bridged;

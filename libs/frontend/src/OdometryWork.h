@@ -23,6 +23,7 @@
 #include "IcpConsistency.h"
 #include "KeyframeOverlap.h"
 #include "KeyframeRegistration.h"
+#include "PhotometricCheck.h"
 #include "RollingShutter.h"
 #include "Timing.h"
 #include "WorkingResolution.h"
@@ -55,6 +56,16 @@ struct CRgbdOdometry::TImpl
   std::unique_ptr<detail::CDepthIcp> icp;
   /** ICP maps of the most recent keyframes only (memory). */
   std::map<std::size_t, detail::CDepthIcp::TMap> icpMaps;
+  /** icp_fusion = measured: the same keyframes' grey and depth images, and
+   *  their photometric samples once one was needed (PhotometricCheck.h:
+   *  the arbiter where features and ICP disagree; most keyframes never
+   *  need one, and sampling costs about 5 ms). */
+  struct TPhotoKeyframe
+  {
+    cv::Mat grey, depth;
+    std::optional<detail::TPhotoSamples> samples;
+  };
+  std::map<std::size_t, TPhotoKeyframe> photoKeyframes;
   /** roi_extraction = flow: the optical-flow pyramids of the most recent
    *  keyframes' images (as icpMaps). */
   std::map<std::size_t, detail::TFlowPyramid> flowPyramids;

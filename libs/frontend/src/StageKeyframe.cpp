@@ -277,6 +277,9 @@ void CRgbdOdometry::insertKeyframe(TFrameWork& w, const mrpt::poses::CPose3D& po
   w.currentIcpMap(*I.icp);
   I.icpMaps[res.newKeyframeId] = std::move(*w.icpMap);
   w.icpMap.reset();
+  // Copies: a frame source may decode the next frames into the same buffers.
+  if (o.icp_fusion == "measured" && o.icp_refine_sigma_m > 0 && o.icp_colour_check)
+    I.photoKeyframes[res.newKeyframeId] = {w.in.grey.clone(), w.in.frame.depth.clone(), {}};
   res.times.icp_ms += msSince(tMap);
   // Rolling shutter: a keyframe made before any velocity is known is
   // corrected once the next frame has measured one (StageRefine.cpp).
@@ -294,6 +297,8 @@ void CRgbdOdometry::insertKeyframe(TFrameWork& w, const mrpt::poses::CPose3D& po
     m_keyframes[m_keyframes.size() - 1 - keep].index.reset();
   while (I.icpMaps.size() > keep)
     I.icpMaps.erase(I.icpMaps.begin());
+  while (I.photoKeyframes.size() > keep)
+    I.photoKeyframes.erase(I.photoKeyframes.begin());
   while (I.bestInliers.size() > keep)
     I.bestInliers.erase(I.bestInliers.begin());
   if (followsWithFlow())

@@ -24,6 +24,9 @@ namespace
  *  k >= 12. The fr1 Kinect reads k = 10-140 (its ICP error is bias), the
  *  synthetic loops 1 or below (noise: every pair counts). */
 constexpr double kCoarseIcpMinInformationKept = 0.8;
+/** The colour image's verdict between features and ICP: a sign test's z
+ *  beyond 3 (one chance in 740 that a tie reads as ICP's win). */
+constexpr double kColourVerdictZ = 3.0;
 constexpr int kCoarseIcpStride = 2;
 
 /** A frame bridged through the previous frame, with depth ICP available
@@ -145,6 +148,34 @@ void CRgbdOdometry::refineWithDepth(TFrameWork& w) const
     const auto featureCov = detail::covarianceOf(w.reg->edgeInformation);
     const auto icpCov = detail::covarianceOf(ir->information);
     const detail::Vector6d d = detail::leftDifference(w.reg->T, ir->T);
+    // Where the two disagree beyond their claims (ICP's covariance at its
+    // least, every pair independent), one of them is wrong; their
+    // covariances cannot tell which (IcpConsistency books it all against
+    // ICP), the colour image can (PhotometricCheck.h). Where it sides with
+    // ICP, ICP's estimate replaces the features', with its modelled
+    // information, and the disagreement is not booked against ICP.
+    if (m_options.icp_colour_check && featureCov && icpCov &&
+        detail::CIcpConsistency::chi2(
+            d, *featureCov, *icpCov, detail::CDepthIcp::kIndependentPairShare) >
+            detail::CIcpConsistency::kChi2Gate6)
+    {
+      const auto it = I.photoKeyframes.find(w.ref);
+      if (it != I.photoKeyframes.end() && !it->second.samples)
+        it->second.samples = detail::photoSamples(
+            it->second.grey, it->second.depth, I.K, I.dist, m_options.min_depth_m,
+            m_options.max_depth_m, m_options.depth_discontinuity_m);
+      if (it != I.photoKeyframes.end() &&
+          detail::comparePhotometric(*it->second.samples, w.in.grey, I.K, I.dist, w.reg->T, ir->T)
+                  .z() > kColourVerdictZ)
+      {
+        w.reg->T = ir->T;
+        w.reg->information = ir->information;
+        w.reg->edgeInformation = ir->edgeInformation;
+        w.res.icpRefined = true;
+        w.res.icpOverruledFeatures = true;
+        return;
+      }
+    }
     if (featureCov && icpCov)
       I.icpConsistency.add(d, *featureCov, *icpCov, pairShare);
     const auto k = I.icpConsistency.scaleFor(pairShare);

@@ -146,6 +146,7 @@ void TRgbdOdometryOptions::loadFromConfigFile(
   icp_refine_sigma_m = c.read_double(s, "icp_refine_sigma_m", icp_refine_sigma_m);
   icp_fusion = c.read_string(s, "icp_fusion", icp_fusion);
   icp_min_share = c.read_double(s, "icp_min_share", icp_min_share);
+  icp_colour_check = c.read_bool(s, "icp_colour_check", icp_colour_check);
   icp_probe_interval = c.read_int(s, "icp_probe_interval", icp_probe_interval);
   icp_decimation = c.read_int(s, "icp_decimation", icp_decimation);
   icp_max_iterations = c.read_int(s, "icp_max_iterations", icp_max_iterations);
@@ -209,6 +210,7 @@ void TRgbdOdometryOptions::saveToConfigFile(
   c.write(s, "icp_refine_sigma_m", icp_refine_sigma_m);
   c.write(s, "icp_fusion", icp_fusion);
   c.write(s, "icp_min_share", icp_min_share);
+  c.write(s, "icp_colour_check", icp_colour_check);
   c.write(s, "icp_probe_interval", icp_probe_interval);
   c.write(s, "icp_decimation", icp_decimation);
   c.write(s, "icp_max_iterations", icp_max_iterations);

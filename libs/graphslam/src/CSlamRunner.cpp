@@ -103,6 +103,7 @@ nlohmann::json trackingJson(const CSlamPipeline& pipeline, const TSlamSummary& s
       {"lost", st.lost},
       {"no_roi", st.noRoi},
       {"icp_refined", st.icpRefined},
+      {"icp_overruled_features", st.icpOverruledFeatures},
       {"bridged", st.bridged},
       {"bridged_constraints", st.bridgedConstraints}};
   // What stage 2 described: ROI-only frames describe their tracking region

@@ -80,6 +80,10 @@ class CRgbdOdometry : public mrpt::system::COutputLogger
     std::size_t noRoi = 0;
     /** Feature-tracked frames also combined with depth ICP (icp_refine_sigma_m). */
     std::size_t icpRefined = 0;
+    /** Of those, frames where the colour image sided with depth ICP against
+     *  the features, and ICP's estimate replaced theirs (icp_fusion =
+     *  measured; TFrameResult::icpOverruledFeatures). */
+    std::size_t icpOverruledFeatures = 0;
     /** Frames tracked through the previous frame, and keyframe constraints
      *  chained through it (bridge_previous_frame). */
     std::size_t bridged = 0, bridgedConstraints = 0;

@@ -198,6 +198,10 @@ struct TFrameResult
    *  poorly determined (TOptions::icp_refine_sigma_m), or measured fusion
    *  found ICP worth it (TOptions::icp_fusion). */
   bool icpRefined = false;
+  /** Measured fusion: the features disagreed with depth ICP beyond ICP's
+   *  model, the colour image sided with ICP, and ICP's estimate replaced
+   *  theirs (PhotometricCheck.h); icpRefined is set too. */
+  bool icpOverruledFeatures = false;
   /** The share of its pairs the frame's refinement ICP used (1, or 0.25
    *  where measured fusion found ICP's error mostly bias: StageRefine.cpp);
    *  0 when none ran. */

@@ -311,7 +311,16 @@
  *                             registration's ICP pairs a quarter of the
  *                             cells (every other one of every other row),
  *                             which keeps >= 80 % of its information at a
- *                             quarter of the work (StageRefine.cpp)
+ *                             quarter of the work (StageRefine.cpp). Where
+ *                             the two disagree beyond their claims (ICP's
+ *                             at its least), the colour image decides which
+ *                             is wrong (PhotometricCheck.h); where it sides
+ *                             with ICP, ICP's estimate replaces the
+ *                             features' and the disagreement is not booked
+ *                             against ICP (a featureless room); off with
+ *                             icp_colour_check
+ *  - icp_colour_check         bool (true): measured fusion asks the colour
+ *                             image where features and ICP disagree (above)
  *  - icp_min_share            double >= 0 (0.1): measured fusion runs ICP on
  *                             every frame while the median of ICP's scaled
  *                             information relative to the features'
@@ -453,6 +462,7 @@ struct TRgbdOdometryOptions : public mrpt::config::CLoadableOptions
   double icp_refine_sigma_m = 0.01;
   std::string icp_fusion = "measured";
   double icp_min_share = 0.1;
+  bool icp_colour_check = true;
   int icp_probe_interval = 10;
   int icp_decimation = 4;
   int icp_max_iterations = 15;
