@@ -184,7 +184,9 @@ void CRgbdOdometry::makeKeyframeConstraints(TFrameWork& w)
                          o.keyframe_full_registration &&
                          ((w.flowRef.has_value() && !w.anchorsJoinedFull) ||
                           w.cur.features.size() < w.full.features.size());
-  if (fullEdges && isFeatureMethod(res.method))
+  // Not where the colour image overruled the frame's features for depth ICP
+  // (StageRefine.cpp): the whole image's features see the same scene.
+  if (fullEdges && isFeatureMethod(res.method) && !res.icpOverruledFeatures)
     if (auto r = I.registerSets(m_keyframes[w.ref], w.full, o))
     {
       if (w.fusedIcp && detail::depthIcpJoins(*r, *w.fusedIcp, o))

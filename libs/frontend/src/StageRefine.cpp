@@ -173,6 +173,7 @@ void CRgbdOdometry::refineWithDepth(TFrameWork& w) const
         w.reg->edgeInformation = ir->edgeInformation;
         w.res.icpRefined = true;
         w.res.icpOverruledFeatures = true;
+        w.res.icpScale = I.icpConsistency.scale().value_or(0.0);
         return;
       }
     }
