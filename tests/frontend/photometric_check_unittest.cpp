@@ -16,6 +16,7 @@ using roislam::frontend::detail::TPhotoSamples;
 using roislam::frontend::detail::TRigid;
 using roislam::frontend::testing::renderRoom;
 using roislam::frontend::testing::syntheticCamera;
+using roislam::geometry::TDepthRule;
 
 namespace
 {
@@ -23,6 +24,15 @@ cv::Mat cameraMatrix()
 {
   const auto c = syntheticCamera();
   return (cv::Mat_<double>(3, 3) << c.fx(), 0, c.cx(), 0, c.fy(), c.cy(), 0, 0, 1);
+}
+/** Depth 0.3-8 m (the room's far walls), depth edges at 5 % (the front end's). */
+TDepthRule rule()
+{
+  TDepthRule r;
+  r.min_depth_m = 0.3;
+  r.max_depth_m = 8.0;
+  r.depth_discontinuity_m = 0.05;
+  return r;
 }
 cv::Mat grey(const roislam::io::TRGBDFrame& f)
 {
@@ -46,7 +56,7 @@ TPair keyframeAndFrame(double contrast = 60)
   const auto key = renderRoom(a, contrast, 0, 0.0);
   const auto cur = renderRoom(b, contrast, 1, 0.033);
   TPair p;
-  p.samples = photoSamples(grey(key), key.depth, cameraMatrix(), cv::Mat(), 0.3, 8.0, 0.05);
+  p.samples = photoSamples(grey(key), key.depth, cameraMatrix(), cv::Mat(), rule());
   p.current = grey(cur);
   p.truth = TRigid::fromPose(b - a);
   return p;
@@ -118,11 +128,11 @@ TEST(PhotometricCheck, NoSamplesWithoutGreyEdgesNorOnDepthEdges)
   cv::Mat g(480, 640, CV_8UC1, cv::Scalar(60)), depth(480, 640, CV_32FC1, cv::Scalar(2.0F));
   g.colRange(320, 640).setTo(200);
   depth.colRange(320, 640).setTo(1.0F);
-  const auto s = photoSamples(g, depth, cameraMatrix(), cv::Mat(), 0.3, 8.0, 0.05);
+  const auto s = photoSamples(g, depth, cameraMatrix(), cv::Mat(), rule());
   EXPECT_TRUE(s.points.empty());
   // The same grey edge on a continuous surface is sampled, at its depth.
   depth.setTo(2.0F);
-  const auto s2 = photoSamples(g, depth, cameraMatrix(), cv::Mat(), 0.3, 8.0, 0.05);
+  const auto s2 = photoSamples(g, depth, cameraMatrix(), cv::Mat(), rule());
   ASSERT_FALSE(s2.points.empty());
   for (const auto& x : s2.points)
     EXPECT_NEAR(x.z(), 2.0, 1e-6);

@@ -1,8 +1,9 @@
 /* A SLAM pipeline run on a sequence with its sensor description applied as
- * the apps apply it (the colour readout and the depth-noise model), ORB with
- * 600 features, evaluated against the sequence's ground truth. Shared by the
- * integration tests that compare one sequence read through two
- * descriptions (camera_axes_itest, seven_scenes_itest).
+ * the apps apply it (the colour readout and the depth-noise model),
+ * evaluated against the sequence's ground truth. Shared by the integration
+ * tests that compare one sequence read through two descriptions
+ * (camera_axes_itest, seven_scenes_itest: ORB, 600 features) or with two
+ * settings (colour_check_itest).
  */
 #pragma once
 
@@ -21,14 +22,15 @@ struct TPipelineRun
   evaluation::TAteResult ate;
   /** TSensorChoice::source of the description it ran with ("preset fr1", "file ..."). */
   std::string sensorSource;
+  /** The front end's counts over the run. */
+  frontend::CRgbdOdometry::TStats frontEndStats;
 };
 
-/** Runs `seq` read with --camera `camera` to its end. */
-inline TPipelineRun runOrbPipeline(const std::string& seq, const std::string& camera)
+/** Runs `seq` read with --camera `camera` to its end, with cfg and the
+ *  description's colour readout and depth-noise model. */
+inline TPipelineRun runPipeline(
+    const std::string& seq, const std::string& camera, graphslam::CSlamContext::TConfig cfg)
 {
-  graphslam::CSlamContext::TConfig cfg;
-  cfg.frontEnd.extractor.feature_type = features::EFeatureType::ORB;
-  cfg.frontEnd.extractor.max_features = 600;
   auto source = io::CFrameSource::open(seq, camera);
   TPipelineRun run;
   run.sensorSource = source->sensor().source;
@@ -41,6 +43,16 @@ inline TPipelineRun runOrbPipeline(const std::string& seq, const std::string& ca
   }
   p.finish();
   run.ate = evaluation::CTrajectoryEvaluator().evaluate(gt, p.trajectory()).ate;
+  run.frontEndStats = p.context().odometry().stats();
   return run;
+}
+
+/** runPipeline with ORB, 600 features. */
+inline TPipelineRun runOrbPipeline(const std::string& seq, const std::string& camera)
+{
+  graphslam::CSlamContext::TConfig cfg;
+  cfg.frontEnd.extractor.feature_type = features::EFeatureType::ORB;
+  cfg.frontEnd.extractor.max_features = 600;
+  return runPipeline(seq, camera, cfg);
 }
 }  // namespace roislam::testing

@@ -6,15 +6,12 @@
  * is right. Without the check, measured fusion books the disagreement
  * against ICP and the features win; with it, the colour sides with ICP. */
 #include <gtest/gtest.h>
-#include <roislam/evaluation/CTrajectoryEvaluator.h>
-#include <roislam/graphslam/CSlamPipeline.h>
-#include <roislam/io/CFrameSource.h>
-#include <roislam/io/TumTrajectory.h>
 #include <roislam/testing/TestData.h>
 
 #include <cstdio>
 #include <string>
-#include <utility>
+
+#include "PipelineRuns.h"
 
 namespace
 {
@@ -26,25 +23,12 @@ struct TRun
 
 TRun runSift(const std::string& seq, bool colourCheck)
 {
-  using namespace roislam;
-  graphslam::CSlamContext::TConfig cfg;
-  cfg.frontEnd.extractor.feature_type = features::EFeatureType::SIFT;
+  roislam::graphslam::CSlamContext::TConfig cfg;
+  cfg.frontEnd.extractor.feature_type = roislam::features::EFeatureType::SIFT;
   cfg.frontEnd.extractor.max_features = 600;
   cfg.frontEnd.icp_colour_check = colourCheck;
-  auto source = io::CFrameSource::open(seq, "auto");
-  cfg.frontEnd.rolling_shutter_ms = source->sensor().sensor.frameReadoutMs();
-  cfg.frontEnd.depth_noise = source->sensor().sensor.depth_noise;
-  const auto gt = io::loadTumTrajectory(*source->groundTruthFile());
-  graphslam::CSlamPipeline p(cfg, std::move(source));
-  while (p.step())
-  {
-  }
-  p.finish();
-  TRun r;
-  r.ate = evaluation::CTrajectoryEvaluator().evaluate(gt, p.trajectory()).ate.rmse;
-  r.overruled = p.context().odometry().stats().icpOverruledFeatures;
-  r.refined = p.context().odometry().stats().icpRefined;
-  return r;
+  const auto run = roislam::testing::runPipeline(seq, "auto", cfg);
+  return {run.ate.rmse, run.frontEndStats.icpOverruledFeatures, run.frontEndStats.icpRefined};
 }
 }  // namespace
 

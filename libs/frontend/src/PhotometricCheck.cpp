@@ -70,7 +70,7 @@ std::vector<float> differences(
 
 TPhotoSamples photoSamples(
     const cv::Mat& grey, const cv::Mat& depth, const cv::Mat& K, const cv::Mat& dist,
-    double minDepth, double maxDepth, double depthDiscontinuity, int cellPx)
+    const geometry::TDepthRule& rule, int cellPx)
 {
   TPhotoSamples s;
   if (grey.empty() || depth.size() != grey.size() || grey.type() != CV_8UC1 ||
@@ -105,18 +105,7 @@ TPhotoSamples photoSamples(
         {
           if (m[x] <= best)
             continue;
-          const float d = depth.at<float>(y, x);
-          if (!(d >= minDepth && d <= maxDepth))
-            continue;
-          float lo = d, hi = d;
-          for (int dv = -1; dv <= 1; ++dv)
-            for (int du = -1; du <= 1; ++du)
-            {
-              const float n = depth.at<float>(y + dv, x + du);
-              lo = std::min(lo, n);
-              hi = std::max(hi, n);
-            }
-          if (lo <= 0 || (depthDiscontinuity > 0 && hi - lo > depthDiscontinuity * d))
+          if (!(geometry::depthByRule(depth, x, y, rule) > 0))
             continue;
           best = m[x];
           bestAt = {x, y};

@@ -22,6 +22,8 @@
  */
 #pragma once
 
+#include <roislam/geometry/KeypointLifting.h>
+
 #include <Eigen/Core>
 #include <cstddef>
 #include <opencv2/core/mat.hpp>
@@ -42,13 +44,12 @@ struct TPhotoSamples
 /** A keyframe's samples: in each cell of cellPx x cellPx pixels, the pixel
  *  of strongest grey gradient, if that gradient stands out of the image's
  *  noise (3x the median gradient magnitude, at least 1 grey level a pixel)
- *  and its 3x3 depth neighbourhood is within depth_discontinuity of its depth
- *  (a relative spread, TRgbdOdometryOptions' depth_discontinuity_m) and
- *  [minDepth, maxDepth]. grey CV_8UC1 and depth CV_32FC1 (metres) at the
+ *  and the depth rule accepts its depth (geometry::depthByRule: in range,
+ *  off depth edges). grey CV_8UC1 and depth CV_32FC1 (metres) at the
  *  camera's resolution; K, dist its intrinsics (OpenCV's). */
 TPhotoSamples photoSamples(
     const cv::Mat& grey, const cv::Mat& depth, const cv::Mat& K, const cv::Mat& dist,
-    double minDepth, double maxDepth, double depthDiscontinuity, int cellPx = 12);
+    const geometry::TDepthRule& rule, int cellPx = 12);
 
 /** How two estimates of the current frame's pose in the keyframe
  *  (TRegistration::T's convention: x_keyframe = T x_current) carry the

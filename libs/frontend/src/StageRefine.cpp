@@ -157,25 +157,16 @@ void CRgbdOdometry::refineWithDepth(TFrameWork& w) const
     if (m_options.icp_colour_check && featureCov && icpCov &&
         detail::CIcpConsistency::chi2(
             d, *featureCov, *icpCov, detail::CDepthIcp::kIndependentPairShare) >
-            detail::CIcpConsistency::kChi2Gate6)
+            detail::CIcpConsistency::kChi2Gate6 &&
+        colourSidesWithIcp(w, ir->T))
     {
-      const auto it = I.photoKeyframes.find(w.ref);
-      if (it != I.photoKeyframes.end() && !it->second.samples)
-        it->second.samples = detail::photoSamples(
-            it->second.grey, it->second.depth, I.K, I.dist, m_options.min_depth_m,
-            m_options.max_depth_m, m_options.depth_discontinuity_m);
-      if (it != I.photoKeyframes.end() &&
-          detail::comparePhotometric(*it->second.samples, w.in.grey, I.K, I.dist, w.reg->T, ir->T)
-                  .z() > kColourVerdictZ)
-      {
-        w.reg->T = ir->T;
-        w.reg->information = ir->information;
-        w.reg->edgeInformation = ir->edgeInformation;
-        w.res.icpRefined = true;
-        w.res.icpOverruledFeatures = true;
-        w.res.icpScale = I.icpConsistency.scale().value_or(0.0);
-        return;
-      }
+      w.reg->T = ir->T;
+      w.reg->information = ir->information;
+      w.reg->edgeInformation = ir->edgeInformation;
+      w.res.icpRefined = true;
+      w.res.icpOverruledFeatures = true;
+      w.res.icpScale = I.icpConsistency.scale().value_or(0.0);
+      return;
     }
     if (featureCov && icpCov)
       I.icpConsistency.add(d, *featureCov, *icpCov, pairShare);
@@ -209,6 +200,20 @@ void CRgbdOdometry::refineWithDepth(TFrameWork& w) const
   w.fusedIcp = fused;
   detail::fuseDepthIcp(*w.reg, fused);
   w.res.icpRefined = true;
+}
+
+bool CRgbdOdometry::colourSidesWithIcp(const TFrameWork& w, const geometry::TRigid& icpT) const
+{
+  TImpl& I = *m_impl;
+  const auto it = I.photoKeyframes.find(w.ref);
+  if (it == I.photoKeyframes.end())
+    return false;
+  // Sampled the first time a disagreement asks (most keyframes never do).
+  auto& kf = it->second;
+  if (!kf.samples)
+    kf.samples = detail::photoSamples(kf.grey, kf.depth, I.K, I.dist, detail::depthRule(m_options));
+  return detail::comparePhotometric(*kf.samples, w.in.grey, I.K, I.dist, w.reg->T, icpT).z() >
+         kColourVerdictZ;
 }
 
 void detail::fuseDepthIcp(TRegistration& reg, const TFusedIcp& f)

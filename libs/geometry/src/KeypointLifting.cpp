@@ -7,9 +7,6 @@
 
 namespace roislam::geometry
 {
-namespace
-{
-/** The rule's depth at pixel (u, v), or 0. */
 float depthByRule(const cv::Mat& depth, int u, int v, const TDepthRule& rule)
 {
   // The 3x3 test needs the neighbours: the outermost rows and columns have none.
@@ -33,7 +30,6 @@ float depthByRule(const cv::Mat& depth, int u, int v, const TDepthRule& rule)
   }
   return z;
 }
-}  // namespace
 
 TLiftedPixels liftPixels(
     const std::vector<cv::Point2f>& pixels, const cv::Mat& depth, cv::InputArray K,

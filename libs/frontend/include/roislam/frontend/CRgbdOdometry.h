@@ -60,6 +60,11 @@
 #include <optional>
 #include <vector>
 
+namespace roislam::geometry
+{
+struct TRigid;
+}
+
 namespace roislam::frontend
 {
 class CRgbdOdometry : public mrpt::system::COutputLogger
@@ -203,6 +208,10 @@ class CRgbdOdometry : public mrpt::system::COutputLogger
   void registerWithRecent(const TKeyframe& query, TFrameWork& w) const;
   void refineRollingShutter(TFrameWork& w);
   void refineWithDepth(TFrameWork& w) const;
+  /** icp_colour_check: whether the colour image sides with depth ICP's
+   *  estimate icpT against the frame's feature registration (w.reg, against
+   *  keyframe w.ref; PhotometricCheck.h). */
+  bool colourSidesWithIcp(const TFrameWork& w, const geometry::TRigid& icpT) const;
   /** icp_fusion = measured: whether this registration runs depth ICP on
    *  pairShare of its pairs (as a probe too, unless ignoreProbe). */
   bool icpWorthRunning(double pairShare, bool ignoreProbe = false) const;

@@ -52,6 +52,12 @@ struct TLiftedPixels
 /** depth: CV_32FC1 metres (0 = no reading) registered with the colour image;
  *  K: 3x3 camera matrix, dist: OpenCV distortion coefficients (empty = none).
  *  Throws std::invalid_argument on another depth type. */
+/** The depth the rule accepts at pixel (u, v) of depth (CV_32FC1 metres),
+ *  or 0: within [min_depth_m, max_depth_m], not on the outermost rows and
+ *  columns, and (depth_discontinuity_m > 0) its 3x3 neighbourhood all read
+ *  and spread by at most depth_discontinuity_m * depth. */
+float depthByRule(const cv::Mat& depth, int u, int v, const TDepthRule& rule);
+
 TLiftedPixels liftPixels(
     const std::vector<cv::Point2f>& pixels, const cv::Mat& depth, cv::InputArray K,
     cv::InputArray dist, const TDepthRule& rule);
