@@ -77,3 +77,33 @@ TEST(IcpRefusion, FusingAddsTheScaledInformationAndMovesThePose)
   EXPECT_NEAR(r.T.t.x(), 0.001 * 2.0 / 3.0, 1e-6);
   EXPECT_NEAR(r.T.t.y(), 0.0, 1e-9);
 }
+
+TEST(IcpRefusion, DepthIcpsShareOfTheFusedInformation)
+{
+  // Equal information on both sides: half. The keyframe policy takes ICP
+  // as carrying the frame beyond that (StageKeyframe.cpp).
+  auto reg = registration(0.001, Vector6d::Zero());
+  reg.information.diagonal().tail<3>().setConstant(4e6);
+  const auto equal = icp(0.001, Vector6d::Zero(), 1.0);
+  detail::fuseDepthIcp(reg, equal);
+  EXPECT_NEAR(detail::depthIcpShare(reg, equal), 0.5, 1e-9);
+
+  // Scaled down 9x by what its disagreement measured: a tenth.
+  auto reg9 = registration(0.001, Vector6d::Zero());
+  reg9.information.diagonal().tail<3>().setConstant(4e6);
+  const auto scaled = icp(0.001, Vector6d::Zero(), 9.0);
+  detail::fuseDepthIcp(reg9, scaled);
+  EXPECT_NEAR(detail::depthIcpShare(reg9, scaled), 0.1, 1e-9);
+
+  // Features of a tenth of ICP's precision (10 mm against 1 mm, 100x less
+  // information in translation): ICP carries most of the pose.
+  auto weak = registration(0.01, Vector6d::Zero());
+  const auto strong = icp(0.001, Vector6d::Zero(), 1.0);
+  detail::fuseDepthIcp(weak, strong);
+  EXPECT_GT(detail::depthIcpShare(weak, strong), 0.5);
+
+  // A singular registration has no share to give.
+  detail::TRegistration singular;
+  singular.information = Matrix6d::Zero();
+  EXPECT_EQ(detail::depthIcpShare(singular, strong), 0.0);
+}

@@ -271,6 +271,12 @@ void fuseDepthIcp(TRegistration& reg, const TFusedIcp& f);
  *  under measured fusion where the two agree within what the scale explains
  *  (IcpConsistency.h's gate). */
 bool depthIcpJoins(const TRegistration& reg, const TFusedIcp& f, const CRgbdOdometry::TOptions& o);
+/** Depth ICP's share of a fused registration's information (the fused reg
+ *  and what was fused into it, StageRefine.cpp): tr(Hicp / scale * H^-1) / 6,
+ *  in [0, 1] (the mean share per axis where both are diagonal; free of
+ *  units, as metres and radians scale both alike); 0 when reg is
+ *  singular. */
+double depthIcpShare(const TRegistration& reg, const TFusedIcp& f);
 }  // namespace detail
 
 bool isFeatureMethod(ETrackingMethod m);

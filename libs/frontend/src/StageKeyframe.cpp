@@ -97,13 +97,20 @@ bool CRgbdOdometry::needsKeyframe(const TFrameWork& w) const
 {
   const TOptions& o = m_options;
   // A bridged frame no longer registers against any keyframe: the next
-  // frames need it as one.
-  bool fewInliers = w.bridged || (isFeatureMethod(w.res.method) &&
+  // frames need it as one. Inliers below the floor are news only where
+  // registrations against this keyframe reached it: in a room whose only
+  // features lie on shading edges (15-37 SIFT inliers, flow anchors alike)
+  // every frame would otherwise become a keyframe, and the chain of 200-300
+  // edges drifted where the motion policy's 22 did not (README "Keyframes
+  // where the features never were").
+  const auto best = m_impl->bestInliers.find(w.ref);
+  const bool reachedFloor =
+      best != m_impl->bestInliers.end() && static_cast<int>(best->second) >= o.keyframe_min_inliers;
+  bool fewInliers = w.bridged || (isFeatureMethod(w.res.method) && reachedFloor &&
                                   static_cast<int>(w.res.inliers) < o.keyframe_min_inliers);
   // Fewer than a share of the most this keyframe gave: the registrations
   // against it are wearing out (counts differ by detector and scene, the
   // share does not).
-  const auto best = m_impl->bestInliers.find(w.ref);
   if (o.keyframe_min_inlier_share > 0 && isFeatureMethod(w.res.method) &&
       best != m_impl->bestInliers.end() &&
       static_cast<double>(w.res.inliers) <
@@ -114,9 +121,14 @@ bool CRgbdOdometry::needsKeyframe(const TFrameWork& w) const
   // keyframe's view is wearing out, and making the frame a keyframe costs
   // no second description. (On fr1/rpy the frames before a blurred one end
   // so: made keyframes, the blurred one registers against a sharp, near
-  // neighbour instead of falling to depth ICP.)
+  // neighbour instead of falling to depth ICP.) Not where depth ICP
+  // carries the registration (more than half its information, or the
+  // colour sided with it): depth does not blur, and the ROI then fails for
+  // want of texture, not of view (a featureless room: every frame).
+  const bool icpCarries = w.res.icpOverruledFeatures ||
+                          (w.fusedIcp && w.reg && detail::depthIcpShare(*w.reg, *w.fusedIcp) > 0.5);
   const EExtension ext = w.res.work.extension;
-  if (o.keyframe_on_weak_roi && isFeatureMethod(w.res.method) &&
+  if (o.keyframe_on_weak_roi && isFeatureMethod(w.res.method) && !icpCarries &&
       (ext == EExtension::RoiWeak || ext == EExtension::RoiFailed))
     fewInliers = true;
   // Anchors alone: their pairs are known, so their share of inliers says

@@ -223,6 +223,15 @@ void detail::fuseDepthIcp(TRegistration& reg, const TFusedIcp& f)
   reg.edgeInformation += f.icp.edgeInformation / f.scale;
 }
 
+double detail::depthIcpShare(const TRegistration& reg, const TFusedIcp& f)
+{
+  const Eigen::LDLT<Matrix6d> ldlt(reg.information);
+  if (ldlt.info() != Eigen::Success || !(f.scale > 0))
+    return 0;
+  const double share = (f.icp.information / f.scale * ldlt.solve(Matrix6d::Identity())).trace() / 6;
+  return std::isfinite(share) ? std::clamp(share, 0.0, 1.0) : 0.0;
+}
+
 bool detail::depthIcpJoins(
     const TRegistration& reg, const TFusedIcp& f, const CRgbdOdometry::TOptions& o)
 {

@@ -173,7 +173,12 @@
  *                             bound) with overlap
  *  - keyframe_rotation_deg    [deg] (10): ... or beyond this rotation angle
  *                             (> 0, or >= 0 with overlap, as above)
- *  - keyframe_min_inliers     int >= 0 (20): ... or when inliers drop below this
+ *  - keyframe_min_inliers     int >= 0 (20): ... or when inliers drop below this,
+ *                             once a frame registered against the same
+ *                             keyframe with at least this many (a count
+ *                             never reached says nothing of wear: a
+ *                             featureless room's shading edges give every
+ *                             frame fewer)
  *  - keyframe_min_inlier_share [0, 1) (0 = off): ... or when a frame's
  *                             feature inliers fall below this share of the
  *                             most any frame had against the same keyframe
@@ -205,9 +210,14 @@
  *                             max_roi_sigma_m / _deg, no threshold of its
  *                             own), and the frame is described on the
  *                             whole image already, so the keyframe costs no
- *                             second description. The shipped ROI configs turn it
+ *                             second description; not where depth ICP
+ *                             carries the frame (over half the fused
+ *                             information, or the colour check sided with
+ *                             it: the ROI then fails for want of texture).
+ *                             The shipped ROI configs turn it
  *                             on with bridge_previous_frame (README "A
- *                             keyframe where the ROI weakens")
+ *                             keyframe where the ROI weakens", "Keyframes
+ *                             where the features never were")
  *  - recent_keyframes         int >= 0 (3): older keyframes (besides the
  *                             reference) tried for tracking fallback and for
  *                             new-keyframe constraints
