@@ -157,6 +157,8 @@ void CRgbdOdometry::reset()
   m_impl->framesSinceIcp = 0;
   m_impl->icpProbeInterval = 0;
   m_impl->regionGrowth = 1;
+  m_impl->bestInliers.clear();
+  m_impl->atInlierFloor.clear();
   m_impl->lastFeaturePixels.clear();
 }
 
@@ -254,6 +256,9 @@ TFrameResult CRgbdOdometry::process(const TPreparedFrame& frame)
     {
       std::size_t& best = m_impl->bestInliers[w.ref];
       best = std::max(best, w.res.inliers);
+      if (w.res.method != ETrackingMethod::Flow &&
+          static_cast<int>(w.res.inliers) >= m_options.keyframe_min_inliers)
+        m_impl->atInlierFloor.insert(w.ref);
     }
     rememberFrame(w);
     return finish(w);

@@ -14,6 +14,7 @@
 #include <map>
 #include <memory>
 #include <optional>
+#include <set>
 #include <vector>
 
 #include "CDepthIcp.h"
@@ -103,6 +104,11 @@ struct CRgbdOdometry::TImpl
   /** keyframe_min_inlier_share: the most feature inliers a frame had
    *  against each recent keyframe (erased with their ICP maps). */
   std::map<std::size_t, std::size_t> bestInliers;
+  /** keyframe_min_inliers: the recent keyframes against which a frame's
+   *  described features (not anchors) registered with at least that many
+   *  inliers, and the map's first: below the floor, only these wear out
+   *  (StageKeyframe.cpp). */
+  std::set<std::size_t> atInlierFloor;
   /** bridge_previous_frame (not in strict_roi): the last frame, if it was
    *  tracked by its described features and did not become a keyframe
    *  (StageBridge.cpp). Unset, nothing is bridged. */

@@ -97,20 +97,25 @@ bool CRgbdOdometry::needsKeyframe(const TFrameWork& w) const
 {
   const TOptions& o = m_options;
   // A bridged frame no longer registers against any keyframe: the next
-  // frames need it as one. Inliers below the floor are news only where
-  // registrations against this keyframe reached it: in a room whose only
-  // features lie on shading edges (15-37 SIFT inliers, flow anchors alike)
-  // every frame would otherwise become a keyframe, and the chain of 200-300
-  // edges drifted where the motion policy's 22 did not (README "Keyframes
-  // where the features never were").
-  const auto best = m_impl->bestInliers.find(w.ref);
+  // frames need it as one. Inliers below keyframe_min_inliers are news only
+  // where this keyframe could give that many: for frames that follow its
+  // anchors, where it has that many anchors; for described features, where
+  // a registration against it (or it is the map's first) reached the floor.
+  // In a room whose only features lie on shading edges (15-37 SIFT inliers,
+  // about 15 anchors) every frame would otherwise become a keyframe, and
+  // the chain of 200-300 edges drifted where the motion policy's 22 did not
+  // (README "Keyframes where the features never were").
+  const TKeyframe& ref = m_keyframes[w.ref];
   const bool reachedFloor =
-      best != m_impl->bestInliers.end() && static_cast<int>(best->second) >= o.keyframe_min_inliers;
+      w.res.method == ETrackingMethod::Flow
+          ? static_cast<int>(ref.anchorPoints.size()) >= o.keyframe_min_inliers
+          : m_impl->atInlierFloor.count(w.ref) > 0;
   bool fewInliers = w.bridged || (isFeatureMethod(w.res.method) && reachedFloor &&
                                   static_cast<int>(w.res.inliers) < o.keyframe_min_inliers);
   // Fewer than a share of the most this keyframe gave: the registrations
   // against it are wearing out (counts differ by detector and scene, the
   // share does not).
+  const auto best = m_impl->bestInliers.find(w.ref);
   if (o.keyframe_min_inlier_share > 0 && isFeatureMethod(w.res.method) &&
       best != m_impl->bestInliers.end() &&
       static_cast<double>(w.res.inliers) <
@@ -125,8 +130,7 @@ bool CRgbdOdometry::needsKeyframe(const TFrameWork& w) const
   // carries the registration (more than half its information, or the
   // colour sided with it): depth does not blur, and the ROI then fails for
   // want of texture, not of view (a featureless room: every frame).
-  const bool icpCarries = w.res.icpOverruledFeatures ||
-                          (w.fusedIcp && w.reg && detail::depthIcpShare(*w.reg, *w.fusedIcp) > 0.5);
+  const bool icpCarries = w.res.icpInformationShare > 0.5;
   const EExtension ext = w.res.work.extension;
   if (o.keyframe_on_weak_roi && isFeatureMethod(w.res.method) && !icpCarries &&
       (ext == EExtension::RoiWeak || ext == EExtension::RoiFailed))
@@ -315,6 +319,12 @@ void CRgbdOdometry::insertKeyframe(TFrameWork& w, const mrpt::poses::CPose3D& po
     I.photoKeyframes.erase(I.photoKeyframes.begin());
   while (I.bestInliers.size() > keep)
     I.bestInliers.erase(I.bestInliers.begin());
+  // The map's first keyframe has no registration to tell: its frames' count
+  // below the floor is news, as before any keyframe.
+  if (res.method == ETrackingMethod::Initial)
+    I.atInlierFloor.insert(res.newKeyframeId);
+  while (I.atInlierFloor.size() > keep)
+    I.atInlierFloor.erase(I.atInlierFloor.begin());
   if (followsWithFlow())
   {
     setAnchors(m_keyframes.back(), w);

@@ -165,6 +165,7 @@ void CRgbdOdometry::refineWithDepth(TFrameWork& w) const
       w.reg->edgeInformation = ir->edgeInformation;
       w.res.icpRefined = true;
       w.res.icpOverruledFeatures = true;
+      w.res.icpInformationShare = 1;
       w.res.icpScale = I.icpConsistency.scale().value_or(0.0);
       return;
     }
@@ -199,6 +200,7 @@ void CRgbdOdometry::refineWithDepth(TFrameWork& w) const
     return;
   w.fusedIcp = fused;
   detail::fuseDepthIcp(*w.reg, fused);
+  w.res.icpInformationShare = detail::depthIcpShare(*w.reg, fused);
   w.res.icpRefined = true;
 }
 

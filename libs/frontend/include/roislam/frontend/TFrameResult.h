@@ -202,6 +202,12 @@ struct TFrameResult
    *  model, the colour image sided with ICP, and ICP's estimate replaced
    *  theirs (PhotometricCheck.h); icpRefined is set too. */
   bool icpOverruledFeatures = false;
+  /** Depth ICP's share of the registration's information (its scaled
+   *  information over the fused one, tr(Hicp / k * H^-1) / 6): 1 where it
+   *  overruled the features, 0 where it did not join. Above 1/2 ICP
+   *  carries the frame, and a weak ROI makes no keyframe
+   *  (TOptions::keyframe_on_weak_roi). */
+  double icpInformationShare = 0;
   /** The share of its pairs the frame's refinement ICP used (1, or 0.25
    *  where measured fusion found ICP's error mostly bias: StageRefine.cpp);
    *  0 when none ran. */
