@@ -253,6 +253,46 @@ void CRgbdOdometry::makeKeyframeConstraints(TFrameWork& w)
   res.times.keyframe_ms = msSince(t0);
 }
 
+cv::Rect CRgbdOdometry::keyframeRegion(const TFrameWork& w) const
+{
+  const TOptions& o = m_options;
+  const TFrameResult& res = w.res;
+  // The next frames follow the region this keyframe described densely while
+  // it tracked well; after a failure or a weak registration, a new one from
+  // stage 1 (the frame's ROI grown as in StageExtract.cpp).
+  const bool regionTracked = res.work.extension == EExtension::None ||
+                             res.work.extension == EExtension::Keyframe ||
+                             res.work.extension == EExtension::ExpectedKeyframe;
+  // Flow mode: the next frames follow its stage-1 ROI itself.
+  if (res.roi && followsWithFlow())
+    return *res.roi & cv::Rect(cv::Point(0, 0), w.in.grey.size());
+  if (res.roi && !regionTracked)
+    return detail::trackingRegion(
+        *res.roi, w.in.grey.size(), o.roi_min_area_fraction, o.roi_min_aspect);
+  return res.work.region;
+}
+
+void CRgbdOdometry::trimRecentKeyframeStores()
+{
+  // Search indexes, ICP maps, photometric samples, flow pyramids and
+  // inlier bookkeeping only for the keyframes every frame is matched
+  // against (memory).
+  TImpl& I = *m_impl;
+  const std::size_t keep = static_cast<std::size_t>(m_options.recent_keyframes) + 1;
+  if (m_keyframes.size() > keep)
+    m_keyframes[m_keyframes.size() - 1 - keep].index.reset();
+  auto trim = [keep](auto& byKeyframe)
+  {
+    while (byKeyframe.size() > keep)
+      byKeyframe.erase(byKeyframe.begin());
+  };
+  trim(I.icpMaps);
+  trim(I.photoKeyframes);
+  trim(I.bestInliers);
+  trim(I.atInlierFloor);
+  trim(I.flowPyramids);
+}
+
 void CRgbdOdometry::insertKeyframe(TFrameWork& w, const mrpt::poses::CPose3D& pose)
 {
   TImpl& I = *m_impl;
@@ -270,20 +310,7 @@ void CRgbdOdometry::insertKeyframe(TFrameWork& w, const mrpt::poses::CPose3D& po
   TKeyframe& kf = o.keyframe_full_features ? w.full : w.cur;
   kf.fullImageFallback = w.fallback;
   kf.roi = res.roi;
-  // The next frames follow the region this keyframe described densely while
-  // it tracked well; after a failure or a weak registration, a new one from
-  // stage 1 (the frame's ROI grown as in StageExtract.cpp).
-  const bool regionTracked = res.work.extension == EExtension::None ||
-                             res.work.extension == EExtension::Keyframe ||
-                             res.work.extension == EExtension::ExpectedKeyframe;
-  // Flow mode: the next frames follow its stage-1 ROI itself.
-  cv::Rect region = res.work.region;
-  if (res.roi && followsWithFlow())
-    region = *res.roi & cv::Rect(cv::Point(0, 0), w.in.grey.size());
-  else if (res.roi && !regionTracked)
-    region = detail::trackingRegion(
-        *res.roi, w.in.grey.size(), o.roi_min_area_fraction, o.roi_min_aspect);
-  setRegion(kf, region);
+  setRegion(kf, keyframeRegion(w));
   kf.id = m_keyframes.size();
   kf.pose = pose;
   m_keyframes.push_back(std::move(kf));
@@ -306,25 +333,12 @@ void CRgbdOdometry::insertKeyframe(TFrameWork& w, const mrpt::poses::CPose3D& po
     I.uncorrected = detail::uncorrectedKeyframe(
         res.newKeyframeId, w.lifted,
         o.keyframe_full_features || w.fallback ? w.lifted.valid : w.chosen);
-  // Search indexes and ICP maps only for the keyframes every frame is
-  // matched against (memory).
-  const std::size_t keep = static_cast<std::size_t>(o.recent_keyframes) + 1;
   m_keyframes.back().index =
       std::make_shared<matching::CFeatureIndex>(o.matcher, m_keyframes.back().features);
-  if (m_keyframes.size() > keep)
-    m_keyframes[m_keyframes.size() - 1 - keep].index.reset();
-  while (I.icpMaps.size() > keep)
-    I.icpMaps.erase(I.icpMaps.begin());
-  while (I.photoKeyframes.size() > keep)
-    I.photoKeyframes.erase(I.photoKeyframes.begin());
-  while (I.bestInliers.size() > keep)
-    I.bestInliers.erase(I.bestInliers.begin());
   // The map's first keyframe has no registration to tell: its frames' count
   // below the floor is news, as before any keyframe.
   if (res.method == ETrackingMethod::Initial)
     I.atInlierFloor.insert(res.newKeyframeId);
-  while (I.atInlierFloor.size() > keep)
-    I.atInlierFloor.erase(I.atInlierFloor.begin());
   if (followsWithFlow())
   {
     setAnchors(m_keyframes.back(), w);
@@ -332,10 +346,9 @@ void CRgbdOdometry::insertKeyframe(TFrameWork& w, const mrpt::poses::CPose3D& po
     const auto tPyramid = Clock::now();
     I.flowPyramids[res.newKeyframeId] =
         detail::flowPyramidOf(w.in.grey, w.featureImage, I.flowParams, true);
-    while (I.flowPyramids.size() > keep)
-      I.flowPyramids.erase(I.flowPyramids.begin());
     res.times.flow_ms += msSince(tPyramid);
   }
+  trimRecentKeyframeStores();
   I.haveLast = true;
   I.lastRef = res.newKeyframeId;
   I.lastRel = mrpt::poses::CPose3D();

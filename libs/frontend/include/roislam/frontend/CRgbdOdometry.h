@@ -237,6 +237,10 @@ class CRgbdOdometry : public mrpt::system::COutputLogger
   bool usesOverlapPolicy() const { return m_options.keyframe_policy == "overlap"; }
   void makeKeyframeConstraints(TFrameWork& w);
   void insertKeyframe(TFrameWork& w, const mrpt::poses::CPose3D& pose);
+  /** The tracking region a new keyframe hands to the next frames. */
+  cv::Rect keyframeRegion(const TFrameWork& w) const;
+  /** Drops what only the recent keyframes keep (recent_keyframes + 1). */
+  void trimRecentKeyframeStores();
   /** Remembers the frame as the last tracked one, counts it, times it. */
   TFrameResult finish(TFrameWork& w);
 
