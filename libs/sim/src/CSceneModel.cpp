@@ -362,10 +362,15 @@ void addDeskObjects(CRoomBuilder& b, double deskH)
  *  5 mm (README "The reference odometry where ICP is well constrained").
  *  Only yaw-rotated boxes and tilted panels: every face stays a rectangle,
  *  so ray casting and rendering agree exactly. */
-void addFurniture(CRoomBuilder& b, const TRoomSize& r)
+/** The distance furniture textures are drawn for (their detail per metre). */
+constexpr double kFurnitureViewDistanceM = 2.0;
+
+/** The furniture's boxes (chairs, a bin, a shelf, a cabinet, a low table,
+ *  objects on the desk), each face textured from the scene's seed. */
+void addFurnitureBoxes(CRoomBuilder& b, const TRoomSize& r)
 {
   auto& rng = b.rng();
-  const double dObj = 2.0;
+  const double dObj = kFurnitureViewDistanceM;
   const double dob = b.pxPerMetre(dObj);
   // Every face gets a texture of its own kind, drawn from the scene's seed.
   auto anyFace = [&](cv::Scalar base)
@@ -428,7 +433,15 @@ void addFurniture(CRoomBuilder& b, const TRoomSize& r)
     b.addBox(
         bx.name, bx.x, bx.y, bx.z0, bx.sx, bx.sy, bx.sz, mrpt::DEG2RAD(bx.yawDeg),
         anyFace(bx.colour));
-  // Panels leaning on the walls (normals neither vertical nor horizontal).
+}
+
+/** Panels leaning on the walls and the desk (normals neither vertical nor
+ *  horizontal). */
+void addLeaningPanels(CRoomBuilder& b, const TRoomSize& r)
+{
+  auto& rng = b.rng();
+  const double dObj = kFurnitureViewDistanceM;
+  const double dh = r.deskH;
   struct TPanel
   {
     const char* name;
@@ -464,6 +477,15 @@ void addFurniture(CRoomBuilder& b, const TRoomSize& r)
         p.name, p.c, p.n, up, p.w, p.h,
         b.textured() ? makePoster(rng, b.texSize(p.w, p.h, dObj)) : cv::Mat());
   }
+}
+
+/** Furniture, drawn after the room so that the bare room's faces and
+ *  textures stay as they were: boxes first, then panels (the order the
+ *  textures are drawn from the seed in). */
+void addFurniture(CRoomBuilder& b, const TRoomSize& r)
+{
+  addFurnitureBoxes(b, r);
+  addLeaningPanels(b, r);
 }
 }  // namespace
 
