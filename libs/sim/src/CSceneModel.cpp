@@ -354,14 +354,6 @@ void addDeskObjects(CRoomBuilder& b, double deskH)
       });
 }
 
-/** The furniture (CSceneModel::build's furnished): surfaces at many
- *  orientations and distances between the camera and the walls, as in a
- *  furnished living room (ICL-NUIM's). The bare room is mostly three
- *  families of parallel planes; there OpenCV's RgbdICPOdometry reads 48 mm
- *  on the ICL-like loop, furnished 26 mm, and furnished with smooth depth
- *  5 mm (README "The reference odometry where ICP is well constrained").
- *  Only yaw-rotated boxes and tilted panels: every face stays a rectangle,
- *  so ray casting and rendering agree exactly. */
 /** The distance furniture textures are drawn for (their detail per metre). */
 constexpr double kFurnitureViewDistanceM = 2.0;
 
@@ -479,9 +471,17 @@ void addLeaningPanels(CRoomBuilder& b, const TRoomSize& r)
   }
 }
 
-/** Furniture, drawn after the room so that the bare room's faces and
- *  textures stay as they were: boxes first, then panels (the order the
- *  textures are drawn from the seed in). */
+/** The furniture (CSceneModel::build's furnished): surfaces at many
+ *  orientations and distances between the camera and the walls, as in a
+ *  furnished living room (ICL-NUIM's). The bare room is mostly three
+ *  families of parallel planes; there OpenCV's RgbdICPOdometry reads 48 mm
+ *  on the ICL-like loop, furnished 26 mm, and furnished with smooth depth
+ *  5 mm (README "The reference odometry where ICP is well constrained").
+ *  Only yaw-rotated boxes and tilted panels: every face stays a rectangle,
+ *  so ray casting and rendering agree exactly.
+ *  Drawn after the room, so the bare room's faces and textures stay as
+ *  they were: boxes first, then panels (the order their textures are
+ *  drawn from the seed in). */
 void addFurniture(CRoomBuilder& b, const TRoomSize& r)
 {
   addFurnitureBoxes(b, r);
