@@ -298,6 +298,8 @@ TFrameResult CRgbdOdometry::finish(TFrameWork& w)
     ++m_stats.icpRefined;
   if (res.icpOverruledFeatures)
     ++m_stats.icpOverruledFeatures;
+  if (res.icpReplacedFeatures)
+    ++m_stats.icpReplacedFeatures;
   res.bridged = w.bridged;
   if (w.bridged)
     ++m_stats.bridged;

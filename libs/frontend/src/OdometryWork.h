@@ -261,6 +261,8 @@ struct CRgbdOdometry::TFrameWork
   /** reg is chained through the previous frame (bridgeFromPrevious): the
    *  frame becomes a keyframe. */
   bool bridged = false;
+  /** refineWithDepth's depth ICP against `ref`, started from reg. */
+  std::optional<detail::CDepthIcp::TResult> refineIcp;
   /** refineWithDepth fused depth ICP against `ref` into reg. A keyframe
    *  registered again with the whole image's features
    *  (makeKeyframeConstraints) is fused with the same ICP: the depth

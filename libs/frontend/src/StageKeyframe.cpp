@@ -200,9 +200,9 @@ void CRgbdOdometry::makeKeyframeConstraints(TFrameWork& w)
                          o.keyframe_full_registration &&
                          ((w.flowRef.has_value() && !w.anchorsJoinedFull) ||
                           w.cur.features.size() < w.full.features.size());
-  // Not where the colour image overruled the frame's features for depth ICP
+  // Not where depth ICP's estimate replaced the frame's features
   // (StageRefine.cpp): the whole image's features see the same scene.
-  if (fullEdges && isFeatureMethod(res.method) && !res.icpOverruledFeatures)
+  if (fullEdges && isFeatureMethod(res.method) && !res.icpReplacedFeatures)
     if (auto r = I.registerSets(m_keyframes[w.ref], w.full, o))
     {
       if (w.fusedIcp && detail::depthIcpJoins(*r, *w.fusedIcp, o))

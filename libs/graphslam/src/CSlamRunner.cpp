@@ -104,6 +104,7 @@ nlohmann::json trackingJson(const CSlamPipeline& pipeline, const TSlamSummary& s
       {"no_roi", st.noRoi},
       {"icp_refined", st.icpRefined},
       {"icp_overruled_features", st.icpOverruledFeatures},
+      {"icp_replaced_features", st.icpReplacedFeatures},
       {"bridged", st.bridged},
       {"bridged_constraints", st.bridgedConstraints}};
   // What stage 2 described: ROI-only frames describe their tracking region

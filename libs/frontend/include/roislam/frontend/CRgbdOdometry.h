@@ -89,6 +89,10 @@ class CRgbdOdometry : public mrpt::system::COutputLogger
      *  the features, and ICP's estimate replaced theirs (icp_fusion =
      *  measured; TFrameResult::icpOverruledFeatures). */
     std::size_t icpOverruledFeatures = 0;
+    /** Frames where depth ICP's estimate replaced the features': those, and
+     *  those where the two disagreed beyond ICP's scaled model and ICP was
+     *  the better determined (TFrameResult::icpReplacedFeatures). */
+    std::size_t icpReplacedFeatures = 0;
     /** Frames tracked through the previous frame, and keyframe constraints
      *  chained through it (bridge_previous_frame). */
     std::size_t bridged = 0, bridgedConstraints = 0;
@@ -208,6 +212,11 @@ class CRgbdOdometry : public mrpt::system::COutputLogger
   void registerWithRecent(const TKeyframe& query, TFrameWork& w) const;
   void refineRollingShutter(TFrameWork& w);
   void refineWithDepth(TFrameWork& w) const;
+  /** icp_fusion = measured: the scale refineWithDepth fuses its ICP
+   *  (w.refineIcp) at, after booking its disagreement with the features
+   *  (IcpConsistency.h); nullopt where it does not join, or where the
+   *  colour image sided with it and it replaced the features. */
+  std::optional<double> measuredIcpScale(TFrameWork& w, bool weak, double pairShare) const;
   /** icp_colour_check: whether the colour image sides with depth ICP's
    *  estimate icpT against the frame's feature registration (w.reg, against
    *  keyframe w.ref; PhotometricCheck.h). */

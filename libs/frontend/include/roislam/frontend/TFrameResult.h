@@ -202,6 +202,11 @@ struct TFrameResult
    *  model, the colour image sided with ICP, and ICP's estimate replaced
    *  theirs (PhotometricCheck.h); icpRefined is set too. */
   bool icpOverruledFeatures = false;
+  /** Depth ICP's estimate replaced the features': where the colour image
+   *  sided with it (icpOverruledFeatures), or where the two disagreed beyond
+   *  ICP's scaled model and ICP was the better determined. The keyframe
+   *  edge then keeps ICP's estimate. */
+  bool icpReplacedFeatures = false;
   /** Depth ICP's share of the registration's information (its scaled
    *  information over the fused one, tr(Hicp / k * H^-1) / 6): 1 where it
    *  overruled the features, 0 where it did not join. Above 1/2 ICP
