@@ -209,7 +209,7 @@ struct TFrameResult
   bool icpReplacedFeatures = false;
   /** Depth ICP's share of the registration's information (its scaled
    *  information over the fused one, tr(Hicp / k * H^-1) / 6): 1 where it
-   *  overruled the features, 0 where it did not join. Above 1/2 ICP
+   *  replaced the features (icpReplacedFeatures), 0 where it did not join. Above 1/2 ICP
    *  carries the frame, and a weak ROI makes no keyframe
    *  (TOptions::keyframe_on_weak_roi). */
   double icpInformationShare = 0;

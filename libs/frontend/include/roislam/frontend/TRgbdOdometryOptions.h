@@ -311,13 +311,18 @@
  *                             scale the last 30 frames' disagreement of ICP
  *                             and features asks for (IcpConsistency.h: down
  *                             to 1/25, every pair independent, where ICP is
- *                             better than its model, rendered depth; as
- *                             weak until 10 frames were compared; no fusion
- *                             where no scale explains it). A well-determined
- *                             registration is not fused when its own
- *                             disagreement is beyond chi-square's 0.99
- *                             quantile at that scale, nor while ICP's share
- *                             is below icp_min_share. Where the scale says
+ *                             better than its model, rendered depth; until
+ *                             10 frames were compared, the well-determined
+ *                             ones at an unverified ICP's scale, 4; no
+ *                             fusion where no scale explains it). A
+ *                             well-determined registration is not fused
+ *                             when its own disagreement is beyond
+ *                             chi-square's 0.99 quantile at that scale, nor
+ *                             while ICP's share is below icp_min_share;
+ *                             beyond that quantile at a measured scale, the
+ *                             better determined of the two stands (ICP's
+ *                             estimate replaces the features' where it is
+ *                             better determined). Where the scale says
  *                             ICP's error is mostly bias (k >= 12: the fr1
  *                             Kinect, k 10-140), a well-determined
  *                             registration's ICP pairs a quarter of the
