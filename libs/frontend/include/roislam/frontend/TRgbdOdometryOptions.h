@@ -215,7 +215,9 @@
  *                             second description; not where depth ICP
  *                             carries the frame (over half the fused
  *                             information, or the colour check sided with
- *                             it: the ROI then fails for want of texture).
+ *                             it: the ROI then fails for want of texture),
+ *                             nor where the reference keyframe found no ROI
+ *                             (a region it never had cannot wear out).
  *                             The shipped ROI configs turn it
  *                             on with bridge_previous_frame (README "A
  *                             keyframe where the ROI weakens", "Keyframes
