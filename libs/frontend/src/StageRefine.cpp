@@ -29,6 +29,15 @@ constexpr double kCoarseIcpMinInformationKept = 0.8;
 constexpr double kColourVerdictZ = 3.0;
 constexpr int kCoarseIcpStride = 2;
 
+/** Whether depth ICP's estimate, its covariance scaled by icpScale, is
+ *  better determined than reg's (icpBetterDetermined). */
+bool losesToIcp(
+    const detail::TRegistration& reg, const detail::CDepthIcp::TResult& icp, double icpScale)
+{
+  return detail::icpBetterDetermined(
+      detail::toMrptEstimate(icp).second, icpScale, detail::toMrptEstimate(reg).second);
+}
+
 /** A frame bridged through the previous frame, with depth ICP available
  *  too: a chain is worth more than ICP where ICP disagrees with the
  *  features (fr1: its covariance scaled by 33-49), less where ICP agrees
@@ -41,9 +50,8 @@ bool chainLosesToIcp(
     const detail::TRegistration& chain, const detail::CDepthIcp::TResult& icp,
     const detail::CIcpConsistency& consistency)
 {
-  const double k = consistency.scale().value_or(detail::CDepthIcp::kUnverifiedCovarianceScale);
-  return detail::icpBetterDetermined(
-      detail::toMrptEstimate(icp).second, k, detail::toMrptEstimate(chain).second);
+  return losesToIcp(
+      chain, icp, consistency.scale().value_or(detail::CDepthIcp::kUnverifiedCovarianceScale));
 }
 
 /** ICP's estimate in place of the features', its information divided by
@@ -167,9 +175,7 @@ void CRgbdOdometry::refineWithDepth(TFrameWork& w) const
     // features here kept 15 inliers on shading edges 19 mm off where ICP
     // was right (rgbd-simul's bare featureless room, ROI SIFT, frame 166);
     // on the fr1 Kinect the scale (10-140) leaves ICP the worse determined.
-    if (I.icpConsistency.scale() &&
-        detail::icpBetterDetermined(
-            detail::toMrptEstimate(*ir).second, *scale, detail::toMrptEstimate(*w.reg).second))
+    if (I.icpConsistency.scale() && losesToIcp(*w.reg, *ir, *scale))
       replaceWithIcp(*w.reg, w.res, *ir, *scale);
     return;
   }

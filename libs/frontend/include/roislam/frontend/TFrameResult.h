@@ -209,8 +209,8 @@ struct TFrameResult
   bool icpReplacedFeatures = false;
   /** Depth ICP's share of the registration's information (its scaled
    *  information over the fused one, tr(Hicp / k * H^-1) / 6): 1 where it
-   *  replaced the features (icpReplacedFeatures), 0 where it did not join. Above 1/2 ICP
-   *  carries the frame, and a weak ROI makes no keyframe
+   *  replaced the features (icpReplacedFeatures), 0 where it did not join.
+   *  Above 1/2 ICP carries the frame, and a weak ROI makes no keyframe
    *  (TOptions::keyframe_on_weak_roi). */
   double icpInformationShare = 0;
   /** The share of its pairs the frame's refinement ICP used (1, or 0.25
