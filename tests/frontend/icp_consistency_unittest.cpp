@@ -283,3 +283,93 @@ TEST(IcpConsistency, IcpBetterDeterminedScalesIcpsCovarianceByTheMeasuredScale)
   EXPECT_TRUE(icpBetterDetermined(icp, 40.0, singular));
   EXPECT_FALSE(icpBetterDetermined(singular, 1.0, chain));
 }
+
+namespace
+{
+/** Comparisons drawn with the features' covariance truly a times its claim
+ *  and ICP's b times; every tenth one a gross outlier (x20) when asked. */
+std::vector<CIcpConsistency::TComparison> jointSamples(
+    double a, double b, int n, unsigned seed, bool outliers = false)
+{
+  std::mt19937 rng(seed);
+  std::vector<CIcpConsistency::TComparison> out;
+  for (int i = 0; i < n; ++i)
+  {
+    const Matrix6d Sf = randomCovariance(rng, 1e-6);
+    const Matrix6d Si = randomCovariance(rng, 1e-6);
+    Vector6d d = draw(rng, a * Sf + b * Si);
+    if (outliers && i % 10 == 9)
+      d *= 20;
+    out.push_back({d, Sf, Si, 1.0});
+  }
+  return out;
+}
+}  // namespace
+
+TEST(IcpConsistency, JointFitRecoversBothEstimatorsScales)
+{
+  // Which of the two is off, and by how much, in either direction.
+  for (const auto& [a, b] : {std::pair{0.15, 0.1}, {8.0, 0.2}, {0.5, 20.0}, {1.0, 1.0}})
+  {
+    SCOPED_TRACE(testing::Message() << "features x" << a << ", ICP x" << b);
+    const auto s = CIcpConsistency::fitJointScales(jointSamples(a, b, 300, 11));
+    ASSERT_TRUE(s.has_value());
+    EXPECT_NEAR(std::log(s->features), std::log(a), std::log(1.25));
+    EXPECT_NEAR(std::log(s->icp), std::log(b), std::log(1.25));
+    // The one-scale model books it all against ICP: it cannot see a.
+  }
+  // The front end's window of 30 is noisier. The features' scale is still
+  // of the right order; ICP's, whose part of the disagreement is 40x the
+  // smaller there, only on the right side of its claim.
+  const auto s = CIcpConsistency::fitJointScales(jointSamples(8.0, 0.2, 30, 12));
+  ASSERT_TRUE(s.has_value());
+  EXPECT_NEAR(std::log(s->features), std::log(8.0), std::log(2.0));
+  EXPECT_LT(s->icp, 1.0);
+}
+
+TEST(IcpConsistency, JointFitIsNotSetByAFewWrongMatches)
+{
+  // One comparison in ten 20x off (a wrong match): the Student-t keeps the
+  // fit within 40 %, where a Gaussian would read about 40x.
+  const auto s = CIcpConsistency::fitJointScales(jointSamples(2.0, 0.5, 300, 13, true));
+  ASSERT_TRUE(s.has_value());
+  EXPECT_NEAR(std::log(s->features), std::log(2.0), std::log(1.4));
+  EXPECT_NEAR(std::log(s->icp), std::log(0.5), std::log(1.4));
+}
+
+TEST(IcpConsistency, JointScalesOnlyOnceTheWindowIsFullAndBounded)
+{
+  CIcpConsistency c(30, 10, 0.04);
+  const auto samples = jointSamples(3.0, 0.3, 30, 14);
+  for (std::size_t i = 0; i + 1 < samples.size(); ++i)
+    c.add(samples[i].d, samples[i].featureCov, samples[i].icpCov);
+  EXPECT_TRUE(c.scale().has_value());
+  EXPECT_FALSE(c.jointScales().has_value());
+  c.add(samples.back().d, samples.back().featureCov, samples.back().icpCov);
+  ASSERT_TRUE(c.jointScales().has_value());
+  EXPECT_GT(c.jointScales()->features, 1.5);
+  c.reset();
+  EXPECT_FALSE(c.jointScales().has_value());
+  // Fewer than two comparisons: no fit. Disagreements far beyond either
+  // claim: the fit stops at its bound (e^7, over the Student-t's 0.8167)
+  // instead of running away.
+  EXPECT_FALSE(CIcpConsistency::fitJointScales({}).has_value());
+  const auto far = CIcpConsistency::fitJointScales(jointSamples(1e6, 1e6, 40, 15));
+  ASSERT_TRUE(far.has_value());
+  EXPECT_LE(far->features, std::exp(7.0) / 0.8167 * 1.001);
+  EXPECT_LE(far->icp, std::exp(7.0) / 0.8167 * 1.001);
+}
+
+TEST(IcpConsistency, JointFitFromThePreviousOneFindsTheSameScales)
+{
+  // The front end searches from the last fit (the window moved by one):
+  // the same optimum as from the grid, within the search's 0.1 %.
+  const auto samples = jointSamples(0.3, 4.0, 30, 16);
+  const auto cold = CIcpConsistency::fitJointScales(samples);
+  ASSERT_TRUE(cold.has_value());
+  const auto warm = CIcpConsistency::fitJointScales(
+      samples, CIcpConsistency::TJointScales{cold->features * 1.3, cold->icp / 1.3});
+  ASSERT_TRUE(warm.has_value());
+  EXPECT_NEAR(warm->features / cold->features, 1.0, 0.01);
+  EXPECT_NEAR(warm->icp / cold->icp, 1.0, 0.01);
+}

@@ -300,6 +300,11 @@ TFrameResult CRgbdOdometry::finish(TFrameWork& w)
     ++m_stats.icpOverruledFeatures;
   if (res.icpReplacedFeatures)
     ++m_stats.icpReplacedFeatures;
+  if (res.featureScale > 0)
+  {
+    m_stats.featureScale = res.featureScale;
+    m_stats.icpJointScale = res.icpJointScale;
+  }
   res.bridged = w.bridged;
   if (w.bridged)
     ++m_stats.bridged;

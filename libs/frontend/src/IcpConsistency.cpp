@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -53,6 +54,7 @@ void CIcpConsistency::reset()
 {
   m_samples.clear();
   m_scale.reset();
+  m_joint.reset();
   m_share = 0;
 }
 
@@ -89,8 +91,86 @@ double CIcpConsistency::medianChi2(double k) const
   return common::upperMedian(std::move(c));
 }
 
+std::optional<CIcpConsistency::TJointScales> CIcpConsistency::fitJointScales(
+    const std::vector<TComparison>& samples, const std::optional<TJointScales>& start)
+{
+  if (samples.size() < 2)
+    return std::nullopt;
+  // Negative log-likelihood of the disagreements under N(0, a Sf + b Si),
+  // Student-t with nu = 4 in the Mahalanobis distance (robust to the odd
+  // wrong match), over (log a, log b).
+  constexpr double kNu = 4, kLogSpan = 7, kGridStep = 1;
+  const auto nll = [&samples](double la, double lb)
+  {
+    // Bounded: where one estimator explains every disagreement the other's
+    // scale falls without end, and the search must stop.
+    if (std::abs(la) > kLogSpan || std::abs(lb) > kLogSpan)
+      return std::numeric_limits<double>::infinity();
+    const double a = std::exp(la), b = std::exp(lb);
+    double sum = 0;
+    for (const auto& s : samples)
+    {
+      const Eigen::LLT<Matrix6d> llt(a * s.featureCov + shareScale(b, s.pairShare) * s.icpCov);
+      if (llt.info() != Eigen::Success)
+        return std::numeric_limits<double>::infinity();
+      const Vector6d z = llt.matrixL().solve(s.d);
+      sum += 0.5 * (kNu + 6) * std::log1p(z.squaredNorm() / kNu) +
+             llt.matrixLLT().diagonal().array().log().sum();
+    }
+    return std::isfinite(sum) ? sum : std::numeric_limits<double>::infinity();
+  };
+  constexpr double kGaussianScatter = 0.8167;  // below
+  // A coarse grid over three decades each way, then a pattern search down
+  // to 1e-3 in log scale (0.1 %). From the previous fit (a window that
+  // moved by one comparison) the search alone: a fifth of the work.
+  double bestLa = 0, bestLb = 0, best = std::numeric_limits<double>::infinity();
+  double step = kGridStep / 8;
+  if (start && start->features > 0 && start->icp > 0)
+  {
+    bestLa = std::log(start->features * kGaussianScatter);
+    bestLb = std::log(start->icp * kGaussianScatter);
+    best = nll(bestLa, bestLb);
+  }
+  if (!std::isfinite(best))
+  {
+    for (double la = -kLogSpan; la <= kLogSpan; la += kGridStep)
+      for (double lb = -kLogSpan; lb <= kLogSpan; lb += kGridStep)
+        if (const double v = nll(la, lb); v < best)
+          std::tie(best, bestLa, bestLb) = std::make_tuple(v, la, lb);
+    step = kGridStep / 2;
+  }
+  if (!std::isfinite(best))
+    return std::nullopt;
+  while (step > 1e-3)
+  {
+    bool improved = false;
+    for (const auto& [da, db] : {std::pair{step, 0.0}, {-step, 0.0}, {0.0, step}, {0.0, -step}})
+      if (const double v = nll(bestLa + da, bestLb + db); v < best)
+      {
+        std::tie(best, bestLa, bestLb) = std::make_tuple(v, bestLa + da, bestLb + db);
+        improved = true;
+      }
+    if (!improved)
+      step /= 2;
+  }
+  // The Student-t's scatter is not the covariance: on Gaussian
+  // disagreements its fit reads c = 0.8167 times it (kGaussianScatter), the
+  // c that solves E[(nu + 6) u / (nu + u)] = 6 for u = q / c, q ~ chi2(6).
+  return TJointScales{std::exp(bestLa) / kGaussianScatter, std::exp(bestLb) / kGaussianScatter};
+}
+
 void CIcpConsistency::update()
 {
+  const auto previous = m_joint;
+  m_joint.reset();
+  if (m_samples.size() >= m_window)
+  {
+    std::vector<TComparison> c;
+    c.reserve(m_samples.size());
+    for (const auto& s : m_samples)
+      c.push_back({s.d, s.featureCov, s.icpCov, s.pairShare});
+    m_joint = fitJointScales(c, previous);
+  }
   std::vector<double> s;
   s.reserve(m_samples.size());
   for (const auto& x : m_samples)

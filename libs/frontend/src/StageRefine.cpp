@@ -216,6 +216,11 @@ std::optional<double> CRgbdOdometry::measuredIcpScale(
     I.icpConsistency.add(d, *featureCov, *icpCov, pairShare);
   const auto k = I.icpConsistency.scaleFor(pairShare);
   w.res.icpScale = I.icpConsistency.scale().value_or(0.0);
+  if (const auto joint = I.icpConsistency.jointScales())
+  {
+    w.res.featureScale = joint->features;
+    w.res.icpJointScale = joint->icp;
+  }
   // A run that finds ICP still not worth running doubles the interval to
   // the next probe (up to 8x icp_probe_interval); one that finds it worth
   // it resets the interval.

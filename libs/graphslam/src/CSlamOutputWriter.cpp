@@ -65,7 +65,7 @@ const char* kFramesCsvHeader =
     "extract_ms,lift_ms,match_ms,ransac_ms,icp_ms,keyframe_ms,frontend_ms,backend_ms,"
     "sigma_t_mm,sigma_r_deg,icp_refined,region_x,region_y,region_w,region_h,region_pixels,"
     "region_features,extension_pixels,extension_features,extension,flow_tracks,flow_ms,"
-    "icp_pair_share,icp_scale,bridged\n";
+    "icp_pair_share,icp_scale,bridged,feature_scale,icp_joint_scale\n";
 
 void writeFramesCsvRow(std::ostream& csv, const CSlamPipeline::TFrameRecord& r)
 {
@@ -101,7 +101,12 @@ void writeFramesCsvRow(std::ostream& csv, const CSlamPipeline::TFrameRecord& r)
       << t.flow_ms << "," << f.icpPairShare << ",";
   if (f.icpScale > 0)
     csv << f.icpScale;
-  csv << "," << (f.bridged ? 1 : 0) << "\n";
+  csv << "," << (f.bridged ? 1 : 0) << ",";
+  if (f.featureScale > 0)
+    csv << f.featureScale << "," << f.icpJointScale;
+  else
+    csv << ",";
+  csv << "\n";
 }
 }  // namespace
 

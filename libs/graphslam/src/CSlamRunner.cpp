@@ -105,6 +105,9 @@ nlohmann::json trackingJson(const CSlamPipeline& pipeline, const TSlamSummary& s
       {"icp_refined", st.icpRefined},
       {"icp_overruled_features", st.icpOverruledFeatures},
       {"icp_replaced_features", st.icpReplacedFeatures},
+      {"feature_scale", st.featureScale > 0 ? nlohmann::json(st.featureScale) : nlohmann::json()},
+      {"icp_joint_scale",
+       st.featureScale > 0 ? nlohmann::json(st.icpJointScale) : nlohmann::json()},
       {"bridged", st.bridged},
       {"bridged_constraints", st.bridgedConstraints}};
   // What stage 2 described: ROI-only frames describe their tracking region

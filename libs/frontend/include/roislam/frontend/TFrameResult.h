@@ -224,6 +224,11 @@ struct TFrameResult
    *  is known, when no ICP ran or it found no alignment, or outside
    *  measured fusion. */
   double icpScale = 0;
+  /** The features' and ICP's covariance scales fitted jointly from their
+   *  recent disagreements (CIcpConsistency::jointScales(), measured
+   *  fusion); 0 while unknown. What the features' edges would need to be
+   *  honest, and ICP's scale when it is not booked all disagreement. */
+  double featureScale = 0, icpJointScale = 0;
   std::size_t newKeyframeId = 0;
   /** For a new keyframe (except the first): constraints from the recent
    *  keyframes to it. The first entry is always from referenceKeyframe (the
