@@ -256,8 +256,7 @@ TFrameResult CRgbdOdometry::process(const TPreparedFrame& frame)
     {
       std::size_t& best = m_impl->bestInliers[w.ref];
       best = std::max(best, w.res.inliers);
-      if (w.res.method != ETrackingMethod::Flow &&
-          static_cast<int>(w.res.inliers) >= m_options.keyframe_min_inliers)
+      if (static_cast<int>(w.res.inliers) >= m_options.keyframe_min_inliers)
         m_impl->atInlierFloor.insert(w.ref);
     }
     rememberFrame(w);

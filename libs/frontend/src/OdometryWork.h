@@ -105,7 +105,7 @@ struct CRgbdOdometry::TImpl
    *  against each recent keyframe (erased with their ICP maps). */
   std::map<std::size_t, std::size_t> bestInliers;
   /** keyframe_min_inliers: the recent keyframes against which a frame's
-   *  described features (not anchors) registered with at least that many
+   *  described features or its anchors registered with at least that many
    *  inliers, and the map's first: below the floor, only these wear out
    *  (StageKeyframe.cpp). */
   std::set<std::size_t> atInlierFloor;

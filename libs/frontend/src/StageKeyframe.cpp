@@ -98,18 +98,16 @@ bool CRgbdOdometry::needsKeyframe(const TFrameWork& w) const
   const TOptions& o = m_options;
   // A bridged frame no longer registers against any keyframe: the next
   // frames need it as one. Inliers below keyframe_min_inliers are news only
-  // where this keyframe could give that many: for frames that follow its
-  // anchors, where it has that many anchors; for described features, where
-  // a registration against it (or it is the map's first) reached the floor.
-  // In a room whose only features lie on shading edges (15-37 SIFT inliers,
-  // about 15 anchors) every frame would otherwise become a keyframe, and
-  // the chain of 200-300 edges drifted where the motion policy's 22 did not
-  // (README "Keyframes where the features never were").
-  const TKeyframe& ref = m_keyframes[w.ref];
-  const bool reachedFloor =
-      w.res.method == ETrackingMethod::Flow
-          ? static_cast<int>(ref.anchorPoints.size()) >= o.keyframe_min_inliers
-          : m_impl->atInlierFloor.count(w.ref) > 0;
+  // where this keyframe could give that many: where a registration against
+  // it (or it is the map's first) reached the floor, by described features
+  // or by its anchors alike. In a room whose only features lie on shading
+  // edges (15-37 SIFT inliers, about 15 anchors) every frame would
+  // otherwise become a keyframe, and the chain of 200-300 edges drifted
+  // where the motion policy's 22 did not (README "Keyframes where the
+  // features never were"). Counting a keyframe's anchors instead (20-30
+  // there, of which flow keeps 18-25 inliers) made a keyframe of every
+  // other frame for its first 60 (README "Flow at the inlier floor").
+  const bool reachedFloor = m_impl->atInlierFloor.count(w.ref) > 0;
   bool fewInliers = w.bridged || (isFeatureMethod(w.res.method) && reachedFloor &&
                                   static_cast<int>(w.res.inliers) < o.keyframe_min_inliers);
   // Fewer than a share of the most this keyframe gave: the registrations

@@ -175,12 +175,13 @@
  *                             (> 0, or >= 0 with overlap, as above)
  *  - keyframe_min_inliers     int >= 0 (20): ... or when inliers drop below
  *                             this where the keyframe could give this many:
- *                             a frame following its anchors, when it has
- *                             this many anchors; described features, once a
- *                             frame registered against it with this many
- *                             (or it is the map's first). A count never
- *                             reached says nothing of wear: a featureless
- *                             room's shading edges give every frame fewer
+ *                             once a frame registered against it with this
+ *                             many, by its described features or by
+ *                             following its anchors (or it is the map's
+ *                             first). A count never reached says nothing of
+ *                             wear: a featureless room's shading edges give
+ *                             every frame fewer, and a keyframe's 20-30
+ *                             anchors there keep 18-25 of them
  *  - keyframe_min_inlier_share [0, 1) (0 = off): ... or when a frame's
  *                             feature inliers fall below this share of the
  *                             most any frame had against the same keyframe
