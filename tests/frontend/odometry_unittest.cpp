@@ -161,6 +161,10 @@ TEST(RgbdOdometry, MeasuredIcpFusionFollowsHowWellDepthAgreesWithColour)
     std::size_t fusedUnmeasured = 0;
     std::vector<double> shares;  // of the ICP runs' pairs
     std::vector<double> scales;  // measured fusion's k after each comparison
+    // The joint fit of both scales, once a window of 30 comparisons is held:
+    // how many frames reported one, the last, and the run's stats.
+    std::size_t jointReports = 0;
+    double lastFeatureScale = 0, statsFeatureScale = 0;
     for (const std::string fusion : {"weak", "measured"})
     {
       auto o = baseOptions();
@@ -173,6 +177,12 @@ TEST(RgbdOdometry, MeasuredIcpFusionFollowsHowWellDepthAgreesWithColour)
         ASSERT_TRUE(r.pose.has_value()) << "frame " << k;
         if (fusion == "measured" && r.icpRefined && r.icpScale == 0)
           ++fusedUnmeasured;
+        if (fusion == "measured" && r.featureScale > 0)
+        {
+          ++jointReports;
+          lastFeatureScale = r.featureScale;
+          EXPECT_GT(r.icpJointScale, 0.0);
+        }
         if (k < warmUp)
           continue;
         err[fusion == "measured"] += transErr(*r.pose, trajectoryPose(k)) / (n - warmUp);
@@ -187,7 +197,16 @@ TEST(RgbdOdometry, MeasuredIcpFusionFollowsHowWellDepthAgreesWithColour)
         else
           EXPECT_EQ(r.times.icp_ms, 0.0) << "frame " << k << ": ICP ran, no scale reported";
       }
+      if (fusion == "measured")
+        statsFeatureScale = odo.stats().featureScale;
     }
+    // Consistent depth compares every frame, so the window fills; biased
+    // depth only probes, and never does. The run's stats keep the last fit.
+    if (consistent)
+      EXPECT_GT(jointReports, 0u);
+    else
+      EXPECT_EQ(jointReports, 0u);
+    EXPECT_EQ(statsFeatureScale, lastFeatureScale);
     const std::size_t frames = n - warmUp;
     if (consistent)
     {

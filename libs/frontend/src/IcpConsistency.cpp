@@ -122,7 +122,7 @@ std::optional<CIcpConsistency::TJointScales> CIcpConsistency::fitJointScales(
   constexpr double kGaussianScatter = 0.8167;  // below
   // A coarse grid over three decades each way, then a pattern search down
   // to 1e-3 in log scale (0.1 %). From the previous fit (a window that
-  // moved by one comparison) the search alone: a fifth of the work.
+  // moved by one comparison) the search alone, in finer first steps.
   double bestLa = 0, bestLb = 0, best = std::numeric_limits<double>::infinity();
   double step = kGridStep / 8;
   if (start && start->features > 0 && start->icp > 0)

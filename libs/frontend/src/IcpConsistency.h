@@ -101,18 +101,19 @@ class CIcpConsistency
   {
     double features = 1, icp = 1;
   };
-  /** The joint fit over the window, or nullopt before `window` comparisons
-   *  (two scales need more than one) or when the fit failed. Recomputed on
-   *  every add() once known. */
+  /** The joint fit over the window, or nullopt before a full window (two
+   *  scales need more comparisons than one) or when the fit failed.
+   *  Recomputed on every add() once the window is full. */
   std::optional<TJointScales> jointScales() const { return m_joint; }
-  /** The fit itself, over any comparisons (exposed for its tests), from a
-   *  grid over e^-7..e^7 for each scale, or searched from `start` alone. */
+  /** One comparison, as add() takes it. */
   struct TComparison
   {
     Vector6d d;
     Matrix6d featureCov, icpCov;
     double pairShare = 1;
   };
+  /** The fit itself, over any comparisons (exposed for its tests), from a
+   *  grid over e^-7..e^7 for each scale, or searched from `start` alone. */
   static std::optional<TJointScales> fitJointScales(
       const std::vector<TComparison>& samples,
       const std::optional<TJointScales>& start = std::nullopt);

@@ -226,8 +226,9 @@ struct TFrameResult
   double icpScale = 0;
   /** The features' and ICP's covariance scales fitted jointly from their
    *  recent disagreements (CIcpConsistency::jointScales(), measured
-   *  fusion); 0 while unknown. What the features' edges would need to be
-   *  honest, and ICP's scale when it is not booked all disagreement. */
+   *  fusion); 0 while unknown: how far the tracked frames' registrations
+   *  are from their claimed covariance, each, instead of booking every
+   *  disagreement against ICP (icpScale). Reported, not used. */
   double featureScale = 0, icpJointScale = 0;
   std::size_t newKeyframeId = 0;
   /** For a new keyframe (except the first): constraints from the recent
