@@ -198,7 +198,7 @@ TEST(RgbdOdometry, MeasuredIcpFusionFollowsHowWellDepthAgreesWithColour)
           EXPECT_EQ(r.times.icp_ms, 0.0) << "frame " << k << ": ICP ran, no scale reported";
       }
       if (fusion == "measured")
-        statsFeatureScale = odo.stats().featureScale;
+        statsFeatureScale = odo.stats().featureScale.value_or(0.0);
     }
     // Consistent depth compares every frame, so the window fills; biased
     // depth only probes, and never does. The run's stats keep the last fit.

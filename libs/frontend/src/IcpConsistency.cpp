@@ -44,7 +44,13 @@ void CIcpConsistency::add(
     return;
   const Eigen::LDLT<Matrix6d> icpLdlt(icpCov);
   const double share = (featureCov * icpLdlt.solve(Matrix6d::Identity())).trace() / 6 / pairShare;
-  m_samples.push_back({d, featureCov, icpCov, std::isfinite(share) ? share : 0.0, pairShare});
+  TSample sample;
+  sample.d = d;
+  sample.featureCov = featureCov;
+  sample.icpCov = icpCov;
+  sample.pairShare = pairShare;
+  sample.share = std::isfinite(share) ? share : 0.0;
+  m_samples.push_back(std::move(sample));
   while (m_samples.size() > m_window)
     m_samples.pop_front();
   update();
@@ -165,11 +171,8 @@ void CIcpConsistency::update()
   m_joint.reset();
   if (m_samples.size() >= m_window)
   {
-    std::vector<TComparison> c;
-    c.reserve(m_samples.size());
-    for (const auto& s : m_samples)
-      c.push_back({s.d, s.featureCov, s.icpCov, s.pairShare});
-    m_joint = fitJointScales(c, previous);
+    m_joint =
+        fitJointScales(std::vector<TComparison>(m_samples.begin(), m_samples.end()), previous);
   }
   std::vector<double> s;
   s.reserve(m_samples.size());

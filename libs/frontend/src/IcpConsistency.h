@@ -137,12 +137,10 @@ class CIcpConsistency
   static constexpr double kChi2Gate6 = 16.811893829;
 
  private:
-  struct TSample
+  /** A comparison and its information share (medianShare()). */
+  struct TSample : TComparison
   {
-    Vector6d d;
-    Matrix6d featureCov, icpCov;
     double share = 0;
-    double pairShare = 1;
   };
   double medianChi2(double k) const;
   /** scaleFor()'s formula for a given k. */

@@ -105,9 +105,8 @@ nlohmann::json trackingJson(const CSlamPipeline& pipeline, const TSlamSummary& s
       {"icp_refined", st.icpRefined},
       {"icp_overruled_features", st.icpOverruledFeatures},
       {"icp_replaced_features", st.icpReplacedFeatures},
-      {"feature_scale", st.featureScale > 0 ? nlohmann::json(st.featureScale) : nlohmann::json()},
-      {"icp_joint_scale",
-       st.featureScale > 0 ? nlohmann::json(st.icpJointScale) : nlohmann::json()},
+      {"feature_scale", common::jsonOrNull(st.featureScale)},
+      {"icp_joint_scale", common::jsonOrNull(st.icpJointScale)},
       {"bridged", st.bridged},
       {"bridged_constraints", st.bridgedConstraints}};
   // What stage 2 described: ROI-only frames describe their tracking region

@@ -94,8 +94,8 @@ class CRgbdOdometry : public mrpt::system::COutputLogger
      *  the better determined (TFrameResult::icpReplacedFeatures). */
     std::size_t icpReplacedFeatures = 0;
     /** The last joint fit of the features' and ICP's covariance scales
-     *  (TFrameResult::featureScale, ::icpJointScale); 0 while none. */
-    double featureScale = 0, icpJointScale = 0;
+     *  (TFrameResult::featureScale, ::icpJointScale); none before one. */
+    std::optional<double> featureScale, icpJointScale;
     /** Frames tracked through the previous frame, and keyframe constraints
      *  chained through it (bridge_previous_frame). */
     std::size_t bridged = 0, bridgedConstraints = 0;
