@@ -243,6 +243,77 @@ TEST(RgbdOdometry, MeasuredIcpFusionFollowsHowWellDepthAgreesWithColour)
   }
 }
 
+namespace
+{
+/** A camera that goes back and forth along the first 18 poses of the test
+ *  trajectory (its pose k), so that a long run stays in the room. */
+CPose3D backAndForthPose(std::size_t k)
+{
+  const std::size_t phase = k % 36;
+  return trajectoryPose(phase <= 18 ? phase : 36 - phase);
+}
+}  // namespace
+
+TEST(RgbdOdometry, IcpProbesFollowAScaleThatChanges)
+{
+  // The scale of ICP's covariance changes within a run (on the fr1 Kinect
+  // the depth's disagreement with colour follows the motion: fr1/rpy reads
+  // 160-200 over its first comparisons, 3-47 later). Here depth is biased
+  // against colour over the first frames, which sets a large scale: ICP only
+  // probes, every icp_probe_interval registrations. Once depth agrees, the
+  // probes turn the window of 30 comparisons over, the scale falls and ICP
+  // is fused into every registration again. Before stop 54 the interval
+  // doubled after each probe, up to 8x: the window kept the first frames'
+  // comparisons, the scale stayed, and ICP was not fused again in this run.
+  const std::size_t n = 170, biasedUntil = 12, tail = 20;
+  auto o = baseOptions();
+  o.icp_fusion = "measured";
+  CRgbdOdometry odo(o);
+  odo.setInitialPose(backAndForthPose(0));
+  double scaleWhileBiased = 0, lastScale = 0;
+  std::size_t probes = 0, tailRan = 0, tailFused = 0;
+  for (std::size_t k = 0; k < n; ++k)
+  {
+    auto f = renderRoom(backAndForthPose(k), 100, k, 0.1 * k);
+    if (k < biasedUntil)
+    {
+      const double x = static_cast<double>(k);
+      const CPose3D off(
+          0.02 * std::sin(1.3 * x), 0.015 * std::cos(1.7 * x), 0.02 * std::sin(0.9 * x),
+          0.006 * std::sin(2.3 * x), 0.006 * std::cos(1.1 * x), 0);
+      f.depth = renderRoom(backAndForthPose(k) + off, 100, k, 0.1 * k).depth;
+    }
+    const auto r = odo.process(f);
+    ASSERT_TRUE(r.pose.has_value()) << "frame " << k;
+    if (r.icpScale > 0)
+      lastScale = r.icpScale;
+    if (k == biasedUntil - 1)
+      scaleWhileBiased = lastScale;
+    if (k >= biasedUntil && r.times.icp_ms > 0 && r.icpPairShare < 1)
+      ++probes;
+    // Frames registered against a keyframe whose depth map is no longer
+    // held (the camera came back to an older one) do not run ICP.
+    if (k + tail >= n && !r.isNewKeyframe && r.times.icp_ms > 0)
+    {
+      ++tailRan;
+      tailFused += r.icpRefined ? 1 : 0;
+    }
+  }
+  // Biased depth: a scale as in MeasuredIcpFusionFollowsHowWellDepthAgrees-
+  // WithColour (at least 12), then probes on a quarter of the pairs.
+  EXPECT_GE(scaleWhileBiased, 12.0);
+  EXPECT_GE(probes, 5u);
+  // Depth that agrees: the scale of consistent depth, and ICP runs on and
+  // is fused into the ordinary registrations of the last frames.
+  EXPECT_LT(lastScale, 12.0);
+  EXPECT_GE(tailRan, tail / 2);
+  EXPECT_EQ(tailFused, tailRan);
+  std::printf(
+      "scale %.1f while biased, %.2f at the end; %zu probes on a quarter of the pairs; ICP fused "
+      "into %zu of the %zu ordinary frames of the last %zu that ran it\n",
+      scaleWhileBiased, lastScale, probes, tailFused, tailRan, tail);
+}
+
 TEST(RgbdOdometry, RegisterKeyframesAndCorrectKeyframePoses)
 {
   auto o = baseOptions();

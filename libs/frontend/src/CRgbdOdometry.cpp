@@ -155,7 +155,6 @@ void CRgbdOdometry::reset()
   m_impl->depthTime.reset();
   m_impl->icpConsistency.reset();
   m_impl->framesSinceIcp = 0;
-  m_impl->icpProbeInterval = 0;
   m_impl->regionGrowth = 1;
   m_impl->bestInliers.clear();
   m_impl->atInlierFloor.clear();

@@ -92,9 +92,6 @@ struct CRgbdOdometry::TImpl
   detail::CIcpConsistency icpConsistency{30, 10, detail::CDepthIcp::kIndependentPairShare};
   /** Registrations since depth ICP last ran (icp_probe_interval). */
   std::size_t framesSinceIcp = 0;
-  /** The current interval between ICP probes (icp_probe_interval, doubled
-   *  after each probe that found ICP not worth running). */
-  std::size_t icpProbeInterval = 0;
   /** roi_extraction = region: the tracking region's minimum area, as a
    *  multiple of roi_min_area_fraction. It grows after each region
    *  registration that failed or left the pose poorly determined, and

@@ -348,10 +348,9 @@
  *                             (0.1: the fused pose's variance 9 % lower);
  *                             below it only as a probe, to update the
  *                             scale: icp_probe_interval registrations after
- *                             the last ICP, an interval that doubles after
- *                             each probe that finds ICP still below the
- *                             share, up to 8x (a camera whose depth
- *                             disagrees costs one ICP in 80 frames)
+ *                             the last ICP (a constant interval, so that the
+ *                             30 comparisons the scale is measured over span
+ *                             a bounded stretch of the run: StageRefine.cpp)
  *  - icp_probe_interval       int >= 1 (10)
  *  - icp_decimation           int >= 1 (4): ICP uses every n-th pixel/row
  *                             (of an image under 1280 px wide; n x 2 per
