@@ -257,6 +257,48 @@ TEST(RgbdSimulator, UnregisteredDepthIsTheDepthCamerasView)
   EXPECT_LT(asRegistered.depthOk, own.depthOk * 0.5);
 }
 
+TEST(RgbdSimulator, RadialDepthBiasIsFixedInTheImage)
+{
+  // depth_radial_bias c: each reading is z (1 + c r^2) in the normalised
+  // coordinates of the grid the depth lies on (the colour camera's when
+  // registered, the depth camera's when not); c = 0 changes nothing.
+  for (const bool registered : {true, false})
+  {
+    SCOPED_TRACE(registered ? "registered" : "unregistered");
+    auto o = opts("textured", false);
+    o.depthRegistered = registered;
+    o.depthCx = 322.0;
+    o.depthCy = 236.0;
+    cv::Mat clean, biased;
+    {
+      CRgbdSimulator sim(o);
+      clean = sim.renderFrame(4).depth;
+    }
+    o.depthRadialBias = 0.03;
+    CRgbdSimulator sim(o);
+    biased = sim.renderFrame(4).depth;
+    const auto cam = registered ? sim.camera() : sim.depthCamera();
+    int compared = 0;
+    double worstCorner = 0;
+    for (int v = 0; v < clean.rows; v += 3)
+      for (int u = 0; u < clean.cols; u += 3)
+      {
+        const float z0 = clean.at<float>(v, u), z = biased.at<float>(v, u);
+        if (!(z0 > 0) || !(z > 0))
+          continue;
+        const double x = (u - cam.cx()) / cam.fx(), y = (v - cam.cy()) / cam.fy();
+        ASSERT_NEAR(z / z0, 1 + 0.03 * (x * x + y * y), 1e-6) << u << ", " << v;
+        ++compared;
+        worstCorner = std::max(worstCorner, static_cast<double>(z / z0) - 1);
+      }
+    EXPECT_GT(compared, 30000);
+    // About 1.8 % at the corners (r^2 about 0.6 at 517 px, 0.5 at the depth
+    // camera's 576 px).
+    EXPECT_GT(worstCorner, 0.014);
+    EXPECT_LT(worstCorner, 0.02);
+  }
+}
+
 TEST(RgbdSimulator, DisparityNoiseModelIsSelectable)
 {
   auto o = opts("textured", true);
@@ -427,6 +469,7 @@ TEST(RgbdSimulator, OptionsLoadValidateAndRoundTrip)
   cfg.write("RgbdSimulator", "exposure_ms", "12.5");
   cfg.write("RgbdSimulator", "exposure_samples", "5");
   cfg.write("RgbdSimulator", "furniture", "true");
+  cfg.write("RgbdSimulator", "depth_radial_bias", "-0.025");
   CRgbdSimulator::TOptions o;
   o.loadFromConfigFile(cfg, "RgbdSimulator");
   EXPECT_EQ(o.scene, "featureless");
@@ -448,6 +491,7 @@ TEST(RgbdSimulator, OptionsLoadValidateAndRoundTrip)
   EXPECT_DOUBLE_EQ(back.commonShiftPx, 0.4);
   EXPECT_DOUBLE_EQ(back.exposureMs, 12.5);
   EXPECT_EQ(back.exposureSamples, 5u);
+  EXPECT_DOUBLE_EQ(back.depthRadialBias, -0.025);
   // The camera it simulates describes the shift.
   EXPECT_DOUBLE_EQ(CRgbdSimulator(o).sensorDescription().common_pixel_sigma_px, 0.4);
 
@@ -476,6 +520,8 @@ TEST(RgbdSimulator, OptionsLoadValidateAndRoundTrip)
   expectError("fps", "0");
   expectError("noise", "maybe");
   expectError("depth_time_offset", "0.05");
+  expectError("depth_radial_bias", "0.5");
+  expectError("depth_radial_bias", "x");
   expectError("rolling_shutter_ms", "-1");
   expectError("rolling_shutter_ms", "40");  // longer than a 30 Hz frame
   expectError("framez", "10");              // unknown key

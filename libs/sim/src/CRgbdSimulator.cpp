@@ -358,8 +358,32 @@ CRgbdSimulator::TBands CRgbdSimulator::renderBands(
   return out;
 }
 
+void CRgbdSimulator::applyRadialBias(cv::Mat& depth) const
+{
+  if (m_opts.depthRadialBias == 0)
+    return;
+  // The pixel grid the depth lies on: the colour camera's (registered; with
+  // a lens, r of the distorted pixel, as a sensor-fixed pattern is) or the
+  // depth camera's own.
+  const mrpt::img::TCamera cam = m_opts.depthRegistered ? camera() : depthCamera();
+  const double c = m_opts.depthRadialBias;
+  for (int v = 0; v < depth.rows; ++v)
+  {
+    const double y = (v - cam.cy()) / cam.fy();
+    auto* row = depth.ptr<float>(v);
+    for (int u = 0; u < depth.cols; ++u)
+    {
+      const double x = (u - cam.cx()) / cam.fx();
+      row[u] = static_cast<float>(row[u] * (1 + c * (x * x + y * y)));
+    }
+  }
+}
+
 void CRgbdSimulator::corrupt(TFrame& f, std::size_t i) const
 {
+  // The sensor's fixed bias first: its range limits and noise act on what
+  // it reads.
+  applyRadialBias(f.depth);
   CKinectNoiseModel::applyRange(f.depth, m_opts.minDepth, m_opts.maxDepth);
   if (!m_opts.noise)
     return;

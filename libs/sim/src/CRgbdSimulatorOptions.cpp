@@ -119,6 +119,8 @@ void validateSequence(const TOptions& o, const TKeyError& fail)
     fail("fps", "must be in (0, 1000]");
   if (!(std::abs(o.depthTimeOffset) < 0.02))
     fail("depth_time_offset", "must be within +-0.02 s");
+  if (!(std::abs(o.depthRadialBias) <= 0.2))
+    fail("depth_radial_bias", "must be within +-0.2");
   if (!(o.rollingShutterMs >= 0 && o.rollingShutterMs * 1e-3 <= 1.0 / o.fps))
     fail("rolling_shutter_ms", "must be in [0, frame period]");
   if (!(o.exposureMs >= 0 && o.exposureMs * 1e-3 <= 1.0 / o.fps))
@@ -277,6 +279,7 @@ void CRgbdSimulator::TOptions::loadFromConfigFile(
   r.get("depth_cx", depthCx);
   r.get("depth_cy", depthCy);
   r.get("depth_pose_in_colour", depthPoseInColour);
+  r.get("depth_radial_bias", depthRadialBias);
   r.get("camera_y_up", cameraYUp);
   r.get("rgb_noise_std", rgbNoiseStd);
   r.get("supersampling", supersampling);
@@ -334,6 +337,7 @@ void CRgbdSimulator::TOptions::saveToConfigFile(
   wd("depth_cx", depthCx);
   wd("depth_cy", depthCy);
   w("depth_pose_in_colour", depthPoseInColour);
+  wd("depth_radial_bias", depthRadialBias);
   w("camera_y_up", cameraYUp ? "true" : "false");
   wd("rgb_noise_std", rgbNoiseStd);
   w("supersampling", std::to_string(supersampling));
