@@ -300,7 +300,7 @@ bool CRgbdOdometry::icpWorthRunning(double pairShare, bool ignoreProbe) const
   // (the fr1 Kinect: 1-10 %), fusing it changes little; it then runs only
   // as a probe, to keep the scale current: every icp_probe_interval
   // registrations, so that the window of comparisons spans a bounded stretch
-  // of the run. On that Kinect the scale follows the motion (fr1/rpy: 160-200
+  // of the run. On that Kinect the scale follows the motion (fr1/rpy: 63-196
   // from its first 10 comparisons, a median of 15-36 over the run, 3-7 at
   // its end). Before stop 54 the interval doubled after each probe that found
   // ICP not worth it, up to 8x: the window then spanned up to 2400 frames,
