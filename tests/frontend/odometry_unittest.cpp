@@ -299,8 +299,8 @@ TEST(RgbdOdometry, IcpProbesFollowAScaleThatChanges)
       tailFused += r.icpRefined ? 1 : 0;
     }
   }
-  // Biased depth: a scale as in MeasuredIcpFusionFollowsHowWellDepthAgrees-
-  // WithColour (at least 12), then probes on a quarter of the pairs.
+  // Biased depth: a scale of at least 12, as in the test above, then probes
+  // on a quarter of the pairs.
   EXPECT_GE(scaleWhileBiased, 12.0);
   EXPECT_GE(probes, 5u);
   // Depth that agrees: the scale of consistent depth, and ICP runs on and
