@@ -380,7 +380,9 @@ std::optional<TRGBDFrame> CTumFrameSource::next()
   const TEntry& e = m_entries[m_next];
   TRGBDFrame f;
   f.index = m_next;
-  f.timestamp = e.rgbStamp;
+  // The colour image's own time; the depth image keeps its stamp (it has its
+  // own, and the description says nothing of its latency).
+  f.timestamp = colourTime(e.rgbStamp);
   f.depthTimestamp = e.depthStamp;
   const TSensorDescription& sensor = m_sensor.sensor;
   std::tie(f.rgb, f.depth) = readRawFrame(e);

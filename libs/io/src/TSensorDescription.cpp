@@ -104,6 +104,8 @@ void readScalars(
         "must be top_to_bottom or bottom_to_top (got '" + dir + "')");
   d.rolling_shutter_bottom_to_top = dir == "bottom_to_top";
   d.frame_rate = common::readDouble(cfg, s, "frame_rate", d.frame_rate);
+  d.colour_time_offset_ms =
+      common::readDouble(cfg, s, "colour_time_offset_ms", d.colour_time_offset_ms);
   d.common_pixel_sigma_px =
       common::readDouble(cfg, s, "common_pixel_sigma_px", d.common_pixel_sigma_px);
   d.keypoint_sigma_px = common::readDouble(cfg, s, "keypoint_sigma_px", d.keypoint_sigma_px);
@@ -183,6 +185,9 @@ void TSensorDescription::validate(const std::string& s) const
       rolling_shutter_ms >= 0 && rolling_shutter_ms <= 1000 / frame_rate, s, "rolling_shutter_ms",
       rolling_shutter_ms, "in [0, one frame period]");
   common::require(
+      std::abs(colour_time_offset_ms) <= 1000 / frame_rate, s, "colour_time_offset_ms",
+      colour_time_offset_ms, "within one frame period of 0");
+  common::require(
       common_pixel_sigma_px >= 0 && std::isfinite(common_pixel_sigma_px), s,
       "common_pixel_sigma_px", common_pixel_sigma_px, ">= 0 px");
   common::require(
@@ -241,6 +246,7 @@ void TSensorDescription::saveToConfigFile(
       s, "rolling_shutter_direction",
       std::string(rolling_shutter_bottom_to_top ? "bottom_to_top" : "top_to_bottom"));
   w("frame_rate", frame_rate);
+  w("colour_time_offset_ms", colour_time_offset_ms);
   w("common_pixel_sigma_px", common_pixel_sigma_px);
   w("keypoint_sigma_px", keypoint_sigma_px);
   w("keypoint_time_sigma_ms", keypoint_time_sigma_ms);

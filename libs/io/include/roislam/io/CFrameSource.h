@@ -63,6 +63,14 @@ class CFrameSource
       const std::string& path, const std::string& cameraSpec = "auto");
 
  protected:
+  /** When a colour image stamped `stamp` was taken: the stamp plus the
+   *  description's colour_time_offset_ms. Every source stamps its frames
+   *  with it. */
+  double colourTime(double stamp) const
+  {
+    return stamp + m_sensor.sensor.colour_time_offset_ms * 1e-3;
+  }
+
   TSensorChoice m_sensor;
 };
 }  // namespace roislam::io

@@ -47,6 +47,15 @@
  *         colour readout from first to last row, ms; 0 = global shutter
  *     rolling_shutter_direction  top_to_bottom | bottom_to_top  top_to_bottom
  *     frame_rate                 double > 0                   30 (Hz)
+ *     colour_time_offset_ms      double, |x| <= 1000/frame_rate  0
+ *         when the colour image was taken, minus its stamp, ms (negative:
+ *         before it): the time of its middle row, which the front end's
+ *         poses refer to (the rolling shutter is rectified to it). A
+ *         driver stamps a frame when it arrives, after its exposure and
+ *         readout. The frame sources add it to each colour stamp, so the
+ *         trajectories (and the ground truth read against them) carry the
+ *         time the image shows. Measured against a ground truth's clock
+ *         (README "When the colour image was taken"); 0 = the stamp
  *     common_pixel_sigma_px      double >= 0                  0 (px)
  *         1-sigma, per image axis, of an error that moves all keypoints of
  *         one colour image alike (what a frame keeps of its timing,
@@ -121,6 +130,7 @@ struct TSensorDescription : public mrpt::config::CLoadableOptions
   double rolling_shutter_ms = 0;  //!< readout of all rows, >= 0
   bool rolling_shutter_bottom_to_top = false;
   double frame_rate = 30;             //!< Hz
+  double colour_time_offset_ms = 0;   //!< colour image's time minus its stamp, ms
   double common_pixel_sigma_px = 0;   //!< per-image keypoint shift, 1 sigma per axis
   double keypoint_sigma_px = 0;       //!< the camera's per-keypoint noise, 1 sigma per axis
   double keypoint_time_sigma_ms = 0;  //!< keypoint timing noise, ms (x image speed: px)
