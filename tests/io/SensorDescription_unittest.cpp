@@ -34,6 +34,7 @@ TSensorDescription unusual()
   d.rolling_shutter_ms = 12.5;
   d.rolling_shutter_bottom_to_top = true;
   d.frame_rate = 60;
+  d.colour_time_offset_ms = -4.5;
   d.common_pixel_sigma_px = 0.35;
   d.keypoint_sigma_px = 0.85;
   d.keypoint_time_sigma_ms = 7.5;
@@ -83,6 +84,7 @@ void expectSame(const TSensorDescription& a, const TSensorDescription& b)
   EXPECT_DOUBLE_EQ(a.rolling_shutter_ms, b.rolling_shutter_ms);
   EXPECT_EQ(a.rolling_shutter_bottom_to_top, b.rolling_shutter_bottom_to_top);
   EXPECT_DOUBLE_EQ(a.frame_rate, b.frame_rate);
+  EXPECT_DOUBLE_EQ(a.colour_time_offset_ms, b.colour_time_offset_ms);
   EXPECT_DOUBLE_EQ(a.common_pixel_sigma_px, b.common_pixel_sigma_px);
   EXPECT_DOUBLE_EQ(a.keypoint_sigma_px, b.keypoint_sigma_px);
   EXPECT_DOUBLE_EQ(a.keypoint_time_sigma_ms, b.keypoint_time_sigma_ms);
@@ -111,7 +113,8 @@ TEST(SensorDescription, EveryKeyRoundTrips)
   // Every documented key is written.
   for (const char* key :
        {"name", "depth_registered", "depth_pose_in_colour", "estimate_registration", "depth_scale",
-        "rolling_shutter_ms", "rolling_shutter_direction", "frame_rate", "common_pixel_sigma_px",
+        "rolling_shutter_ms", "rolling_shutter_direction", "frame_rate", "colour_time_offset_ms",
+        "common_pixel_sigma_px",
         "keypoint_sigma_px", "keypoint_time_sigma_ms", "depth_noise_model", "depth_noise_a",
         "depth_noise_b", "depth_noise_z0", "disparity_bf", "disparity_steps_per_px",
         "disparity_noise_steps", "lateral_sigma_px"})
@@ -138,6 +141,7 @@ TEST(SensorDescription, PresetsRoundTripAndCarryTheReadout)
     EXPECT_FALSE(p.rolling_shutter_bottom_to_top);
     // Measured on fr1 only (CameraPresets.cpp).
     EXPECT_DOUBLE_EQ(p.common_pixel_sigma_px, std::string(name) == "fr1" ? 0.3 : 0) << name;
+    EXPECT_DOUBLE_EQ(p.colour_time_offset_ms, std::string(name) == "fr1" ? -7 : 0) << name;
     // Real cameras: the camera's share of each keypoint's noise.
     EXPECT_GT(p.keypoint_sigma_px, 0) << name;
     EXPECT_DOUBLE_EQ(p.keypoint_sigma_px, roislam::io::sensorPreset("fr1").keypoint_sigma_px);
@@ -180,6 +184,9 @@ TEST(SensorDescription, BadValuesNameSectionAndKey)
       {"rolling_shutter_ms", "20"},  // longer than a 60 Hz frame
       {"rolling_shutter_direction", "sideways"},
       {"frame_rate", "0"},
+      {"colour_time_offset_ms", "-20"},  // more than a 60 Hz frame
+      {"colour_time_offset_ms", "17"},
+      {"colour_time_offset_ms", "nan"},
       {"common_pixel_sigma_px", "-0.1"},
       {"common_pixel_sigma_px", "nan"},
       {"keypoint_sigma_px", "-0.5"},

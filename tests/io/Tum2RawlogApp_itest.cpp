@@ -2,6 +2,7 @@
  * the shared fr1/rpy sequence, checked with our reader and with MRPT's
  * rawlog-edit run from a different working directory (skipped when
  * rawlog-edit is not installed). */
+#include <roislam/io/CFrameSource.h>
 #include <roislam/io/CRawlogFrameSource.h>
 #include <roislam/io/CTumFrameSource.h>
 #include <roislam/io/CameraPresets.h>
@@ -132,6 +133,49 @@ TEST(Tum2RawlogApp, EndToEndOnSmallFolder)
           tmp + "/log4.txt");
   EXPECT_EQ(pc.exitCode, 0) << pc.out;
   EXPECT_NE(pc.out.find("Entries modified                  : 4"), std::string::npos) << pc.out;
+  fs::remove_all(tmp);
+}
+
+TEST(Tum2RawlogApp, ColourTimeOffsetAppliesOnceThroughARawlog)
+{
+  const auto tmp = roislam::testing::makeTempDir("io_t2r_time");
+  const auto dir = writeTumFolder(tmp, "seq", {1.0, 2.0, 3.0}, {1.01, 2.0, 2.99});
+  TSensorDescription d;
+  d.name = "late-stamps";
+  d.colour = smallCamera();
+  d.colour_time_offset_ms = -7;
+  std::ofstream(fs::path(dir) / "camera.ini") << d.toIniText();
+
+  // The folder: colour frames at their stamps minus 7 ms, depth at its own.
+  auto folder = CFrameSource::open(dir);
+  EXPECT_DOUBLE_EQ(folder->sensor().sensor.colour_time_offset_ms, -7);
+  const std::vector<double> rgb{1.0, 2.0, 3.0}, depth{1.01, 2.0, 2.99};
+  std::vector<double> taken;
+  for (std::size_t i = 0; auto f = folder->next(); ++i)
+  {
+    EXPECT_NEAR(f->timestamp, rgb[i] - 0.007, 1e-9) << i;
+    EXPECT_NEAR(f->depthTimestamp, depth[i], 1e-9) << i;
+    taken.push_back(f->timestamp);
+  }
+  ASSERT_EQ(taken.size(), 3u);
+
+  // The rawlog keeps the raw stamps and the description beside it, so the
+  // offset applies once when it is read back; its one stamp per
+  // observation stays the depth's too.
+  fs::create_directories(tmp + "/out");
+  const auto r =
+      run(tmp, "'" + tum2rawlog() + "' --input seq --output out/seq.rawlog", tmp + "/log.txt");
+  ASSERT_EQ(r.exitCode, 0) << r.out;
+  EXPECT_NE(
+      slurp(tmp + "/out/seq.camera.ini").find("colour_time_offset_ms = -7"), std::string::npos);
+  auto rawlog = CFrameSource::open(tmp + "/out/seq.rawlog");
+  EXPECT_DOUBLE_EQ(rawlog->sensor().sensor.colour_time_offset_ms, -7);
+  for (std::size_t i = 0; auto f = rawlog->next(); ++i)
+  {
+    ASSERT_LT(i, taken.size());
+    EXPECT_NEAR(f->timestamp, taken[i], 1e-6) << i;
+    EXPECT_DOUBLE_EQ(f->depthTimestamp, f->timestamp) << i;
+  }
   fs::remove_all(tmp);
 }
 

@@ -43,7 +43,9 @@ TEST(TumFrameSource, SharedSequenceAssociationAndFrames)
   auto first = src->next();
   ASSERT_TRUE(first);
   EXPECT_EQ(first->index, 0u);
-  EXPECT_DOUBLE_EQ(first->timestamp, 1305031229.528748);
+  // The colour image's time: its stamp plus the fr1 description's
+  // colour_time_offset_ms (-7); the depth image keeps its stamp.
+  EXPECT_NEAR(first->timestamp, 1305031229.528748 - 0.007, 1e-9);
   EXPECT_DOUBLE_EQ(first->depthTimestamp, 1305031229.528784);
   EXPECT_EQ(first->rgb.type(), CV_8UC3);
   EXPECT_EQ(first->depth.type(), CV_32FC1);
@@ -91,7 +93,7 @@ TEST(TumFrameSource, SharedSequenceAssociationAndFrames)
   auto second = src->next();
   ASSERT_TRUE(second);
   EXPECT_EQ(second->index, 1u);
-  EXPECT_DOUBLE_EQ(second->timestamp, entries[1].rgbStamp);
+  EXPECT_NEAR(second->timestamp, entries[1].rgbStamp - 0.007, 1e-9);
 
   src->rewind();
   auto again = src->next();
