@@ -24,7 +24,8 @@ using roislam::graphslam::CRoiGraphSlamApp;
 namespace
 {
 /** Rotation RPE (deg) of `est` with `offsetS` added to its stamps. */
-double rotationRpe(const roislam::io::TTrajectory& gt, const roislam::io::TTrajectory& est, double offsetS)
+double rotationRpe(
+    const roislam::io::TTrajectory& gt, const roislam::io::TTrajectory& est, double offsetS)
 {
   CTrajectoryEvaluator::TOptions o;
   o.offset = offsetS;

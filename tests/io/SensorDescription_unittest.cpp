@@ -112,12 +112,26 @@ TEST(SensorDescription, EveryKeyRoundTrips)
   const std::string ini = d.toIniText();
   // Every documented key is written.
   for (const char* key :
-       {"name", "depth_registered", "depth_pose_in_colour", "estimate_registration", "depth_scale",
-        "rolling_shutter_ms", "rolling_shutter_direction", "frame_rate", "colour_time_offset_ms",
+       {"name",
+        "depth_registered",
+        "depth_pose_in_colour",
+        "estimate_registration",
+        "depth_scale",
+        "rolling_shutter_ms",
+        "rolling_shutter_direction",
+        "frame_rate",
+        "colour_time_offset_ms",
         "common_pixel_sigma_px",
-        "keypoint_sigma_px", "keypoint_time_sigma_ms", "depth_noise_model", "depth_noise_a",
-        "depth_noise_b", "depth_noise_z0", "disparity_bf", "disparity_steps_per_px",
-        "disparity_noise_steps", "lateral_sigma_px"})
+        "keypoint_sigma_px",
+        "keypoint_time_sigma_ms",
+        "depth_noise_model",
+        "depth_noise_a",
+        "depth_noise_b",
+        "depth_noise_z0",
+        "disparity_bf",
+        "disparity_steps_per_px",
+        "disparity_noise_steps",
+        "lateral_sigma_px"})
     EXPECT_NE(ini.find(std::string(key) + " "), std::string::npos) << key;
   EXPECT_NE(ini.find("[DEPTH_CAMERA_PARAMS]"), std::string::npos);
   const TSensorDescription back = reload(ini);
