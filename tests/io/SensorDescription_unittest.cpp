@@ -320,12 +320,17 @@ TEST(SensorDescription, ResolveSaysWhatItPickedAndWhy)
   EXPECT_EQ(a.source, "preset fr1");
   EXPECT_NE(a.reason.find("freiburg1"), std::string::npos) << a.reason;
   EXPECT_DOUBLE_EQ(a.sensor.rolling_shutter_ms, 25);
+  // The colour images' time is said where the camera is described.
+  EXPECT_NE(a.summary().find("colour images taken 7 ms before their stamps"), std::string::npos)
+      << a.summary();
+  EXPECT_DOUBLE_EQ(a.toJson()["colour_time_offset_ms"].get<double>(), -7);
 
   const auto b = roislam::io::resolveSensor("auto", other.string());
   EXPECT_EQ(b.source, "preset ros");
   EXPECT_NE(b.reason.find("ROS defaults"), std::string::npos) << b.reason;
   EXPECT_NE(b.summary().find("ROS defaults"), std::string::npos) << b.summary();
   EXPECT_DOUBLE_EQ(b.sensor.rolling_shutter_ms, 0);
+  EXPECT_EQ(b.summary().find("colour images taken"), std::string::npos) << b.summary();
 
   const auto c = roislam::io::resolveSensor("auto", own.string());
   EXPECT_EQ(c.source, "file " + (own / "camera.ini").string());

@@ -1,5 +1,6 @@
 #include "roislam/io/TSensorChoice.h"
 
+#include <cmath>
 #include <cstdio>
 
 namespace roislam::io
@@ -27,8 +28,13 @@ std::string TSensorChoice::summary() const
   const std::string registration =
       s.depth_registered ? ", depth registered"
                          : ", depth not registered (re-projected into the colour camera)";
+  char taken[96] = "";
+  if (s.colour_time_offset_ms != 0)
+    std::snprintf(
+        taken, sizeof(taken), ", colour images taken %g ms %s their stamps",
+        std::abs(s.colour_time_offset_ms), s.colour_time_offset_ms < 0 ? "before" : "after");
   return "sensor '" + s.name + "' (" + source + ", because " + reason + "): " + intrinsics +
-         registration + rest;
+         registration + rest + taken;
 }
 
 nlohmann::json TSensorChoice::toJson() const
@@ -40,6 +46,7 @@ nlohmann::json TSensorChoice::toJson() const
       {"depth_registered", sensor.depth_registered},
       {"rolling_shutter_ms", sensor.signedReadoutMs()},
       {"frame_rate", sensor.frame_rate},
+      {"colour_time_offset_ms", sensor.colour_time_offset_ms},
       {"common_pixel_sigma_px", sensor.common_pixel_sigma_px},
       {"keypoint_sigma_px", sensor.keypoint_sigma_px},
       {"keypoint_time_sigma_ms", sensor.keypoint_time_sigma_ms},
