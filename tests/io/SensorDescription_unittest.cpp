@@ -154,7 +154,7 @@ TEST(SensorDescription, PresetsRoundTripAndCarryTheReadout)
     EXPECT_DOUBLE_EQ(p.rolling_shutter_ms, std::string(name) == "ros" ? 0 : 25) << name;
     EXPECT_FALSE(p.rolling_shutter_bottom_to_top);
     // Measured on fr1 only (CameraPresets.cpp).
-    EXPECT_DOUBLE_EQ(p.common_pixel_sigma_px, std::string(name) == "fr1" ? 0.3 : 0) << name;
+    EXPECT_DOUBLE_EQ(p.common_pixel_sigma_px, std::string(name) == "fr1" ? 0.6 : 0) << name;
     EXPECT_DOUBLE_EQ(p.colour_time_offset_ms, std::string(name) == "fr1" ? -7 : 0) << name;
     // Real cameras: the camera's share of each keypoint's noise.
     EXPECT_GT(p.keypoint_sigma_px, 0) << name;
