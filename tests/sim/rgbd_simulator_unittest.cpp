@@ -470,6 +470,7 @@ TEST(RgbdSimulator, OptionsLoadValidateAndRoundTrip)
   cfg.write("RgbdSimulator", "exposure_samples", "5");
   cfg.write("RgbdSimulator", "furniture", "true");
   cfg.write("RgbdSimulator", "depth_radial_bias", "-0.025");
+  cfg.write("RgbdSimulator", "stamp_delay", "0.009");
   CRgbdSimulator::TOptions o;
   o.loadFromConfigFile(cfg, "RgbdSimulator");
   EXPECT_EQ(o.scene, "featureless");
@@ -492,6 +493,7 @@ TEST(RgbdSimulator, OptionsLoadValidateAndRoundTrip)
   EXPECT_DOUBLE_EQ(back.exposureMs, 12.5);
   EXPECT_EQ(back.exposureSamples, 5u);
   EXPECT_DOUBLE_EQ(back.depthRadialBias, -0.025);
+  EXPECT_DOUBLE_EQ(back.stampDelay, 0.009);
   // The camera it simulates describes the shift.
   EXPECT_DOUBLE_EQ(CRgbdSimulator(o).sensorDescription().common_pixel_sigma_px, 0.4);
 
@@ -521,6 +523,8 @@ TEST(RgbdSimulator, OptionsLoadValidateAndRoundTrip)
   expectError("noise", "maybe");
   expectError("depth_time_offset", "0.05");
   expectError("depth_radial_bias", "0.5");
+  expectError("stamp_delay", "-0.001");
+  expectError("stamp_delay", "0.02");
   expectError("depth_radial_bias", "x");
   expectError("rolling_shutter_ms", "-1");
   expectError("rolling_shutter_ms", "40");  // longer than a 30 Hz frame
@@ -653,6 +657,44 @@ TEST(RgbdSimulator, WritesTumLayoutMatchingRenderedFrames)
   EXPECT_EQ(countLines(out / "rgb.txt"), 4u);
   CRgbdSimulator(o2).writeSequence(out.string(), true);
   EXPECT_EQ(countLines(out / "rgb.txt"), 2u);
+  fs::remove_all(dir);
+}
+
+// stamp_delay writes each frame's stamps later than its images were taken,
+// as a driver stamps a frame when it arrives; camera.ini says so, and the
+// folder reader gives the frames back at the times they were taken.
+TEST(RgbdSimulator, DelayedStampsAreReadBackAtTheTimeTheImagesWereTaken)
+{
+  const std::string dir = roislam::testing::makeTempDir("sim_delay");
+  const fs::path out = fs::path(dir) / "seq";
+  auto o = opts("textured", false, 3);
+  o.stampDelay = 0.009;
+  o.depthTimeOffset = 0.004;
+  CRgbdSimulator sim(o);
+  sim.writeSequence(out.string());
+  const auto gt = roislam::io::loadTumTrajectory((out / "groundtruth.txt").string());
+  ASSERT_EQ(gt.size(), 3u);
+  auto source = roislam::io::CFrameSource::open(out.string());
+  EXPECT_DOUBLE_EQ(source->sensor().sensor.colour_time_offset_ms, -9);
+  const auto* tum = dynamic_cast<const roislam::io::CTumFrameSource*>(source.get());
+  ASSERT_NE(tum, nullptr);
+  for (std::size_t i = 0; i < 3; ++i)
+  {
+    // Written late; the truth at the true times.
+    EXPECT_NEAR(tum->entries()[i].rgbStamp, sim.timestamp(i) + 0.009, 1e-6) << i;
+    EXPECT_NEAR(tum->entries()[i].depthStamp, sim.timestamp(i) + 0.013, 1e-6) << i;
+    EXPECT_NEAR(gt[i].timestamp, sim.timestamp(i), 1e-6) << i;
+    // Read back when taken: colour at the truth's time, depth at its stamp.
+    const auto f = source->next();
+    ASSERT_TRUE(f);
+    EXPECT_NEAR(f->timestamp, gt[i].timestamp, 1e-6) << i;
+    EXPECT_NEAR(f->depthTimestamp, sim.timestamp(i) + 0.013, 1e-6) << i;
+  }
+  // 7-Scenes' layout has no stamps to delay.
+  auto seven = opts("textured", false, 3);
+  seven.layout = "7scenes";
+  seven.stampDelay = 0.009;
+  EXPECT_THROW(CRgbdSimulator{seven}, std::invalid_argument);
   fs::remove_all(dir);
 }
 

@@ -222,6 +222,7 @@ io::TSensorDescription CRgbdSimulator::sensorDescription() const
   d.rolling_shutter_ms = m_opts.rollingShutterMs;
   d.common_pixel_sigma_px = m_opts.commonShiftPx;
   d.frame_rate = m_opts.fps;
+  d.colour_time_offset_ms = -1000 * m_opts.stampDelay;
   auto& n = d.depth_noise;
   n.model = m_opts.noise ? m_opts.noiseModel : "none";
   n.a = m_opts.depthNoiseA;

@@ -119,6 +119,10 @@ void validateSequence(const TOptions& o, const TKeyError& fail)
     fail("fps", "must be in (0, 1000]");
   if (!(std::abs(o.depthTimeOffset) < 0.02))
     fail("depth_time_offset", "must be within +-0.02 s");
+  if (!(o.stampDelay >= 0 && o.stampDelay < 0.02))
+    fail("stamp_delay", "must be in [0, 0.02) s");
+  if (o.stampDelay > 0 && o.layout != "tum")
+    fail("stamp_delay", "needs layout = tum (7-Scenes' layout has no stamps)");
   if (!(std::abs(o.depthRadialBias) <= 0.2))
     fail("depth_radial_bias", "must be within +-0.2");
   if (!(o.rollingShutterMs >= 0 && o.rollingShutterMs * 1e-3 <= 1.0 / o.fps))
@@ -251,6 +255,7 @@ void CRgbdSimulator::TOptions::loadFromConfigFile(
   r.get("fps", fps);
   r.get("base_timestamp", baseTimestamp);
   r.get("depth_time_offset", depthTimeOffset);
+  r.get("stamp_delay", stampDelay);
   r.get("rolling_shutter_ms", rollingShutterMs);
   r.get("exposure_ms", exposureMs);
   r.get("exposure_samples", exposureSamples);
@@ -309,6 +314,7 @@ void CRgbdSimulator::TOptions::saveToConfigFile(
   wd("fps", fps);
   wd("base_timestamp", baseTimestamp);
   wd("depth_time_offset", depthTimeOffset);
+  wd("stamp_delay", stampDelay);
   wd("rolling_shutter_ms", rollingShutterMs);
   wd("exposure_ms", exposureMs);
   w("exposure_samples", std::to_string(exposureSamples));

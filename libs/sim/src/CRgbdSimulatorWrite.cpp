@@ -131,18 +131,22 @@ void writeListHeaders(const std::string& desc, TSequenceLogs& logs)
   logs.depthTxt << "# depth maps\n# file: '" << desc << "'\n# timestamp filename\n";
 }
 
-/** Writes the frame's two PNGs and lists them; depth16 is reused scratch. */
+/** Writes the frame's two PNGs and lists them, stamped `delay` seconds after
+ *  the images were taken (stamp_delay); depth16 is reused scratch. */
 void writeFrameImages(
-    const fs::path& tmp, const CRgbdSimulator::TFrame& f, cv::Mat& depth16, TSequenceLogs& logs)
+    const fs::path& tmp, const CRgbdSimulator::TFrame& f, double delay, cv::Mat& depth16,
+    TSequenceLogs& logs)
 {
-  const std::string rgbName = "rgb/" + stampName(f.timestamp) + ".png";
-  const std::string depthName = "depth/" + stampName(f.depthTimestamp) + ".png";
+  const std::string rgbStamp = stampName(f.timestamp + delay);
+  const std::string depthStamp = stampName(f.depthTimestamp + delay);
+  const std::string rgbName = "rgb/" + rgbStamp + ".png";
+  const std::string depthName = "depth/" + depthStamp + ".png";
   // Round to the nearest 1/5000 m; beyond 13.1 m cannot occur (max_depth).
   f.depth.convertTo(depth16, CV_16UC1, CRgbdSimulator::kDepthScale);
   writePng(tmp / rgbName, f.rgb);
   writePng(tmp / depthName, depth16);
-  logs.rgbTxt << stampName(f.timestamp) << ' ' << rgbName << '\n';
-  logs.depthTxt << stampName(f.depthTimestamp) << ' ' << depthName << '\n';
+  logs.rgbTxt << rgbStamp << ' ' << rgbName << '\n';
+  logs.depthTxt << depthStamp << ' ' << depthName << '\n';
 }
 
 /** The accelerometer reading as published: in the output axes, with noise. */
@@ -218,7 +222,7 @@ CRgbdSimulator::TWriteStats CRgbdSimulator::writeSequence(const std::string& out
         st.renderSeconds += std::chrono::duration<double>(r1 - r0).count();
         continue;
       }
-      writeFrameImages(tmp, f, depth16, logs);
+      writeFrameImages(tmp, f, m_opts.stampDelay, depth16, logs);
       logs.gt.push_back({f.timestamp, published(f.pose)});
       logs.accelerometer.push_back(
           {f.timestamp, publishedAccelerometer(accelerometerReading(i), m_opts, accelRng)});

@@ -45,6 +45,13 @@
  *                      the depth image is rendered at its own stamp, from
  *                      where the camera is then (as a Kinect v1 streams
  *                      depth and colour unsynchronised: fr1/xyz +-15 ms)
+ *   stamp_delay        how much later than the images were taken    [0.0]
+ *                      their stamps are written, s, in [0, 0.02) (a
+ *                      driver stamps a frame when it arrives): rgb.txt and
+ *                      depth.txt (and the file names) carry the true times
+ *                      plus it, groundtruth.txt the true times; camera.ini
+ *                      records colour_time_offset_ms = -1000 x it. TUM
+ *                      layout only (7-Scenes' has no stamps)
  *   rolling_shutter_ms row readout time, top to bottom, ms            [25]
  *                      (0 = global shutter). Rows are rendered in bands of
  *                      8, each from the pose at its time; the middle row is
@@ -163,6 +170,7 @@ class CRgbdSimulator : public mrpt::system::COutputLogger
     double fps = 30.0;
     double baseTimestamp = 1000000000.0;
     double depthTimeOffset = 0.0;
+    double stampDelay = 0.0;
     double rollingShutterMs = 25.0;
     double exposureMs = 0.0;
     unsigned exposureSamples = 9;
