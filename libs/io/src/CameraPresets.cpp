@@ -227,9 +227,10 @@ TSensorDescription sensorPreset(const std::string& name)
   // The fr1 colour images show the camera about 7 ms before their stamps,
   // on the ground truth's clock (README "When the colour image was taken",
   // stop 55): the rotation of our 5-frame relative poses agrees best with
-  // the ground truth's read 6.3-8.7 ms before the colour stamps (median of
-  // nine runs 6.9 ms on fr1/xyz, 6.8 ms on fr1/rpy; OpenCV's RgbdOdometry
-  // and RgbdICPOdometry on fr1/rpy 10 and 8 ms). Not measured on fr2/fr3.
+  // the ground truth's read 6.3-8.7 ms before the colour stamps on fr1/xyz
+  // and 5.5-7.8 ms on fr1/rpy (nine runs each, medians 6.9 and 6.8 ms;
+  // OpenCV's RgbdOdometry and RgbdICPOdometry on fr1/rpy 10 and 8 ms).
+  // Not measured on fr2/fr3.
   if (name == "fr1")
     d.colour_time_offset_ms = -7;
   // What a real camera adds to each keypoint's noise beyond the detector's
