@@ -12,22 +12,20 @@
  *   shared data are absent.
  * Prints the figures. */
 #include <gtest/gtest.h>
-#include <mrpt/config/CConfigFile.h>
 #include <roislam/common/ProcessTuning.h>
 #include <roislam/evaluation/CTrajectoryEvaluator.h>
-#include <roislam/evaluation/EdgeChi2.h>
 #include <roislam/graphslam/CRoiGraphSlamApp.h>
-#include <roislam/graphslam/CSlamPipeline.h>
-#include <roislam/graphslam/SensorFacts.h>
 #include <roislam/io/CameraPresets.h>
 #include <roislam/io/TumTrajectory.h>
-#include <roislam/sim/CRgbdSimulator.h>
 #include <roislam/testing/TestData.h>
 
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <string>
+
+#include "IclLikeRender.h"
+#include "PipelineRuns.h"
 
 namespace fs = std::filesystem;
 using roislam::evaluation::CTrajectoryEvaluator;
@@ -73,56 +71,20 @@ void expectStampsAsTaken(const std::string& seq)
   EXPECT_LT(asTaken, raw);
   EXPECT_LT(asTaken, twice);
 }
-struct TRenderRun
+/** The graph edges' chi-square median of a run (0 when none was read). */
+double chi2Median(const roislam::testing::TPipelineRun& r)
 {
-  roislam::io::TTrajectory trajectory;
-  double ate = 0, chi2Median = 0;
-};
-
-/** Traditional ORB on `seq`, read with the sensor description `camera`. */
-TRenderRun runRender(const std::string& seq, const std::string& camera)
-{
-  roislam::graphslam::CSlamContext::TConfig cfg;
-  cfg.frontEnd.extractor.feature_type = roislam::features::EFeatureType::ORB;
-  cfg.frontEnd.extractor.max_features = 600;
-  cfg.backEnd.edge_information = "estimator";
-  auto source = roislam::io::CFrameSource::open(seq, camera);
-  roislam::graphslam::applySensorFacts(cfg.frontEnd, source->sensor(), false, "test", "", {});
-  const auto gt = roislam::io::loadTumTrajectory(*source->groundTruthFile());
-  roislam::graphslam::CSlamPipeline p(cfg, std::move(source));
-  while (p.step())
-  {
-  }
-  p.finish();
-  TRenderRun r;
-  r.trajectory = p.trajectory();
-  r.ate = CTrajectoryEvaluator().evaluate(gt, r.trajectory).ate.rmse;
-  const auto& keyframes = p.context().odometry().keyframes();
-  const auto chi2 = roislam::evaluation::edgeChi2(
-      p.graph(), [&](mrpt::graphs::TNodeID id) { return keyframes.at(id).timestamp; }, gt);
-  EXPECT_TRUE(chi2);
-  if (chi2)
-    r.chi2Median = chi2->median;
-  return r;
+  EXPECT_TRUE(r.edgeChi2);
+  return r.edgeChi2 ? r.edgeChi2->median : 0.0;
 }
 }  // namespace
 
 TEST(ColourTime, ARenderWithLateStampsIsHonestOnlyWhenItsDescriptionSaysSo)
 {
   // rgbd-simul's ICL-like camera; every stamp written 10 ms after its image.
-  roislam::sim::CRgbdSimulator::TOptions o;
-  o.loadFromConfigFile(
-      mrpt::config::CConfigFile(roislam::testing::sourceDir() + "/config/rgbd-simul-icl.ini"),
-      "RgbdSimulator");
-  o.frames = 90;
-  o.seed = 5;
-  o.stampDelay = 0.010;
   const roislam::testing::CTempDir dir("colour_time_render");
   const std::string seq = dir.path() + "/seq";
-  {
-    roislam::sim::CRgbdSimulator sim(o);
-    sim.writeSequence(seq);
-  }
+  roislam::testing::writeIclLikeRender(seq, [](auto& o) { o.stampDelay = 0.010; });
   // The same camera, described as if its stamps were the images' times.
   auto blind = roislam::io::CFrameSource::open(seq)->sensor().sensor;
   EXPECT_DOUBLE_EQ(blind.colour_time_offset_ms, -10);
@@ -130,14 +92,18 @@ TEST(ColourTime, ARenderWithLateStampsIsHonestOnlyWhenItsDescriptionSaysSo)
   const std::string blindFile = dir.path() + "/stamps-as-taken.ini";
   std::ofstream(blindFile) << blind.toIniText();
 
-  const TRenderRun described = runRender(seq, "auto"), stamped = runRender(seq, blindFile);
+  auto cfg = roislam::testing::orbConfig();
+  cfg.backEnd.edge_information = "estimator";
+  const auto described = roislam::testing::runPipeline(seq, "auto", cfg);
+  const auto stamped = roislam::testing::runPipeline(seq, blindFile, cfg);
+  const double describedChi2 = chi2Median(described), stampedChi2 = chi2Median(stamped);
   std::printf(
       "render, stamps 10 ms late: edge chi2 median %.2f as described, %.2f at the stamps; "
       "ATE %.5f / %.5f m\n",
-      described.chi2Median, stamped.chi2Median, described.ate, stamped.ate);
+      describedChi2, stampedChi2, described.ate.rmse, stamped.ate.rmse);
   const double expectedMedian = 5.35;  // of chi²(6)
-  EXPECT_LT(described.chi2Median, 2 * expectedMedian);
-  EXPECT_GT(stamped.chi2Median, 10 * expectedMedian);
+  EXPECT_LT(describedChi2, 2 * expectedMedian);
+  EXPECT_GT(stampedChi2, 10 * expectedMedian);
   // The same poses, said to hold 10 ms apart.
   ASSERT_EQ(described.trajectory.size(), stamped.trajectory.size());
   for (std::size_t i = 0; i < described.trajectory.size(); ++i)

@@ -196,6 +196,53 @@ namespace
 /** px per image axis, and ms; see sensorPreset. */
 constexpr double kKeypointSigmaFr1 = 0.5;
 constexpr double kKeypointTimeSigmaFr1Ms = 1.443;
+
+/** What was measured on the fr1 camera alone (fr2 / fr3 carry 0). */
+void addFr1Measurements(TSensorDescription& d)
+{
+  // What each fr1 image shifts all its keypoints by alike, measured against
+  // the ground truth by maximum likelihood (README, "Stop 41: an error
+  // common to a frame's keypoints"): the edges' Gaussian likelihood, with
+  // the ground truth's noise and a free overall variance factor, is
+  // highest at 0.2 px on fr1/rpy and 0.6 px on fr1/xyz, 0.3 px over both
+  // (18 runs each: 3 modes x ORB / SURF / SIFT). Fitted again once the
+  // colour images' time was known (colour_time_offset_ms below; README
+  // "The common keypoint shift again"): 0.3 px on fr1/rpy and 0.6 px on
+  // fr1/xyz, 0.6 px over both; without the ground truth's noise 0.6 px on
+  // both. Not measured on fr2/fr3.
+  d.common_pixel_sigma_px = 0.6;
+  // The fr1 colour images show the camera about 7 ms before their stamps,
+  // on the ground truth's clock (README "When the colour image was taken",
+  // stop 55): the rotation of our 5-frame relative poses agrees best with
+  // the ground truth's read 6.3-8.7 ms before the colour stamps on fr1/xyz
+  // and 5.5-7.8 ms on fr1/rpy (nine runs each, medians 6.9 and 6.8 ms;
+  // OpenCV's RgbdOdometry and RgbdICPOdometry on fr1/rpy 10 and 8 ms).
+  // Not measured on fr2/fr3.
+  d.colour_time_offset_ms = -7;
+}
+
+/** 7-Scenes' depth camera beside its colour camera. */
+void describeSevenScenesDepth(TSensorDescription& d)
+{
+  // Microsoft's 7-Scenes (Kinect v1, KinectFusion ground truth): depth
+  // NOT registered to colour. The dataset publishes the depth camera alone
+  // (principal point (320, 240), focal length 585 px) and its depth in
+  // millimetres; the depth camera's place beside the colour camera is a
+  // Kinect v1's factory 2.5 cm to its left (config/sensor-kinect1.ini,
+  // checked there on the shared Kinect v1 recording). Its poses are the
+  // depth camera's; the reader turns them into the colour camera's with
+  // this pose (SevenScenes.h).
+  d.depth_registered = false;
+  d.depth = makeCamera("7scenes-depth", 585.0, 585.0, 320.0, 240.0, {0, 0, 0, 0, 0});
+  d.depth_pose_in_colour = mrpt::poses::CPose3D(-0.025, 0, 0, 0, 0, 0);
+  // Those are a start: the dataset says its colour and depth cameras were
+  // never calibrated, so the reader estimates the registration from the
+  // frames (CDepthColourCalibrator) and takes it when it is well
+  // determined and differs from the start by more than the method's own
+  // error (README, "An unknown colour-depth calibration").
+  d.estimate_registration = true;
+  d.depth_scale = 1000;
+}
 }  // namespace
 
 TSensorDescription sensorPreset(const std::string& name)
@@ -212,27 +259,8 @@ TSensorDescription sensorPreset(const std::string& name)
   // 7-Scenes' camera is a Kinect v1 too. The ROS default stands for an
   // unknown camera: no readout assumed.
   d.rolling_shutter_ms = name == "ros" || name == "icl" ? 0 : 25;
-  // What each fr1 image shifts all its keypoints by alike, measured against
-  // the ground truth by maximum likelihood (README, "Stop 41: an error
-  // common to a frame's keypoints"): the edges' Gaussian likelihood, with
-  // the ground truth's noise and a free overall variance factor, is
-  // highest at 0.2 px on fr1/rpy and 0.6 px on fr1/xyz, 0.3 px over both
-  // (18 runs each: 3 modes x ORB / SURF / SIFT). Fitted again once the
-  // colour images' time was known (colour_time_offset_ms below; README
-  // "The common keypoint shift again"): 0.3 px on fr1/rpy and 0.6 px on
-  // fr1/xyz, 0.6 px over both; without the ground truth's noise 0.6 px on
-  // both. Not measured on fr2/fr3.
   if (name == "fr1")
-    d.common_pixel_sigma_px = 0.6;
-  // The fr1 colour images show the camera about 7 ms before their stamps,
-  // on the ground truth's clock (README "When the colour image was taken",
-  // stop 55): the rotation of our 5-frame relative poses agrees best with
-  // the ground truth's read 6.3-8.7 ms before the colour stamps on fr1/xyz
-  // and 5.5-7.8 ms on fr1/rpy (nine runs each, medians 6.9 and 6.8 ms;
-  // OpenCV's RgbdOdometry and RgbdICPOdometry on fr1/rpy 10 and 8 ms).
-  // Not measured on fr2/fr3.
-  if (name == "fr1")
-    d.colour_time_offset_ms = -7;
+    addFr1Measurements(d);
   // What a real camera adds to each keypoint's noise beyond the detector's
   // own: a constant share (compression, sensor noise) and one that grows
   // with the keypoint's image speed (errors that grow with the motion; on
@@ -265,26 +293,7 @@ TSensorDescription sensorPreset(const std::string& name)
     d.depth_noise.lateral_sigma_px = 0.5;
   }
   if (name == "7scenes")
-  {
-    // Microsoft's 7-Scenes (Kinect v1, KinectFusion ground truth): depth
-    // NOT registered to colour. The dataset publishes the depth camera alone
-    // (principal point (320, 240), focal length 585 px) and its depth in
-    // millimetres; the depth camera's place beside the colour camera is a
-    // Kinect v1's factory 2.5 cm to its left (config/sensor-kinect1.ini,
-    // checked there on the shared Kinect v1 recording). Its poses are the
-    // depth camera's; the reader turns them into the colour camera's with
-    // this pose (SevenScenes.h).
-    d.depth_registered = false;
-    d.depth = makeCamera("7scenes-depth", 585.0, 585.0, 320.0, 240.0, {0, 0, 0, 0, 0});
-    d.depth_pose_in_colour = mrpt::poses::CPose3D(-0.025, 0, 0, 0, 0, 0);
-    // Those are a start: the dataset says its colour and depth cameras were
-    // never calibrated, so the reader estimates the registration from the
-    // frames (CDepthColourCalibrator) and takes it when it is well
-    // determined and differs from the start by more than the method's own
-    // error (README, "An unknown colour-depth calibration").
-    d.estimate_registration = true;
-    d.depth_scale = 1000;
-  }
+    describeSevenScenesDepth(d);
   return d;
 }
 
