@@ -72,17 +72,16 @@ struct TCheckpoint
 };
 
 /** The colour stamps of a source's frames in delivery order: a TUM folder's
- *  from its associated index (CTumFrameSource::entries(), plus the
- *  description's colour_time_offset_ms: the stamps next() gives), without
- *  decoding an image; any other source (a rawlog) by reading it through. */
+ *  from its associated index (CTumFrameSource::entries()' times: the stamps
+ *  next() gives), without decoding an image; any other source (a rawlog) by
+ *  reading it through. */
 std::vector<double> frameStampsOf(roislam::io::CFrameSource& source)
 {
   std::vector<double> stamps;
   if (const auto* tum = dynamic_cast<const roislam::io::CTumFrameSource*>(&source))
   {
-    const double offset = tum->sensor().sensor.colour_time_offset_ms * 1e-3;
     for (const auto& e : tum->entries())
-      stamps.push_back(e.rgbStamp + offset);
+      stamps.push_back(e.time);
     return stamps;
   }
   while (const auto f = source.next())

@@ -48,6 +48,8 @@ nlohmann::json runJson(const CSlamPipeline& pipeline, const CSlamRunner::TSettin
   j["sensor"] = pipeline.source().sensor().toJson();
   j["sensor"]["rolling_shutter_ms_used"] = fe.rolling_shutter_ms;
   j["sensor"]["rolling_shutter_from"] = settings.readoutFrom;
+  if (const auto clock = pipeline.source().frameClock())
+    j["sensor"]["frame_clock"] = io::toJson(*clock);
   return j;
 }
 

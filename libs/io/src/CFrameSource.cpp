@@ -12,6 +12,26 @@ namespace fs = std::filesystem;
 
 namespace roislam::io
 {
+double CFrameSource::colourTime(double stamp)
+{
+  const TSensorDescription& d = m_sensor.sensor;
+  double t = stamp;
+  if (d.regular_frame_clock)
+  {
+    if (!m_clock)
+      m_clock.emplace(d.frame_rate);
+    t = m_clock->time(stamp);
+  }
+  return t + d.colour_time_offset_ms * 1e-3;
+}
+
+std::optional<TFrameClockStats> CFrameSource::frameClock() const
+{
+  if (!m_sensor.sensor.regular_frame_clock)
+    return std::nullopt;
+  return m_clock ? m_clock->stats() : TFrameClockStats{};
+}
+
 void CFrameSource::seek(std::size_t index)
 {
   if (index >= size())

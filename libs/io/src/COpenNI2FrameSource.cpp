@@ -333,6 +333,7 @@ void COpenNI2FrameSource::rewind()
   m_streams.reset();
   openDevice();
   m_delivered = 0;
+  restartFrameClock();
 }
 
 std::optional<std::string> COpenNI2FrameSource::groundTruthFile() const

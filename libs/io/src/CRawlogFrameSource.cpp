@@ -140,6 +140,7 @@ void CRawlogFrameSource::rewind()
 {
   openStream();
   m_delivered = 0;
+  restartFrameClock();
 }
 
 void CRawlogFrameSource::seek(std::size_t index)
@@ -147,8 +148,10 @@ void CRawlogFrameSource::seek(std::size_t index)
   if (index >= m_count)
     throw std::out_of_range(m_file + ": no frame " + std::to_string(index));
   rewind();
+  // The skipped frames' stamps still time the ones after them (CFrameClock).
   for (; m_delivered < index; ++m_delivered)
-    nextObservation();
+    if (const auto obs = nextObservation())
+      colourTime(mrpt::Clock::toDouble(obs->timestamp));
 }
 
 bool CRawlogFrameSource::accepts(const CObservation3DRangeScan& obs) const

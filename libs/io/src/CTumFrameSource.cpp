@@ -229,6 +229,17 @@ CTumFrameSource::CTumFrameSource(
         m_dir + ": no colour frame has a depth image within " +
         std::to_string(options.maxTimeDifference) + " s");
   estimateRegistration();
+  timeFrames();
+}
+
+void CTumFrameSource::timeFrames()
+{
+  // In order, once each, before any seek: a frame's time depends on the
+  // stamps before it (CFrameClock), as it does when a rawlog of this folder
+  // is read.
+  restartFrameClock();
+  for (TEntry& e : m_entries)
+    e.time = colourTime(e.rgbStamp);
 }
 
 void CTumFrameSource::estimateRegistration()
@@ -288,6 +299,7 @@ void CTumFrameSource::readSevenScenesFolder()
   // Before the ground truth: it is turned into the colour camera's poses
   // through the (estimated) depth pose.
   estimateRegistration();
+  timeFrames();
   const auto gt = loadSevenScenesGroundTruth(
       frames, sensor.frame_rate,
       sensor.depth_registered ? mrpt::poses::CPose3D() : sensor.depth_pose_in_colour);
@@ -382,7 +394,7 @@ std::optional<TRGBDFrame> CTumFrameSource::next()
   f.index = m_next;
   // The colour image's own time; the depth image keeps its stamp (it has its
   // own, and the description says nothing of its latency).
-  f.timestamp = colourTime(e.rgbStamp);
+  f.timestamp = e.time;
   f.depthTimestamp = e.depthStamp;
   const TSensorDescription& sensor = m_sensor.sensor;
   std::tie(f.rgb, f.depth) = readRawFrame(e);

@@ -33,8 +33,9 @@ std::string TSensorChoice::summary() const
     std::snprintf(
         taken, sizeof(taken), ", colour images taken %g ms %s their stamps",
         std::abs(s.colour_time_offset_ms), s.colour_time_offset_ms < 0 ? "before" : "after");
+  const char* clock = s.regular_frame_clock ? "" : ", frames timed by their stamps";
   return "sensor '" + s.name + "' (" + source + ", because " + reason + "): " + intrinsics +
-         registration + rest + taken;
+         registration + rest + taken + clock;
 }
 
 nlohmann::json TSensorChoice::toJson() const
@@ -47,6 +48,7 @@ nlohmann::json TSensorChoice::toJson() const
       {"rolling_shutter_ms", sensor.signedReadoutMs()},
       {"frame_rate", sensor.frame_rate},
       {"colour_time_offset_ms", sensor.colour_time_offset_ms},
+      {"regular_frame_clock", sensor.regular_frame_clock},
       {"common_pixel_sigma_px", sensor.common_pixel_sigma_px},
       {"keypoint_sigma_px", sensor.keypoint_sigma_px},
       {"keypoint_time_sigma_ms", sensor.keypoint_time_sigma_ms},

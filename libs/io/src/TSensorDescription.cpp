@@ -106,6 +106,7 @@ void readScalars(
   d.frame_rate = common::readDouble(cfg, s, "frame_rate", d.frame_rate);
   d.colour_time_offset_ms =
       common::readDouble(cfg, s, "colour_time_offset_ms", d.colour_time_offset_ms);
+  d.regular_frame_clock = common::readBool(cfg, s, "regular_frame_clock", d.regular_frame_clock);
   d.common_pixel_sigma_px =
       common::readDouble(cfg, s, "common_pixel_sigma_px", d.common_pixel_sigma_px);
   d.keypoint_sigma_px = common::readDouble(cfg, s, "keypoint_sigma_px", d.keypoint_sigma_px);
@@ -247,6 +248,7 @@ void TSensorDescription::saveToConfigFile(
       std::string(rolling_shutter_bottom_to_top ? "bottom_to_top" : "top_to_bottom"));
   w("frame_rate", frame_rate);
   w("colour_time_offset_ms", colour_time_offset_ms);
+  cfg.write(s, "regular_frame_clock", regular_frame_clock);
   w("common_pixel_sigma_px", common_pixel_sigma_px);
   w("keypoint_sigma_px", keypoint_sigma_px);
   w("keypoint_time_sigma_ms", keypoint_time_sigma_ms);

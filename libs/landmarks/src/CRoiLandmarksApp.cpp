@@ -463,6 +463,8 @@ void writeSummaryJson(
 {
   auto j = summaryJson(runJson(args, options, source.name(), gtFile), run.sum, run.scores);
   j["sensor"] = source.sensor().toJson();
+  if (const auto clock = source.frameClock())
+    j["sensor"]["frame_clock"] = io::toJson(*clock);
   if (kfSlam)
     j["kf_slam"] = run.sum.kfSlam;
   common::writeFileAtomically((outDir / "summary.json").string(), j.dump(2) + "\n");

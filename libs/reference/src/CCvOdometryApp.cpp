@@ -103,6 +103,8 @@ nlohmann::json summaryJson(
   j["opencv_class"] = "cv::rgbd::" + CCvOdometry::className(options.method);
   j["camera"] = source.camera().cameraName;
   j["sensor"] = source.sensor().toJson();
+  if (const auto clock = source.frameClock())
+    j["sensor"]["frame_clock"] = io::toJson(*clock);
   mrpt::config::CConfigFileMemory optionsIni;
   options.saveToConfigFile(optionsIni, kSection);
   j["options"] = optionsIni.getContent();

@@ -11,6 +11,7 @@
  */
 #pragma once
 
+#include <roislam/io/CFrameClock.h>
 #include <roislam/io/TRGBDFrame.h>
 #include <roislam/io/TSensorChoice.h>
 
@@ -53,6 +54,11 @@ class CFrameSource
   /** The sensor description the frames were read with, its source and the
    *  reason it was picked (printed by the apps, recorded in summary.json). */
   const TSensorChoice& sensor() const { return m_sensor; }
+  /** How the frames delivered so far were timed (CFrameClock); nullopt when
+   *  the description says their stamps are their times
+   *  (regular_frame_clock = false). A folder times all its frames when it
+   *  opens. */
+  std::optional<TFrameClockStats> frameClock() const;
 
   /** Opens a TUM folder (cameraSpec as resolveSensor()), a .rawlog or a .oni
    *  (as resolveSensorForFile(): with "auto" and no <stem>.camera.ini, a
@@ -63,14 +69,18 @@ class CFrameSource
       const std::string& path, const std::string& cameraSpec = "auto");
 
  protected:
-  /** When a colour image stamped `stamp` was taken: the stamp plus the
-   *  description's colour_time_offset_ms. Every source stamps its frames
-   *  with it. */
-  double colourTime(double stamp) const
-  {
-    return stamp + m_sensor.sensor.colour_time_offset_ms * 1e-3;
-  }
+  /** When the colour image stamped `stamp`, the next frame in order, was
+   *  taken: its time on the camera's clock (CFrameClock, when the
+   *  description has regular_frame_clock) plus the description's
+   *  colour_time_offset_ms. Every source times its frames with it, once per
+   *  frame and in order (a skipped frame too); restartFrameClock() when it
+   *  starts again from the first. */
+  double colourTime(double stamp);
+  void restartFrameClock() { m_clock.reset(); }
 
   TSensorChoice m_sensor;
+
+ private:
+  std::optional<CFrameClock> m_clock;
 };
 }  // namespace roislam::io

@@ -54,6 +54,9 @@ class CTumFrameSource : public CFrameSource
     double depthStamp = 0;
     std::string rgbFile;
     std::string depthFile;
+    /** When the colour image was taken (CFrameSource::colourTime of the
+     *  stamps in order): the frame's timestamp. */
+    double time = 0;
   };
 
   /** Reads and associates rgb.txt/depth.txt of `dir` and checks that every
@@ -122,6 +125,8 @@ class CTumFrameSource : public CFrameSource
    *  registration from the frames (CDepthColourCalibrator), takes it when
    *  accepted, and adds its summary to the sensor choice's reason. */
   void estimateRegistration();
+  /** Sets every entry's time. */
+  void timeFrames();
   /** One entry's colour (BGR) and depth (metres, on the depth camera's
    *  grid, not registered), flipped to positive focal lengths. */
   std::pair<cv::Mat, cv::Mat> readRawFrame(const TEntry& e) const;

@@ -56,6 +56,13 @@
  *         trajectories (and the ground truth read against them) carry the
  *         time the image shows. Measured against a ground truth's clock
  *         (README "When the colour image was taken"); 0 = the stamp
+ *     regular_frame_clock        bool                         true
+ *         true: the camera takes its frames on a regular clock at about
+ *         frame_rate, and the stamps (arrival times) jitter around it. The
+ *         frame sources then time each frame by the clock fitted to the
+ *         recent stamps (CFrameClock; it keeps a frame's stamp wherever the
+ *         stamps stop following a clock). false: the stamps are the
+ *         frames' times (a camera triggered at irregular times)
  *     common_pixel_sigma_px      double >= 0                  0 (px)
  *         1-sigma, per image axis, of an error that moves all keypoints of
  *         one colour image alike (what a frame keeps of its timing,
@@ -131,6 +138,7 @@ struct TSensorDescription : public mrpt::config::CLoadableOptions
   bool rolling_shutter_bottom_to_top = false;
   double frame_rate = 30;             //!< Hz
   double colour_time_offset_ms = 0;   //!< colour image's time minus its stamp, ms
+  bool regular_frame_clock = true;    //!< frames on a regular clock; stamps jitter
   double common_pixel_sigma_px = 0;   //!< per-image keypoint shift, 1 sigma per axis
   double keypoint_sigma_px = 0;       //!< the camera's per-keypoint noise, 1 sigma per axis
   double keypoint_time_sigma_ms = 0;  //!< keypoint timing noise, ms (x image speed: px)
