@@ -35,6 +35,7 @@ TSensorDescription unusual()
   d.rolling_shutter_bottom_to_top = true;
   d.frame_rate = 60;
   d.colour_time_offset_ms = -4.5;
+  d.regular_frame_clock = false;
   d.common_pixel_sigma_px = 0.35;
   d.keypoint_sigma_px = 0.85;
   d.keypoint_time_sigma_ms = 7.5;
@@ -85,6 +86,7 @@ void expectSame(const TSensorDescription& a, const TSensorDescription& b)
   EXPECT_EQ(a.rolling_shutter_bottom_to_top, b.rolling_shutter_bottom_to_top);
   EXPECT_DOUBLE_EQ(a.frame_rate, b.frame_rate);
   EXPECT_DOUBLE_EQ(a.colour_time_offset_ms, b.colour_time_offset_ms);
+  EXPECT_EQ(a.regular_frame_clock, b.regular_frame_clock);
   EXPECT_DOUBLE_EQ(a.common_pixel_sigma_px, b.common_pixel_sigma_px);
   EXPECT_DOUBLE_EQ(a.keypoint_sigma_px, b.keypoint_sigma_px);
   EXPECT_DOUBLE_EQ(a.keypoint_time_sigma_ms, b.keypoint_time_sigma_ms);
@@ -201,6 +203,7 @@ TEST(SensorDescription, BadValuesNameSectionAndKey)
       {"colour_time_offset_ms", "-20"},  // more than a 60 Hz frame
       {"colour_time_offset_ms", "17"},
       {"colour_time_offset_ms", "nan"},
+      {"regular_frame_clock", "sometimes"},
       {"common_pixel_sigma_px", "-0.1"},
       {"common_pixel_sigma_px", "nan"},
       {"keypoint_sigma_px", "-0.5"},
@@ -340,6 +343,11 @@ TEST(SensorDescription, ResolveSaysWhatItPickedAndWhy)
   EXPECT_EQ(j["name"], "test-cam");
   EXPECT_EQ(j["source"], c.source);
   EXPECT_DOUBLE_EQ(j["rolling_shutter_ms"].get<double>(), -12.5);
+  // A camera whose stamps are its frames' times says so.
+  EXPECT_FALSE(j["regular_frame_clock"].get<bool>());
+  EXPECT_NE(c.summary().find("frames timed by their stamps"), std::string::npos) << c.summary();
+  EXPECT_TRUE(a.toJson()["regular_frame_clock"].get<bool>());
+  EXPECT_EQ(a.summary().find("frames timed by their stamps"), std::string::npos) << a.summary();
 
   const auto d = roislam::io::resolveSensor("fr3", fr1.string());
   EXPECT_EQ(d.source, "preset fr3");

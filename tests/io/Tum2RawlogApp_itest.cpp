@@ -179,6 +179,61 @@ TEST(Tum2RawlogApp, ColourTimeOffsetAppliesOnceThroughARawlog)
   fs::remove_all(tmp);
 }
 
+TEST(Tum2RawlogApp, FramesAreTimedByTheirClockAlikeThroughARawlog)
+{
+  // 40 frames of a 30 Hz camera stamped as fr1's are: 36 / 32 / 32 ms apart.
+  const auto tmp = roislam::testing::makeTempDir("io_t2r_clock");
+  std::vector<double> stamps;
+  for (int k = 0; k < 40; ++k)
+    stamps.push_back(std::round((5.0 + k / 30.0 + 1.3e-3 * ((k % 3) - 1)) * 1e6) / 1e6);
+  const auto dir = writeTumFolder(tmp, "seq", stamps, stamps);
+  TSensorDescription d;
+  d.name = "free-running";
+  d.colour = smallCamera();
+  std::ofstream(fs::path(dir) / "camera.ini") << d.toIniText();
+  auto folder = CFrameSource::open(dir);
+  std::vector<double> taken;
+  while (auto f = folder->next())
+    taken.push_back(f->timestamp);
+  ASSERT_EQ(taken.size(), stamps.size());
+  ASSERT_TRUE(folder->frameClock());
+  EXPECT_EQ(folder->frameClock()->clocked, 36u);
+  // The stamps' intervals are up to 2.6 ms off the period, the times' a
+  // fifth of that once the clock has a third of a second of stamps.
+  for (std::size_t k = 10; k < taken.size(); ++k)
+    EXPECT_NEAR(taken[k] - taken[k - 1], 1.0 / 30, 5e-4) << k;
+
+  fs::create_directories(tmp + "/out");
+  const auto r =
+      run(tmp, "'" + tum2rawlog() + "' --input seq --output out/seq.rawlog", tmp + "/log.txt");
+  ASSERT_EQ(r.exitCode, 0) << r.out;
+  auto rawlog = CFrameSource::open(tmp + "/out/seq.rawlog");
+  for (std::size_t i = 0; auto f = rawlog->next(); ++i)
+  {
+    ASSERT_LT(i, taken.size());
+    EXPECT_NEAR(f->timestamp, taken[i], 1e-6) << i;
+  }
+  // A frame reached by seeking is timed as it is in order: the frames
+  // skipped still set the clock.
+  for (auto* source : {folder.get(), rawlog.get()})
+  {
+    source->seek(25);
+    const auto f = source->next();
+    ASSERT_TRUE(f);
+    EXPECT_NEAR(f->timestamp, taken[25], 1e-6) << source->name();
+  }
+
+  // A camera whose stamps are its frames' times.
+  d.name = "triggered";
+  d.regular_frame_clock = false;
+  std::ofstream(fs::path(dir) / "camera.ini") << d.toIniText();
+  auto asStamped = CFrameSource::open(dir);
+  EXPECT_FALSE(asStamped->frameClock());
+  for (std::size_t i = 0; auto f = asStamped->next(); ++i)
+    EXPECT_EQ(f->timestamp, stamps[i]) << i;
+  fs::remove_all(tmp);
+}
+
 TEST(Tum2RawlogApp, SharedSequenceConvertsTo250Observations)
 {
   ROISLAM_REQUIRE_SHARED_TUM(dir);
