@@ -44,6 +44,10 @@ TEST(PingPongFrameSource, PlaysThereAndBackWithIncreasingStamps)
     EXPECT_EQ(cv::norm(f->rgb, images[order[k]], cv::NORM_INF), 0.0) << k;
   }
   EXPECT_FALSE(p.next());
+  // The played folder timed its frames (none on a clock: 100-300 ms apart).
+  ASSERT_TRUE(p.frameClock());
+  EXPECT_EQ(p.frameClock()->frames, 4u);
+  EXPECT_EQ(p.frameClock()->clocked, 0u);
   p.rewind();
   ASSERT_TRUE(p.next());
 

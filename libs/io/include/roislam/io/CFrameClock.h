@@ -23,7 +23,7 @@
  * It adapts to what the stamps show rather than trusting the nominal rate:
  * the slope is fitted (a clock a fraction of a percent off 30 Hz), and the
  * clock starts again from the next stamp where the stamps stop following
- * one (a stamp more than 0.15 periods off its slot, stamps going back,
+ * one (a stamp more than 0.2 periods off its slot, stamps going back,
  * a gap of more than a second, a fitted rate more than 5 % off the
  * description's): such frames keep their stamps. Exactly regular stamps
  * (a render) come back as they were.

@@ -58,7 +58,7 @@ class CFrameSource
    *  the description says their stamps are their times
    *  (regular_frame_clock = false). A folder times all its frames when it
    *  opens. */
-  std::optional<TFrameClockStats> frameClock() const;
+  virtual std::optional<TFrameClockStats> frameClock() const;
 
   /** Opens a TUM folder (cameraSpec as resolveSensor()), a .rawlog or a .oni
    *  (as resolveSensorForFile(): with "auto" and no <stem>.camera.ini, a

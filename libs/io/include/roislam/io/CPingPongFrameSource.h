@@ -33,6 +33,8 @@ class CPingPongFrameSource : public CFrameSource
   std::optional<std::string> groundTruthFile() const override { return std::nullopt; }
   std::string name() const override { return m_source->name() + "_there_and_back"; }
   std::size_t skippedFrames() const override { return m_source->skippedFrames(); }
+  /** The played source's: it timed the frames, this one only remaps them. */
+  std::optional<TFrameClockStats> frameClock() const override { return m_source->frameClock(); }
 
   /** Index in the played source of the k-th delivered frame. */
   std::size_t sourceIndex(std::size_t k) const;
