@@ -320,9 +320,7 @@ std::optional<TRGBDFrame> COpenNI2FrameSource::next()
     return std::nullopt;
   TRGBDFrame f = observationToFrame(*obs, m_input + ": frame " + std::to_string(index));
   f.index = index;
-  // One stamp per observation: depth follows it, so their difference stays 0.
-  f.timestamp = colourTime(f.timestamp);
-  f.depthTimestamp = f.timestamp;
+  timeObservationFrame(f);
   return f;
 }
 

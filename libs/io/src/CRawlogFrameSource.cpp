@@ -258,10 +258,8 @@ std::optional<TRGBDFrame> CRawlogFrameSource::next()
   }
   TRGBDFrame f = observationToFrame(*obs, context);
   f.index = m_delivered++;
-  // One stamp per observation (tum2rawlog writes the colour stamp as it
-  // was): depth follows it, so their difference stays 0.
-  f.timestamp = colourTime(f.timestamp);
-  f.depthTimestamp = f.timestamp;
+  // tum2rawlog writes the colour stamp as it was.
+  timeObservationFrame(f);
   if (obs->intensityImage.isExternallyStored())
     f.rgbSource = obs->intensityImage.getExternalStorageFileAbsolutePath();
   obs->unload();

@@ -76,6 +76,13 @@ class CFrameSource
    *  frame and in order (a skipped frame too); restartFrameClock() when it
    *  starts again from the first. */
   double colourTime(double stamp);
+  /** A frame read from an observation with one stamp (a rawlog's, an
+   *  OpenNI2 device's): colourTime() of it, and depth on the same time, so
+   *  their difference stays 0. */
+  void timeObservationFrame(TRGBDFrame& f)
+  {
+    f.depthTimestamp = f.timestamp = colourTime(f.timestamp);
+  }
   void restartFrameClock() { m_clock.reset(); }
 
   TSensorChoice m_sensor;
