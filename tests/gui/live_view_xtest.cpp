@@ -15,6 +15,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <nlohmann/json.hpp>
 #include <opencv2/imgcodecs.hpp>
 #include <optional>
@@ -189,11 +190,33 @@ class CXClient
 
 #ifdef ROISLAM_XDOTOOL
 /** Keys as a user types them: focus on the window, then XTest key events. */
-void sendKeys(Window w, const std::string& keys)
+bool sendKeys(Window w, const std::string& keys)
 {
   const std::string cmd = std::string(ROISLAM_XDOTOOL) + " windowfocus --sync " +
                           std::to_string(w) + " key --delay 50 " + keys + " > /dev/null 2>&1";
-  ASSERT_EQ(std::system(cmd.c_str()), 0) << cmd;
+  const int rc = std::system(cmd.c_str());
+  EXPECT_EQ(rc, 0) << cmd;
+  return rc == 0;
+}
+
+/** Presses `key` until `seen()` holds, as a user presses a key again that
+ *  did nothing: a synthetic key can go unseen (in CI, on a loaded 2-core
+ *  machine, Xvfb once lost a space that came right after windowfocus while
+ *  the key after it arrived). The app answers a key within milliseconds, so
+ *  3 s without its effect means the key was lost, and pressing a toggle
+ *  (space) again cannot undo one that was seen. */
+bool pressUntil(Window w, const std::string& key, const std::function<bool()>& seen)
+{
+  for (int attempt = 0; attempt < 4; ++attempt)
+  {
+    if (!sendKeys(w, key))
+      return false;
+    const auto until = std::chrono::steady_clock::now() + 3s;
+    for (; std::chrono::steady_clock::now() < until; std::this_thread::sleep_for(20ms))
+      if (seen())
+        return true;
+  }
+  return seen();
 }
 #endif
 
@@ -356,10 +379,14 @@ TEST(LiveView, KeysPauseScreenshotAndQuitWithCompleteOutputs)
   const Window w = x.waitForWindow(app.pid(), 60s);
   ASSERT_NE(w, 0u) << readText(dir + "/err");
   // space: run a while; space: pause again (mid-run on any machine: the
-  // 90 frames take seconds); s: a screenshot; q once it is saved.
-  sendKeys(w, "space");
+  // 90 frames take seconds); s: a screenshot; q once it is saved. Each key
+  // is seen by its line in the app's log (or its file) before the next.
+  const std::string errFile = dir + "/err";
+  const auto logs = [&errFile](const std::string& line)
+  { return [&errFile, line] { return readText(errFile).find(line) != std::string::npos; }; };
+  ASSERT_TRUE(pressUntil(w, "space", logs(": resumed"))) << readText(errFile);
   std::this_thread::sleep_for(500ms);
-  sendKeys(w, "space s");
+  ASSERT_TRUE(pressUntil(w, "space", logs(": paused (space resumes)"))) << readText(errFile);
   // While the run goes on the output folder is staged beside `out`
   // (COutputFolder): the screenshot is in there until the rename.
   const auto hasScreenshot = [](const std::string& folder, bool recursive)
@@ -379,11 +406,9 @@ TEST(LiveView, KeysPauseScreenshotAndQuitWithCompleteOutputs)
           return true;
     return false;
   };
-  bool shot = false;
-  for (int i = 0; i < 300 && !shot; ++i, std::this_thread::sleep_for(50ms))
-    shot = hasScreenshot(dir, true);
-  EXPECT_TRUE(shot) << "s saved no screenshot-*.png under " << dir;
-  sendKeys(w, "q");
+  EXPECT_TRUE(pressUntil(w, "s", [&dir, &hasScreenshot] { return hasScreenshot(dir, true); }))
+      << "s saved no screenshot-*.png under " << dir;
+  EXPECT_TRUE(pressUntil(w, "q", logs(": q: stopping the run"))) << readText(errFile);
   ASSERT_EQ(app.wait(120s), std::optional<int>(0)) << readText(dir + "/err");
   EXPECT_TRUE(hasScreenshot(out, false)) << "the screenshot did not move into " << out;
 
