@@ -1,8 +1,10 @@
 /* roi-graphslam end to end (the executable, as users run it) on the
  * synthetic sequences of the ctest fixture and on bad input. */
 #include <gtest/gtest.h>
+#include <roislam/graphslam/GraphText.h>
 #include <roislam/testing/TestData.h>
 
+#include <Eigen/Cholesky>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -80,6 +82,14 @@ TEST(RoiGraphSlamApp, TexturedLoopIsAccurateAndClosesLoops)
   EXPECT_EQ(nodes, s["graph_nodes"].get<int>());
   EXPECT_EQ(edges, s["graph_edges"].get<int>());
 #endif
+  // Read back whole (GraphText.h): every edge's information is positive
+  // definite, as the run's own was.
+  const auto g = roislam::graphslam::loadGraphText(out + "/graph.graph");
+  EXPECT_EQ(g.nodes.size(), s["graph_nodes"].get<std::size_t>());
+  EXPECT_EQ(g.edges.size(), s["graph_edges"].get<std::size_t>());
+  for (const auto& [ids, e] : g.edges)
+    EXPECT_EQ(e.cov_inv.asEigen().llt().info(), Eigen::Success)
+        << "edge " << ids.first << "-" << ids.second;
   fs::remove_all(out);
 }
 

@@ -5,6 +5,7 @@
 #include <roislam/evaluation/CTrajectoryPlot.h>
 #include <roislam/frontend/PoseUncertainty.h>
 #include <roislam/graphslam/CSlamOutputWriter.h>
+#include <roislam/graphslam/GraphText.h>
 #include <roislam/viz/CSlamSceneBuilder.h>
 #include <roislam/viz/CSnapshotRenderer.h>
 
@@ -162,16 +163,8 @@ void CSlamOutputWriter::writeTrajectory(
 
 void CSlamOutputWriter::writeGraph(const TGraph& graph) const
 {
-  const std::string file = m_dir + "graph.graph";
-  try
-  {
-    graph.saveToTextFile(file + ".tmp");
-  }
-  catch (const std::exception& e)
-  {
-    throw std::runtime_error(file + ": " + common::firstLine(e.what()));
-  }
-  renameOrThrow(file + ".tmp", file);
+  // Not MRPT's saveToTextFile: it prints 6 significant digits (GraphText.h).
+  saveGraphText(graph, m_dir + "graph.graph");
 }
 
 void CSlamOutputWriter::writeFramesCsv(
