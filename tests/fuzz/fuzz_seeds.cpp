@@ -138,6 +138,18 @@ void textSeeds(const fs::path& src, const fs::path& shared)
   for (const auto& e : fs::directory_iterator(src / "config"))
     if (e.path().extension() == ".ini")
       seed("ini", e.path().filename().string(), readFile(e.path()));
+  // A graph as roi-graphslam writes it, and one with everything the reader
+  // accepts (comments, blank lines, two edges between the same nodes).
+  seed(
+      "graph", "small.graph",
+      "VERTEX3 0 0 0 0 0 -0 0\nFIX 0\nVERTEX3 1 0.10000000000000001 0 0 0 0 "
+      "0.050000000000000003\nEDGE3 0 1 0.10000000000000001 0 0 0 0 0.050000000000000003 "
+      "10000 1 2 3 4 5 10000 6 7 8 9 10000 10 11 12 400 13 14 400 15 400\n");
+  seed(
+      "graph", "comments.graph",
+      "# graph\n\nVERTEX3 2 1 2 3 0.1 0.2 0.3\nVERTEX3 5 -1 0 1e-3 3.1 -1.5 -3.1\nFIX 5\n"
+      "EDGE3 2 5 1 1 1 0 0 0 1 0 0 0 0 0 1 0 0 0 0 1 0 0 0 1 0 0 1 0 1\n"
+      "EDGE3 2 5 1 1 1 0 0 0 4 0 0 0 0 0 4 0 0 0 0 4 0 0 0 4 0 0 4 0 4\n");
   seed("ini", "mrpt.ini", "; c\n@define N 4\n[A]\nk = ${N} // c\nv = 1 2 \\\n 3\n[B]\nx=\n");
   if (!fs::is_directory(shared / "tum"))
     return;

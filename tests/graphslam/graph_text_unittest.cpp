@@ -180,6 +180,7 @@ TEST(GraphText, BadFilesGiveOneLineNamingFileAndLine)
       loadError(v0 + v1 + "EDGE3 0 1 1 0 0 0 nan 0" + inf + "\n"), ":3:", "malformed EDGE3");
   expectError(loadError(v0 + "EDGE3 0 7 1 0 0 0 0 0" + inf + "\n"), ": EDGE3 0 7", "no node 7");
   expectError(loadError(v0 + "FIX 3\n"), ": FIX 3", "no such node");
+  expectError(loadError(v0 + "EDGE3 0 0 1 0 0 0 0 0" + inf + "\n"), ":2:", "to itself");
   expectError(loadError("# nothing\n"), ": no nodes", "VERTEX3");
   const std::string missing = roislam::testing::makeTempDir("graph_text") + "/none.graph";
   try

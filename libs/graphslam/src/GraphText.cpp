@@ -93,6 +93,9 @@ mrpt::graphs::CNetworkOfPoses3DInf loadGraphText(const std::string& file)
         throw fail(
             "malformed EDGE3 line (EDGE3 from to x y z roll pitch yaw and 21 information "
             "entries)");
+      // MRPT's writer skips such an edge: it would not come back.
+      if (from == to)
+        throw fail("EDGE3 from node " + std::to_string(from) + " to itself");
       mrpt::poses::CPose3DPDFGaussianInf edge;
       edge.mean = poseFromFile(v);
       // The upper triangle row by row in the file's order, each entry put

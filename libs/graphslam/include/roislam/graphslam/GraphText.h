@@ -36,7 +36,8 @@ void saveGraphText(const mrpt::graphs::CNetworkOfPoses3DInf& graph, const std::s
  *  entries in the file's (x y z roll pitch yaw) order; blank lines and lines
  *  starting with '#' are skipped. Throws std::runtime_error "<file>:<line>:
  *  <what>" on anything else: an unknown or malformed line, a duplicated node,
- *  an edge to a missing node, a FIX of a missing node; and "<file>: cannot
+ *  an edge from a node to itself, an edge to a missing node, a FIX of a
+ *  missing node; and "<file>: cannot
  *  open" or "<file>: no nodes". */
 mrpt::graphs::CNetworkOfPoses3DInf loadGraphText(const std::string& file);
 }  // namespace roislam::graphslam
