@@ -1,7 +1,7 @@
 /* Fuzz target: pose-graph text files (loadGraphText), and the exact
  * save/load round trip of what was accepted: the same nodes, and the same
  * edges with the same information, entry for entry. */
-#include <roislam/graphslam/GraphText.h>
+#include <roislam/io/GraphText.h>
 
 #include <cstdio>
 #include <cstdlib>
@@ -10,7 +10,7 @@
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size)
 {
-  using roislam::graphslam::loadGraphText;
+  using roislam::io::loadGraphText;
   const std::string file = roislam::fuzz::writeScratch("graph.graph", data, size);
   mrpt::graphs::CNetworkOfPoses3DInf g;
   try
@@ -23,7 +23,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size)
     return 0;
   }
   const std::string copy = (roislam::fuzz::scratchDir() / "graph_copy.graph").string();
-  roislam::graphslam::saveGraphText(g, copy);
+  roislam::io::saveGraphText(g, copy);
   const auto back = loadGraphText(copy);
   if (back.nodes.size() != g.nodes.size() || back.edges.size() != g.edges.size())
   {

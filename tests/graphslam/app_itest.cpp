@@ -1,7 +1,7 @@
 /* roi-graphslam end to end (the executable, as users run it) on the
  * synthetic sequences of the ctest fixture and on bad input. */
 #include <gtest/gtest.h>
-#include <roislam/graphslam/GraphText.h>
+#include <roislam/io/GraphText.h>
 #include <roislam/testing/TestData.h>
 
 #include <Eigen/Cholesky>
@@ -84,7 +84,7 @@ TEST(RoiGraphSlamApp, TexturedLoopIsAccurateAndClosesLoops)
 #endif
   // Read back whole (GraphText.h): every edge's information is positive
   // definite, as the run's own was.
-  const auto g = roislam::graphslam::loadGraphText(out + "/graph.graph");
+  const auto g = roislam::io::loadGraphText(out + "/graph.graph");
   EXPECT_EQ(g.nodes.size(), s["graph_nodes"].get<std::size_t>());
   EXPECT_EQ(g.edges.size(), s["graph_edges"].get<std::size_t>());
   for (const auto& [ids, e] : g.edges)

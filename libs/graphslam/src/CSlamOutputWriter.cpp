@@ -5,7 +5,7 @@
 #include <roislam/evaluation/CTrajectoryPlot.h>
 #include <roislam/frontend/PoseUncertainty.h>
 #include <roislam/graphslam/CSlamOutputWriter.h>
-#include <roislam/graphslam/GraphText.h>
+#include <roislam/io/GraphText.h>
 #include <roislam/viz/CSlamSceneBuilder.h>
 #include <roislam/viz/CSnapshotRenderer.h>
 
@@ -164,7 +164,7 @@ void CSlamOutputWriter::writeTrajectory(
 void CSlamOutputWriter::writeGraph(const TGraph& graph) const
 {
   // Not MRPT's saveToTextFile: it prints 6 significant digits (GraphText.h).
-  saveGraphText(graph, m_dir + "graph.graph");
+  io::saveGraphText(graph, m_dir + "graph.graph");
 }
 
 void CSlamOutputWriter::writeFramesCsv(

@@ -1,4 +1,4 @@
-#include "roislam/graphslam/GraphText.h"
+#include "roislam/io/GraphText.h"
 
 #include <roislam/common/TextFiles.h>
 
@@ -8,7 +8,7 @@
 #include <stdexcept>
 #include <vector>
 
-namespace roislam::graphslam
+namespace roislam::io
 {
 namespace
 {
@@ -125,4 +125,4 @@ mrpt::graphs::CNetworkOfPoses3DInf loadGraphText(const std::string& file)
             ": no node " + std::to_string(id));
   return g;
 }
-}  // namespace roislam::graphslam
+}  // namespace roislam::io

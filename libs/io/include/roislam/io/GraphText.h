@@ -21,7 +21,7 @@
 
 #include <string>
 
-namespace roislam::graphslam
+namespace roislam::io
 {
 /** The graph as writeAsText writes it, every number with 17 significant
  *  digits (a double read back is the same double). */
@@ -40,4 +40,4 @@ void saveGraphText(const mrpt::graphs::CNetworkOfPoses3DInf& graph, const std::s
  *  missing node; and "<file>: cannot
  *  open" or "<file>: no nodes". */
 mrpt::graphs::CNetworkOfPoses3DInf loadGraphText(const std::string& file);
-}  // namespace roislam::graphslam
+}  // namespace roislam::io

@@ -4,7 +4,7 @@
  * naming the file and the line. */
 #include <gtest/gtest.h>
 #include <roislam/common/TextFiles.h>
-#include <roislam/graphslam/GraphText.h>
+#include <roislam/io/GraphText.h>
 #include <roislam/testing/TestData.h>
 
 #include <Eigen/Cholesky>
@@ -14,8 +14,8 @@
 #include <string>
 
 namespace fs = std::filesystem;
-using roislam::graphslam::loadGraphText;
-using roislam::graphslam::saveGraphText;
+using roislam::io::loadGraphText;
+using roislam::io::saveGraphText;
 using TGraph = mrpt::graphs::CNetworkOfPoses3DInf;
 
 namespace
