@@ -37,6 +37,12 @@ int main(int argc, char** argv)
   cli.add_flag(
       "--skip-invalid", p.skipInvalid,
       "skip lines with a NaN or a zero quaternion, as the benchmark scripts do (default: error)");
+  cli.add_option(
+      "--graph", p.graphFile,
+      "also check a run's graph.graph against the ground truth: each edge's chi-square "
+      "(needs --frames)");
+  cli.add_option(
+      "--frames", p.framesFile, "the same run's frames.csv (which frame each graph node is)");
   CLI11_PARSE(cli, argc, argv);
 
   try

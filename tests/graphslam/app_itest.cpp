@@ -90,6 +90,28 @@ TEST(RoiGraphSlamApp, TexturedLoopIsAccurateAndClosesLoops)
   for (const auto& [ids, e] : g.edges)
     EXPECT_EQ(e.cov_inv.asEigen().llt().info(), Eigen::Success)
         << "edge " << ids.first << "-" << ids.second;
+
+  // roi-eval checks the saved graph against the ground truth after the run
+  // and reads what the run read (summary.json's edge_chi2).
+  const std::string gt = seq + "/groundtruth.txt";
+  const auto ev = roislam::testing::runApp(
+      "roi-eval", "--gt " + gt + " --est " + out + "/trajectory.txt --graph " + out +
+                      "/graph.graph --frames " + out + "/frames.csv --json");
+  ASSERT_EQ(ev.exitCode, 0) << ev.err;
+  const auto j = nlohmann::json::parse(ev.out);
+  ASSERT_TRUE(j["edge_chi2"].is_object()) << ev.out;
+  const auto& online = s["edge_chi2"];
+  EXPECT_EQ(j["edge_chi2"]["edges"], online["edges"]);
+  // frames.csv keeps times to the microsecond.
+  for (const char* k : {"median", "mean"})
+    EXPECT_NEAR(
+        j["edge_chi2"][k].get<double>(), online[k].get<double>(), 1e-3 * online[k].get<double>())
+        << k;
+  const auto bad = roislam::testing::runApp(
+      "roi-eval",
+      "--gt " + gt + " --est " + out + "/trajectory.txt --graph " + out + "/graph.graph");
+  EXPECT_EQ(bad.exitCode, 1);
+  EXPECT_NE(bad.err.find("--graph and --frames go together"), std::string::npos) << bad.err;
   fs::remove_all(out);
 }
 

@@ -2,6 +2,8 @@
 
 #include <roislam/evaluation/CErrorPlot.h>
 #include <roislam/evaluation/CTrajectoryPlot.h>
+#include <roislam/evaluation/FramesCsv.h>
+#include <roislam/io/GraphText.h>
 
 #include <cstdio>
 #include <filesystem>
@@ -22,9 +24,13 @@ std::string fixed(double v, int decimals)
 CEvalApp::CEvalApp(const TParams& params) : m_params(params)
 {
   m_params.evaluation.validate("command line");
+  if (m_params.graphFile.empty() != m_params.framesFile.empty())
+    throw std::invalid_argument(
+        "--graph and --frames go together: the run's graph.graph and its frames.csv (which "
+        "frame each graph node is)");
 }
 
-TEvaluationResult CEvalApp::run(std::ostream& out) const
+TEvaluationResult CEvalApp::run(std::ostream& out)
 {
   const auto invalid = m_params.skipInvalid ? io::EInvalidPose::Skip : io::EInvalidPose::Reject;
   const io::TTrajectory gt = io::loadTumTrajectory(m_params.groundTruthFile, invalid);
@@ -43,6 +49,29 @@ TEvaluationResult CEvalApp::run(std::ostream& out) const
   {
     throw std::runtime_error(
         m_params.estimateFile + " vs " + m_params.groundTruthFile + ": " + e.what());
+  }
+
+  m_edgeChi2.reset();
+  if (!m_params.graphFile.empty())
+  {
+    const auto graph = io::loadGraphText(m_params.graphFile);
+    const TFrameTimes times = readFrameTimes(m_params.framesFile);
+    // As the run does (CSlamRunner::edgeChi2), without the edge kinds, which
+    // the file does not keep.
+    m_edgeChi2 = evaluation::edgeChi2(
+        graph,
+        [&times](mrpt::graphs::TNodeID id)
+        {
+          const auto it = times.keyframes.find(id);
+          return it == times.keyframes.end() ? -1.0 : it->second;
+        },
+        gt, 0.02, {}, times.frames);
+    if (!m_edgeChi2)
+      throw std::runtime_error(
+          m_params.graphFile +
+          ": no edge could be checked (no ground truth at its nodes' times "
+          "in " +
+          m_params.groundTruthFile + ", or nodes missing from " + m_params.framesFile + ")");
   }
 
   if (!m_params.alignedFile.empty())
@@ -66,7 +95,10 @@ TEvaluationResult CEvalApp::run(std::ostream& out) const
 
   if (m_params.json)
   {
-    out << toJson(r).dump() << "\n";
+    auto j = toJson(r);
+    if (m_edgeChi2)
+      j["edge_chi2"] = toJson(*m_edgeChi2);
+    out << j.dump() << "\n";
     return r;
   }
   const auto& a = r.ate;
@@ -82,6 +114,18 @@ TEvaluationResult CEvalApp::run(std::ostream& out) const
       << "  median " << fixed(p.trans_median, 6) << "  max " << fixed(p.trans_max, 6) << "\n"
       << "     rot   rmse " << fixed(p.rot_rmse_deg, 6) << " deg  mean " << fixed(p.rot_mean_deg, 6)
       << "  median " << fixed(p.rot_median_deg, 6) << "  max " << fixed(p.rot_max_deg, 6) << "\n";
+  if (m_edgeChi2)
+  {
+    const auto& c = *m_edgeChi2;
+    out << "EDGES " << c.edges << " checked, " << c.skipped
+        << " skipped (chi-square of each edge against the ground truth; chi2(6): median 5.35, "
+           "mean 6)\n"
+        << "     chi2 median " << fixed(c.median, 3) << "  mean " << fixed(c.mean, 3) << "\n";
+    if (c.withGroundTruthNoise)
+      out << "     with the ground truth's noise: median "
+          << fixed(c.withGroundTruthNoise->median, 3) << "  mean "
+          << fixed(c.withGroundTruthNoise->mean, 3) << "\n";
+  }
   return r;
 }
 }  // namespace roislam::evaluation
