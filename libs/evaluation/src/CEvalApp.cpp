@@ -68,10 +68,8 @@ TEvaluationResult CEvalApp::run(std::ostream& out)
         gt, 0.02, {}, times.frames);
     if (!m_edgeChi2)
       throw std::runtime_error(
-          m_params.graphFile +
-          ": no edge could be checked (no ground truth at its nodes' times "
-          "in " +
-          m_params.groundTruthFile + ", or nodes missing from " + m_params.framesFile + ")");
+          m_params.graphFile + ": no edge could be checked (no node's time in " +
+          m_params.framesFile + " has ground truth in " + m_params.groundTruthFile + ")");
   }
 
   if (!m_params.alignedFile.empty())
