@@ -68,8 +68,8 @@ TEvaluationResult CEvalApp::run(std::ostream& out)
         gt, 0.02, {}, times.frames);
     if (!m_edgeChi2)
       throw std::runtime_error(
-          m_params.graphFile + ": no edge could be checked (no node's time in " +
-          m_params.framesFile + " has ground truth in " + m_params.groundTruthFile + ")");
+          m_params.graphFile + ": no edge could be checked (none has both nodes in " +
+          m_params.framesFile + " with ground truth in " + m_params.groundTruthFile + ")");
   }
 
   if (!m_params.alignedFile.empty())
