@@ -149,6 +149,24 @@ TEST(RoiEvalApp, BadInputGivesOneLineErrorAndExitCode1)
     EXPECT_NE(r.err.find("max_difference: must be > 0"), std::string::npos) << r.err;
   }
   {
+    // A graph whose nodes' frames lie outside the ground truth (100-110 s).
+    std::string inf;
+    for (int k = 0; k < 21; ++k)
+      inf += (k == 0 || k == 6 || k == 11 || k == 15 || k == 18 || k == 20) ? " 1" : " 0";
+    std::ofstream(dir + "/g.graph") << "VERTEX3 0 0 0 0 0 0 0\nVERTEX3 1 1 0 0 0 0 0\n"
+                                    << "EDGE3 0 1 1 0 0 0 0 0" << inf << "\n";
+    std::ofstream(dir + "/frames.csv") << "index,timestamp,keyframe\n0,5.0,0\n1,6.0,1\n";
+    const std::string graph = " --graph '" + dir + "/g.graph' --frames '" + dir + "/frames.csv'";
+    TRun r = run(gt + " --est '" + dir + "/est.txt'" + graph, dir);
+    EXPECT_EQ(r.code, 1);
+    EXPECT_NE(r.err.find("g.graph: no edge could be checked"), std::string::npos) << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    std::ofstream(dir + "/frames.csv") << "index,timestamp\n0,5.0\n";
+    r = run(gt + " --est '" + dir + "/est.txt'" + graph, dir);
+    EXPECT_EQ(r.code, 1);
+    EXPECT_NE(r.err.find("frames.csv:1: no 'keyframe' column"), std::string::npos) << r.err;
+  }
+  {
     // Unwritable output: error, no partial file.
     const TRun r =
         run(gt + " --est '" + dir + "/est.txt' --save-aligned '" + dir + "/no/such/a.txt'", dir);
