@@ -203,15 +203,18 @@ bool sendKeys(Window w, const std::string& keys)
  *  did nothing: a synthetic key can go unseen (in CI, on a loaded 2-core
  *  machine, Xvfb once lost a space that came right after windowfocus while
  *  the key after it arrived). The app answers a key within milliseconds, so
- *  3 s without its effect means the key was lost, and pressing a toggle
- *  (space) again cannot undo one that was seen. */
-bool pressUntil(Window w, const std::string& key, const std::function<bool()>& seen)
+ *  `patience` without its effect means the key was lost, and pressing a
+ *  toggle (space) again cannot undo one that was seen. A key whose effect
+ *  takes work (s: rendering and saving a screenshot) gets more patience. */
+bool pressUntil(
+    Window w, const std::string& key, const std::function<bool()>& seen,
+    std::chrono::seconds patience = 3s)
 {
   for (int attempt = 0; attempt < 4; ++attempt)
   {
     if (!sendKeys(w, key))
       return false;
-    const auto until = std::chrono::steady_clock::now() + 3s;
+    const auto until = std::chrono::steady_clock::now() + patience;
     for (; std::chrono::steady_clock::now() < until; std::this_thread::sleep_for(20ms))
       if (seen())
         return true;
@@ -406,7 +409,8 @@ TEST(LiveView, KeysPauseScreenshotAndQuitWithCompleteOutputs)
           return true;
     return false;
   };
-  EXPECT_TRUE(pressUntil(w, "s", [&dir, &hasScreenshot] { return hasScreenshot(dir, true); }))
+  EXPECT_TRUE(pressUntil(
+      w, "s", [&dir, &hasScreenshot] { return hasScreenshot(dir, true); }, 10s))
       << "s saved no screenshot-*.png under " << dir;
   EXPECT_TRUE(pressUntil(w, "q", logs(": q: stopping the run"))) << readText(errFile);
   ASSERT_EQ(app.wait(120s), std::optional<int>(0)) << readText(dir + "/err");
