@@ -19,6 +19,18 @@ std::string fixed(double v, int decimals)
   std::snprintf(buf, sizeof(buf), "%.*f", decimals, v);
   return buf;
 }
+
+/** The table's block for a checked graph (CEvalApp::checkGraph). */
+void printEdges(std::ostream& out, const TEdgeChi2& c)
+{
+  out << "EDGES " << c.edges << " checked, " << c.skipped
+      << " skipped (chi-square of each edge against the ground truth; chi2(6): median 5.35, "
+         "mean 6)\n"
+      << "     chi2 median " << fixed(c.median, 3) << "  mean " << fixed(c.mean, 3) << "\n";
+  if (c.withGroundTruthNoise)
+    out << "     with the ground truth's noise: median " << fixed(c.withGroundTruthNoise->median, 3)
+        << "  mean " << fixed(c.withGroundTruthNoise->mean, 3) << "\n";
+}
 }  // namespace
 
 CEvalApp::CEvalApp(const TParams& params) : m_params(params)
@@ -28,6 +40,27 @@ CEvalApp::CEvalApp(const TParams& params) : m_params(params)
     throw std::invalid_argument(
         "--graph and --frames go together: the run's graph.graph and its frames.csv (which "
         "frame each graph node is)");
+}
+
+TEdgeChi2 CEvalApp::checkGraph(const io::TTrajectory& gt) const
+{
+  const auto graph = io::loadGraphText(m_params.graphFile);
+  const TFrameTimes times = readFrameTimes(m_params.framesFile);
+  // As the run does (CSlamRunner::edgeChi2), without the edge kinds, which
+  // the file does not keep.
+  auto chi2 = evaluation::edgeChi2(
+      graph,
+      [&times](mrpt::graphs::TNodeID id)
+      {
+        const auto it = times.keyframes.find(id);
+        return it == times.keyframes.end() ? -1.0 : it->second;
+      },
+      gt, 0.02, {}, times.frames);
+  if (!chi2)
+    throw std::runtime_error(
+        m_params.graphFile + ": no edge could be checked (none has both nodes in " +
+        m_params.framesFile + " with ground truth in " + m_params.groundTruthFile + ")");
+  return *chi2;
 }
 
 TEvaluationResult CEvalApp::run(std::ostream& out)
@@ -53,24 +86,7 @@ TEvaluationResult CEvalApp::run(std::ostream& out)
 
   m_edgeChi2.reset();
   if (!m_params.graphFile.empty())
-  {
-    const auto graph = io::loadGraphText(m_params.graphFile);
-    const TFrameTimes times = readFrameTimes(m_params.framesFile);
-    // As the run does (CSlamRunner::edgeChi2), without the edge kinds, which
-    // the file does not keep.
-    m_edgeChi2 = evaluation::edgeChi2(
-        graph,
-        [&times](mrpt::graphs::TNodeID id)
-        {
-          const auto it = times.keyframes.find(id);
-          return it == times.keyframes.end() ? -1.0 : it->second;
-        },
-        gt, 0.02, {}, times.frames);
-    if (!m_edgeChi2)
-      throw std::runtime_error(
-          m_params.graphFile + ": no edge could be checked (none has both nodes in " +
-          m_params.framesFile + " with ground truth in " + m_params.groundTruthFile + ")");
-  }
+    m_edgeChi2 = checkGraph(gt);
 
   if (!m_params.alignedFile.empty())
     io::saveTumTrajectory(
@@ -113,17 +129,7 @@ TEvaluationResult CEvalApp::run(std::ostream& out)
       << "     rot   rmse " << fixed(p.rot_rmse_deg, 6) << " deg  mean " << fixed(p.rot_mean_deg, 6)
       << "  median " << fixed(p.rot_median_deg, 6) << "  max " << fixed(p.rot_max_deg, 6) << "\n";
   if (m_edgeChi2)
-  {
-    const auto& c = *m_edgeChi2;
-    out << "EDGES " << c.edges << " checked, " << c.skipped
-        << " skipped (chi-square of each edge against the ground truth; chi2(6): median 5.35, "
-           "mean 6)\n"
-        << "     chi2 median " << fixed(c.median, 3) << "  mean " << fixed(c.mean, 3) << "\n";
-    if (c.withGroundTruthNoise)
-      out << "     with the ground truth's noise: median "
-          << fixed(c.withGroundTruthNoise->median, 3) << "  mean "
-          << fixed(c.withGroundTruthNoise->mean, 3) << "\n";
-  }
+    printEdges(out, *m_edgeChi2);
   return r;
 }
 }  // namespace roislam::evaluation

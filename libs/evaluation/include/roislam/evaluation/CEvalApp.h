@@ -48,6 +48,11 @@ class CEvalApp
   const std::optional<TEdgeChi2>& edgeChi2() const { return m_edgeChi2; }
 
  private:
+  /** The graph's edges against `gt` (sorted): graphFile through
+   *  io::loadGraphText, its nodes' times from framesFile. Throws naming the
+   *  files when no edge can be checked. */
+  TEdgeChi2 checkGraph(const io::TTrajectory& gt) const;
+
   TParams m_params;
   std::optional<TEdgeChi2> m_edgeChi2;
 };
